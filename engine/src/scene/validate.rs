@@ -1,0 +1,378 @@
+//! From the file as written to a [`Scene`]: every physical check, each
+//! failure located at its value.
+
+use glam::{DVec2, DVec3};
+
+use super::model::{
+    DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE, overlapping_pairs,
+};
+use super::raw::{At, RawObserver, RawPuck, RawScene};
+use super::{Color, Effects, ObserverSpec, PuckSpec, Scene, SceneError, SceneErrors, TableSpec};
+use crate::spacetime::ProperVelocity;
+
+/// Collects located errors while a scene is checked.
+struct Checker<'a> {
+    text: &'a str,
+    file: &'a str,
+    errors: Vec<SceneError>,
+}
+
+impl Checker<'_> {
+    fn error<T>(&mut self, at: &At<T>, field: &str, message: String) {
+        self.errors.push(SceneError::at(
+            self.file,
+            self.text,
+            at.span().start,
+            field,
+            message,
+        ));
+    }
+
+    /// An array of `N` finite numbers, else an error and `None`.
+    fn finite<const N: usize>(&mut self, v: &At<Vec<f64>>, field: &str) -> Option<[f64; N]> {
+        let x = v.get_ref();
+        let Ok(a) = <[f64; N]>::try_from(x.as_slice()) else {
+            self.error(v, field, format!("{x:?} has {} numbers; give {N}", x.len()));
+            return None;
+        };
+        if a.iter().all(|c| c.is_finite()) {
+            Some(a)
+        } else {
+            self.error(
+                v,
+                field,
+                format!("{x:?} has a component that is not a finite number"),
+            );
+            None
+        }
+    }
+
+    /// A finite number > 0 (or `default` when absent).
+    fn positive(&mut self, v: Option<&At<f64>>, field: &str, default: f64) -> f64 {
+        let Some(v) = v else { return default };
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            x
+        } else {
+            self.error(v, field, format!("{x} must be a positive finite number"));
+            default
+        }
+    }
+
+    /// A number in [0, 1] (or `default` when absent).
+    fn unit_interval(&mut self, v: Option<&At<f64>>, field: &str, default: f64) -> f64 {
+        let Some(v) = v else { return default };
+        let x = *v.get_ref();
+        if (0.0..=1.0).contains(&x) {
+            x
+        } else {
+            self.error(v, field, format!("{x} must lie in [0, 1]"));
+            default
+        }
+    }
+
+    /// The proper velocity from exactly one of `beta`, `velocity` (m/s) or
+    /// `u` (γβ); at rest when none is given.
+    fn motion<const N: usize>(
+        &mut self,
+        at: &At<impl Sized>,
+        prefix: &str,
+        beta: Option<&At<Vec<f64>>>,
+        velocity: Option<&At<Vec<f64>>>,
+        u: Option<&At<Vec<f64>>>,
+        c: f64,
+    ) -> ProperVelocity {
+        let given = [beta.is_some(), velocity.is_some(), u.is_some()];
+        if given.iter().filter(|g| **g).count() > 1 {
+            self.error(
+                at,
+                &format!("{prefix}.beta"),
+                "give at most one of `beta`, `velocity` and `u`".to_owned(),
+            );
+            return ProperVelocity::ZERO;
+        }
+        let to3 = |x: [f64; N]| DVec3::from_slice(&[x.as_slice(), &[0.0; 3]].concat()[..3]);
+        if let Some(b) = beta {
+            let field = format!("{prefix}.beta");
+            let Some(x) = self.finite::<N>(b, &field) else {
+                return ProperVelocity::ZERO;
+            };
+            match ProperVelocity::try_from_beta(to3(x)) {
+                Ok(u) => u,
+                Err(e) => {
+                    self.error(
+                        b,
+                        &field,
+                        format!("{e}; to state γ beyond ~10⁷ give `u` = γβ instead"),
+                    );
+                    ProperVelocity::ZERO
+                }
+            }
+        } else if let Some(v) = velocity {
+            let field = format!("{prefix}.velocity");
+            let Some(x) = self.finite::<N>(v, &field) else {
+                return ProperVelocity::ZERO;
+            };
+            let speed = to3(x).length();
+            match ProperVelocity::try_from_velocity(to3(x), c) {
+                Ok(u) => u,
+                Err(_) => {
+                    self.error(
+                        v,
+                        &field,
+                        format!("speed {speed} m/s is not below c = {c} m/s"),
+                    );
+                    ProperVelocity::ZERO
+                }
+            }
+        } else if let Some(v) = u {
+            let field = format!("{prefix}.u");
+            self.finite::<N>(v, &field)
+                .map_or(ProperVelocity::ZERO, |x| ProperVelocity(to3(x)))
+        } else {
+            ProperVelocity::ZERO
+        }
+    }
+
+    /// A unique name, or `fallback` when absent.
+    fn name(
+        &mut self,
+        name: Option<&At<String>>,
+        field: &str,
+        fallback: String,
+        taken: &mut Vec<String>,
+    ) -> String {
+        let Some(n) = name else {
+            taken.push(fallback.clone());
+            return fallback;
+        };
+        let s = n.get_ref().trim().to_owned();
+        if s.is_empty() {
+            self.error(n, field, "a name must not be empty".to_owned());
+            return fallback;
+        }
+        if taken.contains(&s) {
+            self.error(
+                n,
+                field,
+                format!("duplicate name \"{s}\": names must be unique"),
+            );
+        }
+        taken.push(s.clone());
+        s
+    }
+}
+
+/// Checks a parsed scene and builds the engine's [`Scene`].
+pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErrors> {
+    let mut ck = Checker {
+        text,
+        file,
+        errors: Vec::new(),
+    };
+
+    let size = match raw.table.as_ref().and_then(|t| t.size.as_ref()) {
+        Some(s) => match ck.finite::<2>(s, "table.size") {
+            Some([x, y]) if x > 0.0 && y > 0.0 => DVec2::new(x, y),
+            Some(x) => {
+                ck.error(
+                    s,
+                    "table.size",
+                    format!("{x:?}: both sides must be positive"),
+                );
+                DVec2::from(DEFAULT_TABLE)
+            }
+            None => DVec2::from(DEFAULT_TABLE),
+        },
+        None => DVec2::from(DEFAULT_TABLE),
+    };
+    let cushion_restitution = ck.unit_interval(
+        raw.table
+            .as_ref()
+            .and_then(|t| t.cushion_restitution.as_ref()),
+        "table.cushion_restitution",
+        1.0,
+    );
+    let table = TableSpec {
+        size,
+        cushion_restitution,
+    };
+    let c = ck.positive(raw.c.as_ref(), "c", Scene::default_c(size));
+    let restitution = ck.unit_interval(
+        raw.physics.as_ref().and_then(|p| p.restitution.as_ref()),
+        "physics.restitution",
+        1.0,
+    );
+    let effects = effects(raw.effects.unwrap_or_default());
+
+    let mut names = Vec::new();
+    let mut pucks = Vec::with_capacity(raw.puck.len());
+    let mut puck_spans = Vec::with_capacity(raw.puck.len());
+    for (i, at) in raw.puck.iter().enumerate() {
+        let errors_before = ck.errors.len();
+        let p = puck(&mut ck, at, i, c, &mut names);
+        if ck.errors.len() > errors_before {
+            continue; // a puck with a bad field is not placed
+        }
+        if let Some(why) = table.misplaced(&p) {
+            ck.error(&at.get_ref().position, &format!("puck[{i}].position"), why);
+        }
+        pucks.push(p);
+        puck_spans.push((i, at));
+    }
+    for (i, j) in overlapping_pairs(&pucks) {
+        let (a, b) = (&pucks[i], &pucks[j]);
+        ck.error(
+            &puck_spans[j].1.get_ref().position,
+            &format!("puck[{}].position", puck_spans[j].0),
+            format!(
+                "puck \"{}\" overlaps puck \"{}\" (line {}): centres {:.6} m apart, radii add to {:.6} m",
+                b.name,
+                a.name,
+                super::error::line_column(text, puck_spans[i].1.span().start).0,
+                a.position.distance(b.position),
+                a.radius + b.radius
+            ),
+        );
+    }
+
+    let mut observer_names = Vec::new();
+    let mut observers: Vec<ObserverSpec> = raw
+        .observer
+        .iter()
+        .enumerate()
+        .map(|(i, at)| observer(&mut ck, at, i, c, size, &mut observer_names))
+        .collect();
+    if observers.is_empty() {
+        observers.push(Scene::default_observer(size));
+    }
+
+    if !ck.errors.is_empty() {
+        return Err(SceneErrors(ck.errors));
+    }
+    Ok(Scene {
+        title: raw.title.unwrap_or_else(|| file.to_owned()),
+        description: raw.description.unwrap_or_default(),
+        c,
+        table,
+        restitution,
+        effects,
+        pucks,
+        observers,
+    })
+}
+
+fn effects(raw: super::raw::RawEffects) -> Effects {
+    let d = Effects::default();
+    Effects {
+        contraction: raw.contraction.unwrap_or(d.contraction),
+        light_delay: raw.light_delay.unwrap_or(d.light_delay),
+        aberration: raw.aberration.unwrap_or(d.aberration),
+        doppler: raw.doppler.unwrap_or(d.doppler),
+        searchlight: raw.searchlight.unwrap_or(d.searchlight),
+        time_dilation: raw.time_dilation.unwrap_or(d.time_dilation),
+    }
+}
+
+fn puck(ck: &mut Checker, at: &At<RawPuck>, i: usize, c: f64, names: &mut Vec<String>) -> PuckSpec {
+    let p = at.get_ref();
+    let prefix = format!("puck[{i}]");
+    let name = ck.name(
+        p.name.as_ref(),
+        &format!("{prefix}.name"),
+        format!("puck{}", i + 1),
+        names,
+    );
+    let position = ck
+        .finite::<2>(&p.position, &format!("{prefix}.position"))
+        .map_or(DVec2::ZERO, DVec2::from);
+    let u = ck.motion::<2>(
+        at,
+        &prefix,
+        p.beta.as_ref(),
+        p.velocity.as_ref(),
+        p.u.as_ref(),
+        c,
+    );
+    let radius = ck.positive(
+        p.radius.as_ref(),
+        &format!("{prefix}.radius"),
+        DEFAULT_RADIUS,
+    );
+    let height = ck.positive(
+        p.height.as_ref(),
+        &format!("{prefix}.height"),
+        DEFAULT_HEIGHT,
+    );
+    let mass = ck.positive(p.mass.as_ref(), &format!("{prefix}.mass"), DEFAULT_MASS);
+    let color = match &p.color {
+        None => Color::default_for(i),
+        Some(s) => Color::parse(s.get_ref()).unwrap_or_else(|| {
+            ck.error(
+                s,
+                &format!("{prefix}.color"),
+                format!(
+                    "\"{}\" is not a colour: use \"#rrggbb\" or a name such as \"red\"",
+                    s.get_ref()
+                ),
+            );
+            Color::default_for(i)
+        }),
+    };
+    PuckSpec {
+        name,
+        position,
+        u,
+        radius,
+        height,
+        mass,
+        color,
+    }
+}
+
+fn observer(
+    ck: &mut Checker,
+    at: &At<RawObserver>,
+    i: usize,
+    c: f64,
+    size: DVec2,
+    names: &mut Vec<String>,
+) -> ObserverSpec {
+    let o = at.get_ref();
+    let prefix = format!("observer[{i}]");
+    let name = ck.name(
+        o.name.as_ref(),
+        &format!("{prefix}.name"),
+        format!("observer{}", i + 1),
+        names,
+    );
+    let position = ck
+        .finite::<3>(&o.position, &format!("{prefix}.position"))
+        .map_or(DVec3::ZERO, DVec3::from);
+    let centre = DVec3::new(size.x / 2.0, size.y / 2.0, 0.0);
+    let look_at = match &o.look_at {
+        None => centre,
+        Some(l) => match ck
+            .finite::<3>(l, &format!("{prefix}.look_at"))
+            .map(DVec3::from)
+        {
+            Some(p) if p.distance(position) > 0.0 => p,
+            Some(_) => {
+                ck.error(
+                    l,
+                    &format!("{prefix}.look_at"),
+                    "must differ from `position`".to_owned(),
+                );
+                centre
+            }
+            None => centre,
+        },
+    };
+    let u = ck.motion::<3>(at, &prefix, o.beta.as_ref(), None, o.u.as_ref(), c);
+    ObserverSpec {
+        name,
+        position,
+        look_at,
+        u,
+    }
+}

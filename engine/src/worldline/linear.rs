@@ -1,0 +1,275 @@
+//! Append-only piecewise-linear worldlines.
+
+use glam::DVec3;
+
+use crate::spacetime::{Event, ProperVelocity};
+
+/// Why a kink cannot be appended to a worldline.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum WorldlineError {
+    /// Worldlines only grow forward in board time.
+    #[error(
+        "cannot change velocity at t = {at} s: the worldline already has a segment from t = {last} s"
+    )]
+    BeforeLastSegment {
+        /// The requested board time.
+        at: f64,
+        /// Start of the last segment.
+        last: f64,
+    },
+    /// Time or velocity not finite.
+    #[error("time or velocity is not a finite number")]
+    NotFinite,
+}
+
+/// One straight piece of a worldline: from event `start` on, the body moves
+/// with constant proper velocity `u`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment {
+    /// Where and when this segment begins (board frame).
+    pub start: Event,
+    /// Proper velocity along the segment.
+    pub u: ProperVelocity,
+    /// The body's proper time at `start`, seconds.
+    pub proper_time: f64,
+    /// Board-frame velocity `c u / γ`, m/s (derived from `u`, cached because
+    /// every position query needs it).
+    velocity: DVec3,
+    /// `1 / γ`, the rate of proper time per board time (cached).
+    inverse_gamma: f64,
+}
+
+impl Segment {
+    fn new(start: Event, u: ProperVelocity, proper_time: f64, c: f64) -> Self {
+        let gamma = u.gamma();
+        Self {
+            start,
+            u,
+            proper_time,
+            velocity: u.0 * (c / gamma),
+            inverse_gamma: 1.0 / gamma,
+        }
+    }
+
+    /// Board-frame velocity, m/s.
+    #[inline]
+    pub fn velocity(&self) -> DVec3 {
+        self.velocity
+    }
+
+    /// Position at board time `t`, extrapolated along this segment. The time
+    /// is taken relative to the segment start before it multiplies anything.
+    #[inline]
+    pub fn position_at(&self, t: f64) -> DVec3 {
+        self.start.position + self.velocity * (t - self.start.t)
+    }
+
+    /// Proper time at board time `t`: `τ₀ + (t − t₀)/γ` (time dilation).
+    #[inline]
+    pub fn proper_time_at(&self, t: f64) -> f64 {
+        self.proper_time + (t - self.start.t) * self.inverse_gamma
+    }
+}
+
+/// The state of a body at one board time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyState {
+    /// Board-frame position, m.
+    pub position: DVec3,
+    /// Proper velocity.
+    pub u: ProperVelocity,
+    /// Proper time, s.
+    pub proper_time: f64,
+}
+
+/// The history of one body's reference point (a puck's centre on the board,
+/// an observer's eye): straight segments joined at kinks where its velocity
+/// changed (collisions, cue strokes, a tracker sample).
+///
+/// * **Append-only**: segments are only added at or after the last start;
+///   the past is never rewritten, so every view of it (replay, several
+///   observers, light-delayed images) stays consistent.
+/// * **Queries in O(log S)** by binary search over segment starts.
+/// * **Before the first event** the first segment extends back to
+///   `t = −∞`: a body keeps its initial state for all earlier times, which is
+///   what an observer looking into the scene's past (light delay at t = 0)
+///   must see. Proper time is then negative.
+/// * **At a kink** the later segment applies (right-continuous velocity).
+#[derive(Clone, Debug, PartialEq, bevy_ecs::component::Component)]
+pub struct Worldline {
+    segments: Vec<Segment>,
+    c: f64,
+}
+
+impl Worldline {
+    /// A worldline through `start` with proper velocity `u`, proper time 0 at
+    /// `start`, for a speed of light `c` in m/s.
+    pub fn new(start: Event, u: ProperVelocity, c: f64) -> Self {
+        Self {
+            segments: vec![Segment::new(start, u, 0.0, c)],
+            c,
+        }
+    }
+
+    /// The speed of light the segments' velocities were derived with, m/s.
+    pub fn speed_of_light(&self) -> f64 {
+        self.c
+    }
+
+    /// All segments, oldest first (never empty).
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// The segment in force at board time `t`: O(log S).
+    pub fn segment_at(&self, t: f64) -> &Segment {
+        &self.segments[self.segment_index_at(t)]
+    }
+
+    /// Index of the segment in force at board time `t`.
+    pub fn segment_index_at(&self, t: f64) -> usize {
+        self.segments
+            .partition_point(|s| s.start.t <= t)
+            .saturating_sub(1)
+    }
+
+    /// The newest segment.
+    pub fn last(&self) -> &Segment {
+        // `new` creates one segment and nothing removes the first.
+        &self.segments[self.segments.len() - 1]
+    }
+
+    /// Position at board time `t`, m.
+    pub fn position_at(&self, t: f64) -> DVec3 {
+        self.segment_at(t).position_at(t)
+    }
+
+    /// Proper velocity at board time `t`.
+    pub fn velocity_at(&self, t: f64) -> ProperVelocity {
+        self.segment_at(t).u
+    }
+
+    /// Proper time at board time `t`, s.
+    pub fn proper_time_at(&self, t: f64) -> f64 {
+        self.segment_at(t).proper_time_at(t)
+    }
+
+    /// Position, velocity and proper time at board time `t`.
+    pub fn state_at(&self, t: f64) -> BodyState {
+        let s = self.segment_at(t);
+        BodyState {
+            position: s.position_at(t),
+            u: s.u,
+            proper_time: s.proper_time_at(t),
+        }
+    }
+
+    /// The event of this worldline at board time `t`.
+    pub fn event_at(&self, t: f64) -> Event {
+        Event::new(t, self.position_at(t))
+    }
+
+    /// Changes the proper velocity to `u` from board time `t` on (a kink).
+    ///
+    /// `t` must not precede the last segment's start. A kink at exactly the
+    /// last start replaces that segment's velocity (two impulses at one
+    /// instant add up), keeping the worldline a function of time.
+    pub fn push(&mut self, t: f64, u: ProperVelocity) -> Result<(), WorldlineError> {
+        if !(t.is_finite() && u.is_finite()) {
+            return Err(WorldlineError::NotFinite);
+        }
+        let last = *self.last();
+        if t < last.start.t {
+            return Err(WorldlineError::BeforeLastSegment {
+                at: t,
+                last: last.start.t,
+            });
+        }
+        if t == last.start.t {
+            let i = self.segments.len() - 1;
+            self.segments[i] = Segment::new(last.start, u, last.proper_time, self.c);
+        } else {
+            let start = Event::new(t, last.position_at(t));
+            self.segments
+                .push(Segment::new(start, u, last.proper_time_at(t), self.c));
+        }
+        Ok(())
+    }
+
+    /// Forgets every kink after board time `t` (for "what if" replays from a
+    /// past moment). The segment in force at `t` is kept.
+    pub fn truncate_after(&mut self, t: f64) {
+        let keep = self.segment_index_at(t) + 1;
+        self.segments.truncate(keep);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line() -> Worldline {
+        // c = 2 m/s, β = 0.6 along x: v = 1.2 m/s, γ = 1.25.
+        let u = ProperVelocity::try_from_beta(DVec3::new(0.6, 0.0, 0.0)).unwrap();
+        Worldline::new(Event::new(0.0, DVec3::new(1.0, 0.5, 0.0)), u, 2.0)
+    }
+
+    #[test]
+    fn uniform_motion_and_time_dilation() {
+        let w = line();
+        let s = w.state_at(2.0);
+        assert!((s.position - DVec3::new(3.4, 0.5, 0.0)).length() < 1e-14);
+        assert!((s.proper_time - 1.6).abs() < 1e-14); // 2 s / γ
+    }
+
+    #[test]
+    fn before_first_event_the_initial_state_extends_back() {
+        let w = line();
+        let s = w.state_at(-1.0);
+        assert!((s.position.x - (1.0 - 1.2)).abs() < 1e-14);
+        assert!((s.proper_time + 0.8).abs() < 1e-14);
+    }
+
+    #[test]
+    fn kinks_are_continuous_in_position_and_proper_time() {
+        let mut w = line();
+        w.push(1.0, ProperVelocity::ZERO).unwrap();
+        w.push(3.0, ProperVelocity(DVec3::new(0.0, 1.0, 0.0)))
+            .unwrap();
+        assert_eq!(w.segments().len(), 3);
+        // At rest from 1 to 3 s: proper time runs at board rate.
+        assert!((w.proper_time_at(3.0) - (0.8 + 2.0)).abs() < 1e-14);
+        assert!((w.position_at(2.0) - DVec3::new(2.2, 0.5, 0.0)).length() < 1e-14);
+        // After the second kink: β = 1/√2, v = √2 m/s along y.
+        let p = w.position_at(4.0);
+        assert!((p.y - (0.5 + 2f64.sqrt())).abs() < 1e-14);
+        // Right-continuous velocity at a kink.
+        assert_eq!(w.velocity_at(1.0), ProperVelocity::ZERO);
+        assert!(w.push(2.0, ProperVelocity::ZERO).is_err());
+        assert!(w.push(5.0, ProperVelocity(DVec3::NAN)).is_err());
+    }
+
+    #[test]
+    fn same_instant_kink_replaces_velocity() {
+        let mut w = line();
+        w.push(1.0, ProperVelocity::ZERO).unwrap();
+        w.push(1.0, ProperVelocity(DVec3::X)).unwrap();
+        assert_eq!(w.segments().len(), 2);
+        assert_eq!(w.velocity_at(1.5), ProperVelocity(DVec3::X));
+    }
+
+    #[test]
+    fn many_segments_binary_search() {
+        let mut w = Worldline::new(Event::default(), ProperVelocity::ZERO, 1.0);
+        for i in 1..10_000 {
+            let u = ProperVelocity(DVec3::X * if i % 2 == 0 { 0.0 } else { 1.0 });
+            w.push(i as f64, u).unwrap();
+        }
+        // 5 000 moving seconds at β = 1/√2.
+        let x = w.position_at(10_000.0).x;
+        assert!((x - 5000.0 / 2f64.sqrt()).abs() < 1e-8);
+        assert_eq!(w.segment_index_at(4321.5), 4321);
+        w.truncate_after(100.5);
+        assert_eq!(w.segments().len(), 101);
+    }
+}

@@ -1,0 +1,8 @@
+//! Worldlines: the history of each body as analytic segments, and the
+//! body's shape at any board time.
+
+mod linear;
+mod shape;
+
+pub use linear::{BodyState, Segment, Worldline, WorldlineError};
+pub use shape::{RestShape, contract};

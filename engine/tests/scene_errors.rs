@@ -1,0 +1,244 @@
+//! Every bad input a scene file can hold gets a message that names the
+//! file, the line and the field.
+
+use lightcone_engine::scene::{self, SceneError};
+
+const GOOD_PUCK: &str = "[[puck]]\nname = \"a\"\nposition = [0.5, 0.5]\n";
+
+/// Parses `text`, expects failure, returns the errors.
+fn errors(text: &str) -> Vec<SceneError> {
+    match scene::parse(text, "bad.toml") {
+        Ok(s) => panic!("accepted a bad scene: {s:?}"),
+        Err(e) => e.0,
+    }
+}
+
+/// The single error must be at `line`, name `field`, and say `words`.
+fn expect_one(text: &str, line: usize, field: &str, words: &str) {
+    let errs = errors(text);
+    assert_eq!(errs.len(), 1, "{errs:?}");
+    let e = &errs[0];
+    let shown = e.to_string();
+    assert_eq!(e.file, "bad.toml");
+    assert_eq!(e.line, line, "{shown}");
+    assert!(
+        e.field.contains(field),
+        "field `{}` lacks `{field}`: {shown}",
+        e.field
+    );
+    assert!(shown.contains(words), "`{shown}` lacks `{words}`");
+    assert!(shown.starts_with(&format!("bad.toml:{line}:")), "{shown}");
+}
+
+#[test]
+fn speed_at_or_above_c() {
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nbeta = [0.8, 0.6]\n",
+        3,
+        "puck[0].beta",
+        "not below the speed of light",
+    );
+    expect_one(
+        "c = 2.0\n[[puck]]\nposition = [0.5, 0.5]\nvelocity = [3.0, 0.0]\n",
+        4,
+        "puck[0].velocity",
+        "not below c = 2 m/s",
+    );
+    expect_one(
+        "[[observer]]\nposition = [0.5, 0.5, 1.0]\nbeta = [0.0, 0.0, 1.5]\n",
+        3,
+        "observer[0].beta",
+        "not below the speed of light",
+    );
+}
+
+#[test]
+fn speed_given_twice() {
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nbeta = [0.1, 0.0]\nu = [0.1, 0.0]\n",
+        1,
+        "puck[0]",
+        "at most one of",
+    );
+}
+
+#[test]
+fn overlapping_pucks() {
+    let text = format!("{GOOD_PUCK}[[puck]]\nname = \"b\"\nposition = [0.55, 0.5]\n");
+    expect_one(&text, 6, "puck[1].position", "overlaps puck \"a\" (line 1)");
+}
+
+#[test]
+fn pucks_in_contact_are_not_overlapping() {
+    let text = format!("{GOOD_PUCK}[[puck]]\nname = \"b\"\nposition = [0.561, 0.5]\n");
+    assert!(scene::parse(&text, "ok.toml").is_ok());
+}
+
+#[test]
+fn puck_outside_the_table() {
+    expect_one(
+        "[table]\nsize = [2.0, 1.0]\n[[puck]]\nposition = [1.99, 0.5]\n",
+        4,
+        "puck[0].position",
+        "outside the table",
+    );
+    expect_one(
+        "[[puck]]\nposition = [-3.0, 0.5]\n",
+        2,
+        "puck[0].position",
+        "outside the table",
+    );
+}
+
+#[test]
+fn a_fast_puck_is_judged_by_its_contracted_width() {
+    // Rest radius 0.1 would cross x = 0 at x = 0.06, but at β = 0.8 along x
+    // the puck is 0.06 wide on each side: it just fits.
+    let text = "[[puck]]\nposition = [0.0601, 0.5]\nradius = 0.1\nbeta = [0.8, 0.0]\n";
+    assert!(scene::parse(text, "ok.toml").is_ok());
+}
+
+#[test]
+fn nan_and_infinity() {
+    expect_one(
+        "[[puck]]\nposition = [nan, 0.5]\n",
+        2,
+        "puck[0].position",
+        "not a finite number",
+    );
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nu = [inf, 0.0]\n",
+        3,
+        "puck[0].u",
+        "not a finite number",
+    );
+    expect_one("c = inf\n", 1, "c", "positive finite");
+    expect_one(
+        "[[observer]]\nposition = [0.5, 0.5, 1.0]\nlook_at = [0.0, -inf, 0.0]\n",
+        3,
+        "observer[0].look_at",
+        "not a finite number",
+    );
+}
+
+#[test]
+fn non_positive_radius_mass_and_c() {
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nradius = 0.0\n",
+        3,
+        "puck[0].radius",
+        "positive",
+    );
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nmass = -1.0\n",
+        3,
+        "puck[0].mass",
+        "positive",
+    );
+    expect_one("c = 0\n", 1, "c", "positive");
+    expect_one("c = -3.0\n", 1, "c", "positive");
+    expect_one("[table]\nsize = [2.0, 0.0]\n", 2, "table.size", "positive");
+}
+
+#[test]
+fn restitution_out_of_range() {
+    expect_one(
+        "[physics]\nrestitution = 1.5\n",
+        2,
+        "physics.restitution",
+        "[0, 1]",
+    );
+    expect_one(
+        "[table]\ncushion_restitution = -0.1\n",
+        2,
+        "table.cushion_restitution",
+        "[0, 1]",
+    );
+}
+
+#[test]
+fn unknown_keys() {
+    // Unknown keys are reported by the parser at the key, with the list of
+    // keys that would be right.
+    let errs = errors("[[puck]]\nposition = [0.5, 0.5]\nbta = [0.1, 0.0]\n");
+    let shown = errs[0].to_string();
+    assert_eq!(errs[0].line, 3, "{shown}");
+    assert!(
+        shown.contains("unknown field `bta`") && shown.contains("`beta`"),
+        "{shown}"
+    );
+    let errs = errors("speed_of_light = 3.0\n");
+    assert_eq!(errs[0].line, 1);
+    assert!(
+        errs[0]
+            .to_string()
+            .contains("unknown field `speed_of_light`")
+    );
+    let errs = errors("[effects]\nredshift = true\n");
+    assert_eq!(errs[0].line, 2);
+}
+
+#[test]
+fn duplicate_names() {
+    let text = format!("{GOOD_PUCK}[[puck]]\nname = \"a\"\nposition = [1.5, 0.5]\n");
+    expect_one(&text, 5, "puck[1].name", "duplicate name \"a\"");
+    expect_one(
+        "[[observer]]\nname = \"o\"\nposition = [0, 0, 1]\n[[observer]]\nname = \"o\"\nposition = [1, 0, 1]\n",
+        5,
+        "observer[1].name",
+        "duplicate",
+    );
+}
+
+#[test]
+fn syntax_and_type_errors_are_located() {
+    let errs = errors("[[puck]]\nposition = [0.5, 0.5\n");
+    assert_eq!(errs[0].line, 2, "{}", errs[0]);
+    let errs = errors("[[puck]]\nposition = [0.5, 0.5, 0.5]\n");
+    assert_eq!(errs[0].line, 2, "{}", errs[0]);
+    let errs = errors("[[puck]]\nposition = \"middle\"\n");
+    assert_eq!(errs[0].line, 2, "{}", errs[0]);
+    let errs = errors("[[puck]]\nname = \"nowhere\"\n");
+    assert!(
+        errs[0].to_string().contains("missing field `position`"),
+        "{}",
+        errs[0]
+    );
+    assert_eq!(errs[0].line, 1);
+}
+
+#[test]
+fn several_errors_are_all_reported() {
+    let errs = errors("c = -1\n[[puck]]\nposition = [0.5, 0.5]\nradius = -2\ncolor = \"plaid\"\n");
+    assert_eq!(errs.len(), 3, "{errs:?}");
+}
+
+#[test]
+fn unreadable_file_names_the_file() {
+    let e = scene::load(std::path::Path::new("no/such/scene.toml")).unwrap_err();
+    assert!(
+        e.to_string().starts_with("no/such/scene.toml: cannot read"),
+        "{e}"
+    );
+}
+
+#[test]
+fn defaults_follow_the_paper() {
+    let s = scene::parse(GOOD_PUCK, "ok.toml").unwrap();
+    assert_eq!(s.c, 1.42); // light crosses the 2.84 m side in 2 s
+    assert_eq!(s.pucks[0].radius, 0.0305);
+    assert_eq!(s.observers.len(), 1);
+    assert_eq!(s.restitution, 1.0);
+}
+
+#[test]
+fn u_states_speeds_beyond_what_beta_can() {
+    let s = scene::parse(
+        "[[puck]]\nposition = [0.5, 0.5]\nu = [1e8, 0.0]\n",
+        "ok.toml",
+    )
+    .unwrap();
+    let u = s.pucks[0].u;
+    assert!((u.gamma() / 1e8 - 1.0).abs() < 1e-15);
+    assert!(u.speed_deficit() > 0.0);
+}

@@ -1,0 +1,105 @@
+//! `lightcone check SCENE...`: validate scenes and summarise them.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use lightcone_engine::scene::{self, Effect, Scene};
+
+/// Checks every scene, printing a summary of each good one to stdout and
+/// every error (file:line:column: field: message) to stderr. Fails if any
+/// scene is bad.
+pub fn run(paths: &[PathBuf]) -> ExitCode {
+    let default = [PathBuf::from(crate::DEFAULT_SCENE)];
+    let paths = if paths.is_empty() {
+        &default[..]
+    } else {
+        paths
+    };
+    let mut bad = 0;
+    for path in paths {
+        match scene::load(path) {
+            Ok(s) => print!("{}", summary(path, &s)),
+            Err(errors) => {
+                bad += 1;
+                eprintln!("{errors}");
+            }
+        }
+    }
+    if bad > 0 {
+        eprintln!("{bad} of {} scene(s) have errors", paths.len());
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// A few lines that say what a scene holds: speeds as β and γ, effects.
+pub fn summary(path: &Path, s: &Scene) -> String {
+    let mut out = String::new();
+    let on: Vec<_> = Effect::ALL
+        .iter()
+        .filter(|e| s.effects.is_on(**e))
+        .map(|e| e.key())
+        .collect();
+    let off: Vec<_> = Effect::ALL
+        .iter()
+        .filter(|e| !s.effects.is_on(**e))
+        .map(|e| e.key())
+        .collect();
+    let _ = writeln!(out, "{}: ok: {}", path.display(), s.title);
+    let _ = writeln!(
+        out,
+        "  c = {} m/s; table {} x {} m (light crosses it in {:.3} s); restitution {} (cushions {})",
+        s.c,
+        s.table.size.x,
+        s.table.size.y,
+        s.table.size.x.max(s.table.size.y) / s.c,
+        s.restitution,
+        s.table.cushion_restitution
+    );
+    let _ = writeln!(out, "  effects on: {}; off: {}", list(&on), list(&off));
+    let _ = writeln!(out, "  {} puck(s):", s.pucks.len());
+    for p in &s.pucks {
+        let beta = p.u.beta();
+        let _ = writeln!(
+            out,
+            "    {:<10} at ({:.4}, {:.4}) m  β = ({:+.6}, {:+.6}) |β| = {:.9}  γ = {:.6}  r = {} m  m = {} kg  {}",
+            p.name,
+            p.position.x,
+            p.position.y,
+            beta.x,
+            beta.y,
+            beta.length(),
+            p.u.gamma(),
+            p.radius,
+            p.mass,
+            p.color.to_hex()
+        );
+    }
+    let _ = writeln!(out, "  {} observer(s):", s.observers.len());
+    for o in &s.observers {
+        let _ = writeln!(
+            out,
+            "    {:<10} at ({:.3}, {:.3}, {:.3}) m looking at ({:.3}, {:.3}, {:.3})  |β| = {:.6}  γ = {:.6}",
+            o.name,
+            o.position.x,
+            o.position.y,
+            o.position.z,
+            o.look_at.x,
+            o.look_at.y,
+            o.look_at.z,
+            o.u.beta().length(),
+            o.u.gamma()
+        );
+    }
+    out
+}
+
+fn list(items: &[&str]) -> String {
+    if items.is_empty() {
+        "none".to_owned()
+    } else {
+        items.join(", ")
+    }
+}
