@@ -15,6 +15,7 @@
 //! velocities are proper velocities `u = γβ` (dimensionless).
 
 pub mod kinematics;
+pub mod physics;
 pub mod scene;
 pub mod spacetime;
 pub mod world;

@@ -11,6 +11,7 @@ use bevy_ecs::prelude::*;
 use glam::{DVec2, DVec3};
 
 use crate::kinematics;
+use crate::physics::{Billiard, Collision};
 use crate::scene::{Color, Effect, Effects, Scene, TableSpec};
 use crate::spacetime::Event;
 use crate::worldline::{RestShape, Worldline};
@@ -30,6 +31,11 @@ pub struct Puck {
     /// Rest mass, kg.
     pub mass: f64,
 }
+
+/// Which puck of the [`Physics`] this entity is (its worldline lives there,
+/// where the event loop extends it).
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PuckIndex(pub usize);
 
 /// A body's name from the scene (pucks and observers).
 #[derive(Component, Clone, Debug, PartialEq, Eq)]
@@ -73,9 +79,13 @@ pub struct SpeedOfLight(pub f64);
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
 pub struct Table(pub TableSpec);
 
-/// Puck–puck restitution in [0, 1] (energy fraction in the CM frame).
-#[derive(Resource, Clone, Copy, Debug, PartialEq)]
-pub struct Restitution(pub f64);
+/// The event-anticipation physics: owns the pucks' worldlines.
+#[derive(Resource)]
+pub struct Physics(pub Billiard);
+
+/// Collisions resolved during the last frame (for the HUD and lessons).
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct FrameCollisions(pub Vec<Collision>);
 
 // ## Schedule
 
@@ -118,6 +128,7 @@ pub fn frame_schedule() -> Schedule {
         )
             .chain(),
     );
+    schedule.add_systems(crate::physics::systems::advance.in_set(Phase::Physics));
     schedule.add_systems(
         (
             kinematics::contraction.run_if(effect_on(Effect::Contraction)),
@@ -144,10 +155,12 @@ impl Simulation {
         world.insert_resource(Clock::default());
         world.insert_resource(SpeedOfLight(scene.c));
         world.insert_resource(Table(scene.table));
-        world.insert_resource(Restitution(scene.restitution));
         world.insert_resource(scene.effects);
-        for p in &scene.pucks {
+        world.insert_resource(Physics(Billiard::from_scene(scene)));
+        world.insert_resource(FrameCollisions::default());
+        for (i, p) in scene.pucks.iter().enumerate() {
             world.spawn((
+                PuckIndex(i),
                 Puck {
                     radius: p.radius,
                     height: p.height,
@@ -155,7 +168,6 @@ impl Simulation {
                 },
                 BodyName(p.name.clone()),
                 Tint(p.color),
-                Worldline::new(Event::new(0.0, p.position.extend(0.0)), p.u, scene.c),
                 RestShape::puck(p.radius, p.height, PUCK_SEGMENTS),
                 BoardShape::default(),
                 ProperTime::default(),
@@ -188,6 +200,16 @@ impl Simulation {
     /// Board time, s.
     pub fn time(&self) -> f64 {
         self.world.resource::<Clock>().t
+    }
+
+    /// The physics (pucks' worldlines, collisions so far).
+    pub fn physics(&self) -> &Billiard {
+        &self.world.resource::<Physics>().0
+    }
+
+    /// The physics, to apply impulses.
+    pub fn physics_mut(&mut self) -> &mut Billiard {
+        &mut self.world.resource_mut::<Physics>().into_inner().0
     }
 
     /// Turns an effect on or off; takes hold at the next frame.
@@ -229,8 +251,7 @@ mod tests {
 
     fn fast_puck(sim: &mut Simulation) -> (Vec<DVec3>, f64, DVec3) {
         let e = sim.entity("fast").unwrap();
-        let w = sim.world.get::<Worldline>(e).unwrap();
-        let centre = w.position_at(sim.time());
+        let centre = sim.physics().worldline(0).position_at(sim.time());
         let shape = sim.world.get::<BoardShape>(e).unwrap().0.clone();
         let tau = sim.world.get::<ProperTime>(e).unwrap().0;
         (shape, tau, centre)

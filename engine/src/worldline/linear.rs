@@ -196,6 +196,15 @@ impl Worldline {
         Ok(())
     }
 
+    /// Keeps only the current (last) segment. For long headless runs that
+    /// need neither replay nor a light-delayed view of the past; queries
+    /// before the kept segment then extrapolate it backwards.
+    pub fn forget_history(&mut self) {
+        if self.segments.len() > 1 {
+            self.segments.drain(..self.segments.len() - 1);
+        }
+    }
+
     /// Forgets every kink after board time `t` (for "what if" replays from a
     /// past moment). The segment in force at `t` is kept.
     pub fn truncate_after(&mut self, t: f64) {

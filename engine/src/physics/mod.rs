@@ -1,0 +1,28 @@
+//! Event-anticipation physics (the paper's §3.3 and Appendix): every future
+//! collision is predicted in closed form, the simulation runs freely to the
+//! earliest, resolves it, and re-predicts only what changed.
+//!
+//! * [`predict`]: when and where two pucks, or a puck and a cushion, meet;
+//! * [`resolve`]: what comes out of a collision (4-momentum conserved);
+//! * `calendar`: the time-ordered event queue with lazy invalidation;
+//! * `broadphase`: rapier's BVH used only to prune candidate pairs;
+//! * [`Billiard`]: the event loop tying them together.
+//!
+//! Conventions (the paper's §3.3.1): pucks are rigid about their centres.
+//! A puck–puck contact is found in the frame where the two pucks move with
+//! equal and opposite speeds (for equal masses this is the paper's
+//! centre-of-momentum frame, Eq. 3), where their contracted shapes are
+//! congruent; each puck's velocity then changes at an event at its own
+//! centre, when light from the contact reaches it. A cushion is infinitely
+//! massive and at rest on the board; the puck's velocity changes at the
+//! board-frame instant of contact.
+
+mod billiard;
+mod broadphase;
+mod calendar;
+pub mod predict;
+pub mod resolve;
+pub mod systems;
+
+pub use billiard::{Billiard, Collision, CollisionKind, PuckInit, PuckOutcome, Stats};
+pub use predict::Cushion;

@@ -1,0 +1,6 @@
+//! Collision prediction in closed form, one kernel per pair of shapes.
+
+pub mod puck_cushion;
+pub mod puck_puck;
+
+pub use puck_cushion::Cushion;

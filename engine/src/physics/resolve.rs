@@ -1,0 +1,251 @@
+//! Collision outcomes: what each body's momentum becomes.
+//!
+//! **Puck–puck.** Worked in the centre-of-momentum (CM) frame, where the two
+//! momenta are `p` and `−p`. The pucks are smooth, so the impulse is along
+//! the contact normal (taken from the pair frame, where the shapes are
+//! congruent; for equal masses the two frames coincide). The restitution
+//! `e` is the fraction of the CM kinetic energy that stays kinetic:
+//!
+//! * `e = 1` (elastic): the normal component of `p` is reversed, so both
+//!   pucks keep their CM speeds, as the paper's Appendix describes;
+//! * `e < 1`: the lost kinetic energy `Q = (1 − e) K` becomes heat, which in
+//!   relativity is rest mass: each puck's rest mass grows by its share of
+//!   `Q / c²` (shared in proportion to mass). So 4-momentum is conserved
+//!   exactly in every collision, elastic or not. The tangential momentum is
+//!   kept when the remaining energy allows, else it shrinks too; `e = 0`
+//!   leaves the pair at rest in the CM frame, moving together.
+//!
+//! **Puck–cushion.** The cushion is infinitely massive and at rest on the
+//! board, so the board is its CM frame: the normal component of `u` is
+//! reversed (elastic: angle of reflection = angle of incidence, the paper's
+//! §3.3.2.3 claim), and for `e < 1` the puck's kinetic energy is scaled by
+//! `e` (the cushion takes the heat; the puck's mass is unchanged).
+
+use glam::DVec3;
+
+use crate::spacetime::{Boost, FourMomentum, FourVector, ProperVelocity};
+
+/// A body's rest mass (kg) and proper velocity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Body {
+    /// Rest mass, kg.
+    pub mass: f64,
+    /// Proper velocity, board frame.
+    pub u: ProperVelocity,
+}
+
+impl Body {
+    /// 4-momentum in mass units.
+    pub fn momentum(self) -> FourMomentum {
+        FourMomentum::of_body(self.mass, self.u)
+    }
+}
+
+/// Kinetic energy `m (γ − 1)` of a body in mass units, exact for slow bodies.
+fn kinetic(mass: f64, u: ProperVelocity) -> f64 {
+    mass * u.gamma_minus_one()
+}
+
+/// The momentum magnitude² `q` at which two bodies of masses `m1`, `m2` with
+/// momenta ±p have kinetic energy `k`: solves
+/// `Σ q / (√(mᵢ² + q) + mᵢ) = k`, a form that keeps its digits when `k` is
+/// tiny. The left side is increasing and concave in `q`; bisection then
+/// Newton from `[0, hi]`.
+fn momentum_sq_for_kinetic(m1: f64, m2: f64, k: f64, hi: f64) -> f64 {
+    let f = |q: f64| q / ((m1 * m1 + q).sqrt() + m1) + q / ((m2 * m2 + q).sqrt() + m2) - k;
+    let (mut lo, mut hi) = (0.0f64, hi.max(0.0));
+    if f(hi) <= 0.0 {
+        return hi;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Outcome of a puck–puck collision. `normal` is the unit contact normal
+/// from `a` towards `b` in the pair frame (moving with `pair_frame`);
+/// `restitution` in [0, 1]. Returns the two bodies after the collision
+/// (new proper velocities, and rest masses grown by the heat if
+/// `restitution < 1`). If the pucks are not approaching along the normal,
+/// nothing changes.
+pub fn puck_puck(
+    a: Body,
+    b: Body,
+    normal: DVec3,
+    pair_frame: ProperVelocity,
+    restitution: f64,
+) -> [Body; 2] {
+    let total_mass = FourMomentum::pair_invariant_mass(a.mass, a.u, b.mass, b.u);
+    let total = a.momentum() + b.momentum();
+    let to_cm = Boost::into_frame(total.centre_of_momentum_velocity(total_mass));
+    // The normal, a spatial vector in the pair frame, seen in the CM frame.
+    let n_board = Boost::into_frame(pair_frame)
+        .inverse()
+        .apply(FourVector::new(0.0, normal));
+    let n = to_cm.apply(n_board).space.normalize();
+
+    let ua = to_cm.apply_velocity(a.u);
+    let ub = to_cm.apply_velocity(b.u);
+    // ±p in the CM frame; symmetrise away the rounding.
+    let p = 0.5 * (ua.0 * a.mass - ub.0 * b.mass);
+    let p_n = p.dot(n);
+    if p_n.is_nan() || p_n <= 0.0 {
+        return [a, b];
+    }
+
+    let (p_after, mass_a, mass_b) = if restitution >= 1.0 {
+        (p - n * (2.0 * p_n), a.mass, b.mass)
+    } else {
+        let k = kinetic(a.mass, ua) + kinetic(b.mass, ub);
+        let heat = (1.0 - restitution) * k;
+        let share = a.mass / (a.mass + b.mass);
+        let (ma, mb) = (a.mass + heat * share, b.mass + heat * (1.0 - share));
+        let q = momentum_sq_for_kinetic(ma, mb, restitution * k, p.length_squared());
+        let tangential = p - n * p_n;
+        let t_sq = tangential.length_squared();
+        let p_after = if q >= t_sq {
+            tangential - n * (q - t_sq).sqrt()
+        } else if t_sq > 0.0 {
+            tangential * (q / t_sq).sqrt()
+        } else {
+            DVec3::ZERO
+        };
+        (p_after, ma, mb)
+    };
+
+    let to_board = to_cm.inverse();
+    [
+        Body {
+            mass: mass_a,
+            u: to_board.apply_velocity(ProperVelocity(p_after / mass_a)),
+        },
+        Body {
+            mass: mass_b,
+            u: to_board.apply_velocity(ProperVelocity(-p_after / mass_b)),
+        },
+    ]
+}
+
+/// Outcome of a puck meeting a cushion whose outward unit normal (from the
+/// table into the cushion) is `outward`, board frame.
+pub fn puck_cushion(u: ProperVelocity, outward: DVec3, restitution: f64) -> ProperVelocity {
+    let u_n = u.0.dot(outward);
+    if u_n.is_nan() || u_n <= 0.0 {
+        return u;
+    }
+    if restitution >= 1.0 {
+        return ProperVelocity(u.0 - outward * (2.0 * u_n));
+    }
+    // Kinetic energy scaled by e: γ' − 1 = e (γ − 1); |u'|² = (γ' − 1)(γ' + 1).
+    let g1 = restitution * u.gamma_minus_one();
+    let speed_sq = g1 * (g1 + 2.0);
+    let tangential = u.0 - outward * u_n;
+    let t_sq = tangential.length_squared();
+    if speed_sq >= t_sq {
+        ProperVelocity(tangential - outward * (speed_sq - t_sq).sqrt())
+    } else {
+        ProperVelocity(tangential * (speed_sq / t_sq).sqrt())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn body(m: f64, bx: f64, by: f64) -> Body {
+        Body {
+            mass: m,
+            u: ProperVelocity::try_from_beta(DVec3::new(bx, by, 0.0)).unwrap(),
+        }
+    }
+
+    fn conserved(before: [Body; 2], after: [Body; 2]) {
+        let p0 = before[0].momentum() + before[1].momentum();
+        let p1 = after[0].momentum() + after[1].momentum();
+        let scale = p0.energy;
+        assert!(
+            (p0.energy - p1.energy).abs() <= 1e-12 * scale,
+            "{p0:?} {p1:?}"
+        );
+        assert!(
+            (p0.momentum - p1.momentum).length() <= 1e-12 * scale,
+            "{p0:?} {p1:?}"
+        );
+    }
+
+    #[test]
+    fn head_on_equal_masses_exchange_velocities() {
+        let (a, b) = (body(1.0, 0.9, 0.0), body(1.0, 0.0, 0.0));
+        let out = puck_puck(
+            a,
+            b,
+            DVec3::X,
+            ProperVelocity((a.u.0) / (2.0 + 2.0 * a.u.gamma()).sqrt()),
+            1.0,
+        );
+        assert!(out[0].u.0.length() < 1e-14);
+        assert!((out[1].u.0 - a.u.0).length() < 1e-14);
+        conserved([a, b], out);
+    }
+
+    #[test]
+    fn elastic_and_inelastic_conserve_four_momentum() {
+        let (a, b) = (body(0.2, 0.8, 0.3), body(0.5, -0.4, 0.1));
+        let normal = DVec3::new(0.6, -0.8, 0.0);
+        for e in [1.0, 0.7, 0.3, 0.0] {
+            let out = puck_puck(a, b, normal, ProperVelocity(DVec3::new(0.1, 0.2, 0.0)), e);
+            conserved([a, b], out);
+            if e < 1.0 {
+                assert!(out[0].mass > a.mass && out[1].mass > b.mass);
+            }
+        }
+    }
+
+    #[test]
+    fn perfectly_inelastic_head_on_moves_together() {
+        let (a, b) = (body(1.0, 0.6, 0.0), body(1.0, -0.2, 0.0));
+        let out = puck_puck(a, b, DVec3::X, ProperVelocity::ZERO, 0.0);
+        assert!((out[0].u.0 - out[1].u.0).length() < 1e-12);
+        conserved([a, b], out);
+        // Invariant mass is now all rest mass.
+        let m = FourMomentum::pair_invariant_mass(a.mass, a.u, b.mass, b.u);
+        assert!((out[0].mass + out[1].mass - m).abs() < 1e-12);
+    }
+
+    #[test]
+    fn cushion_reflects_at_the_angle_of_incidence() {
+        let u = ProperVelocity::try_from_beta(DVec3::new(0.7, 0.642, 0.0)).unwrap();
+        let out = puck_cushion(u, DVec3::X, 1.0);
+        assert_eq!(out.0, DVec3::new(-u.0.x, u.0.y, 0.0));
+        let (bi, bo) = (u.beta(), out.beta());
+        assert!(((bi.y / bi.x).atan() + (bo.y / bo.x).atan()).abs() < 1e-15);
+        // Inelastic: energy fraction e of the kinetic energy, tangential kept.
+        let most = puck_cushion(u, DVec3::X, 0.9);
+        assert!((most.gamma_minus_one() / u.gamma_minus_one() - 0.9).abs() < 1e-12);
+        assert_eq!(most.0.y, u.0.y);
+        assert!(most.0.x < 0.0);
+        // So little energy left that even the tangential motion must slow:
+        // it slides along the cushion.
+        let little = puck_cushion(u, DVec3::X, 0.5);
+        assert!((little.gamma_minus_one() / u.gamma_minus_one() - 0.5).abs() < 1e-12);
+        assert!(little.0.x.abs() < 1e-15 && little.0.y > 0.0);
+        // Moving away: untouched.
+        assert_eq!(puck_cushion(out, DVec3::X, 1.0), out);
+    }
+
+    #[test]
+    fn kinetic_solve_keeps_digits_in_the_classical_limit() {
+        let q = momentum_sq_for_kinetic(1.0, 1.0, 1e-20, 1.0);
+        // Classically K = 2 · q / 2 → q = 1e-20.
+        assert!((q / 1e-20 - 1.0).abs() < 1e-9, "{q}");
+    }
+}
