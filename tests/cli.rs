@@ -93,3 +93,110 @@ fn no_arguments_checks_the_default_scene() {
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).contains("paper_carom.toml: ok"));
 }
+
+/// Parses JSON lines.
+fn json_lines(stdout: &[u8]) -> Vec<serde_json::Value> {
+    String::from_utf8_lossy(stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("each line is JSON"))
+        .collect()
+}
+
+fn xy(v: &serde_json::Value) -> [f64; 2] {
+    let a = v.as_array().expect("a 2-vector");
+    assert_eq!(a.len(), 2);
+    [a[0].as_f64().unwrap(), a[1].as_f64().unwrap()]
+}
+
+#[test]
+fn simulate_prints_the_documented_schema() {
+    let out = lightcone(&[
+        "simulate",
+        "assets/scenes/paper_carom.toml",
+        "--until",
+        "20",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines = json_lines(&out.stdout);
+    assert!(lines.len() >= 3);
+    let (last, collisions) = lines.split_last().unwrap();
+    let mut previous = f64::NEG_INFINITY;
+    let mut kinds = std::collections::BTreeSet::new();
+    for c in collisions {
+        let kind = c["kind"].as_str().unwrap();
+        kinds.insert(kind.to_owned());
+        let t = c["t"].as_f64().unwrap();
+        assert!(t >= previous && t <= 20.0, "collisions in time order");
+        previous = t;
+        xy(&c["contact"]);
+        let pucks = c["pucks"].as_array().unwrap();
+        match kind {
+            "puck_puck" => assert_eq!(pucks.len(), 2),
+            "cushion" => {
+                assert_eq!(pucks.len(), 1);
+                assert!(["x0", "x1", "y0", "y1"].contains(&c["cushion"].as_str().unwrap()));
+            }
+            other => panic!("unknown kind {other}"),
+        }
+        for p in pucks {
+            assert!(p["name"].is_string());
+            assert!(p["t"].as_f64().unwrap() >= t);
+            xy(&p["position"]);
+            // u and beta describe the same velocity: β = u / √(1 + u²).
+            for (u, b) in [("u_before", "beta_before"), ("u_after", "beta_after")] {
+                let (u, b) = (xy(&p[u]), xy(&p[b]));
+                let g = (1.0 + u[0] * u[0] + u[1] * u[1]).sqrt();
+                assert!((u[0] / g - b[0]).abs() < 1e-15 && (u[1] / g - b[1]).abs() < 1e-15);
+            }
+        }
+    }
+    assert!(
+        kinds.contains("puck_puck") && kinds.contains("cushion"),
+        "{kinds:?}"
+    );
+    assert_eq!(last["kind"], "state");
+    assert_eq!(last["t"].as_f64(), Some(20.0));
+    let pucks = last["pucks"].as_array().unwrap();
+    assert_eq!(pucks.len(), 3);
+    for p in pucks {
+        for key in ["position", "u", "beta"] {
+            xy(&p[key]);
+        }
+        let tau = p["proper_time"].as_f64().unwrap();
+        assert!(tau > 0.0 && tau <= 20.0, "proper time runs slow: {tau}");
+    }
+}
+
+#[test]
+fn simulate_writes_to_a_file_and_rejects_bad_input() {
+    let dir = std::env::temp_dir().join(format!("lightcone-sim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("out.jsonl");
+    let f = file.to_string_lossy().into_owned();
+    let out = lightcone(&[
+        "simulate",
+        "assets/scenes/ten_pucks.toml",
+        "--until",
+        "5",
+        "--out",
+        &f,
+    ]);
+    assert!(out.status.success());
+    assert!(out.stdout.is_empty());
+    let text = std::fs::read(&file).unwrap();
+    assert!(json_lines(&text).last().unwrap()["kind"] == "state");
+    let out = lightcone(&[
+        "simulate",
+        "assets/scenes/paper_carom.toml",
+        "--until",
+        "nan",
+    ]);
+    assert!(!out.status.success());
+    let out = lightcone(&["simulate", "no/such.toml", "--until", "1"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no/such.toml"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -16,6 +16,7 @@
 
 pub mod kinematics;
 pub mod physics;
+pub mod report;
 pub mod scene;
 pub mod spacetime;
 pub mod world;

@@ -28,12 +28,27 @@ enum Command {
         /// Scene files (TOML); the default scene when none is given.
         scenes: Vec<PathBuf>,
     },
+    /// Run the physics headless; print every collision, then the final
+    /// state, as JSON lines (schema in the README).
+    Simulate {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Board time to run to, s.
+        #[arg(long)]
+        until: f64,
+        /// Write the JSON lines here instead of stdout.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Check { scenes }) => commands::check::run(&scenes),
+        Some(Command::Simulate { scene, until, out }) => {
+            commands::simulate::run(&scene, until, out.as_ref())
+        }
         None => commands::check::run(&[]),
     }
 }

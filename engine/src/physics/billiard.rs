@@ -89,6 +89,13 @@ pub struct Stats {
     pub windows: u64,
     /// Collisions resolved as perfectly inelastic to end a Zeno sequence.
     pub zeno_merges: u64,
+    /// Velocity changes that reached a puck already changed since their
+    /// contact (none is expected: pending changes land first, see
+    /// `early_kicks`).
+    pub overlapping_kicks: u64,
+    /// Velocity changes that landed before light reached the centre,
+    /// because the puck met something else first.
+    pub early_kicks: u64,
 }
 
 impl Stats {
@@ -111,6 +118,7 @@ struct Kick {
     version_at_contact: u32,
     record: Option<usize>,
     slot: usize,
+    generation: u32,
 }
 
 #[derive(Clone, Debug)]
@@ -142,6 +150,7 @@ pub struct Billiard {
     calendar: Calendar,
     kicks: Vec<Option<Kick>>,
     free_kicks: Vec<usize>,
+    kick_generation: u32,
     broad: BroadPhase,
     window_end: f64,
     collisions: Vec<Collision>,
@@ -194,6 +203,7 @@ impl Billiard {
             calendar: Calendar::default(),
             kicks: Vec::new(),
             free_kicks: Vec::new(),
+            kick_generation: 0,
             broad: BroadPhase::new(n, mean_radius),
             window_end: 0.0,
             collisions: Vec::new(),
@@ -313,6 +323,19 @@ impl Billiard {
         &self.warnings
     }
 
+    /// Total 4-momentum of the pucks at [`Self::time`], including what is
+    /// in transit: a puck–puck collision's transfer that light has not yet
+    /// carried to a centre. Exactly conserved by puck–puck collisions;
+    /// cushions change it (they are external).
+    pub fn total_momentum(&self) -> crate::spacetime::FourMomentum {
+        let bodies = self.pucks.iter().fold(Default::default(), |sum, p| {
+            sum + crate::spacetime::FourMomentum::of_body(p.mass, p.worldline.last().u)
+        });
+        self.kicks.iter().flatten().fold(bodies, |sum, k| {
+            sum + (k.after.momentum() - k.before.momentum())
+        })
+    }
+
     /// Counters.
     pub fn stats(&self) -> Stats {
         self.stats
@@ -354,6 +377,7 @@ impl Billiard {
         }
         let t = t.max(self.time);
         self.advance_to(t);
+        self.flush_pending(i);
         let puck = &mut self.pucks[i];
         let u = ProperVelocity(puck.worldline.last().u.0 + du);
         puck.worldline
@@ -364,13 +388,23 @@ impl Billiard {
 
     fn handle(&mut self, entry: Entry) {
         match entry.slot {
-            Slot::Kick(k) => self.land_kick(k),
+            Slot::Kick(k) => {
+                if self.kicks[k].is_some_and(|kick| kick.generation == entry.versions[0]) {
+                    self.time = self.time.max(entry.t);
+                    self.land_kick(k);
+                }
+            }
             Slot::Cushion(i, cushion) => {
-                if self.pucks[i as usize].version != entry.versions[0] {
+                let i = i as usize;
+                if self.pucks[i].version != entry.versions[0] {
                     self.stats.stale += 1;
                     return;
                 }
-                self.cushion_contact(i as usize, cushion, entry.t);
+                self.time = self.time.max(entry.t);
+                if self.flush_pending(i) {
+                    return; // re-predicted with the news the puck carried
+                }
+                self.cushion_contact(i, cushion, entry.t);
             }
             Slot::Pair(a, b) => {
                 let (ia, ib) = (a as usize, b as usize);
@@ -386,10 +420,41 @@ impl Billiard {
                     self.stats.stale += 1;
                     return;
                 }
+                self.time = self.time.max(entry.t);
+                let flushed_a = self.flush_pending(ia);
+                let flushed_b = self.flush_pending(ib);
+                if flushed_a || flushed_b {
+                    return; // re-predicted with the news they carried
+                }
                 self.pair_contact(ia, ib, entry.predicted_at);
             }
             Slot::Horizon => self.start_window(entry.t),
         }
+    }
+
+    /// A puck about to meet something while light from an earlier contact
+    /// is still crossing it takes that news now: its pending velocity
+    /// changes land at the current time, so every collision starts from
+    /// the puck's complete state and 4-momentum stays exactly conserved.
+    /// Returns whether anything landed (the puck then has new predictions).
+    fn flush_pending(&mut self, i: usize) -> bool {
+        if self.pucks[i].pending.is_empty() {
+            return false;
+        }
+        let mut ids = std::mem::take(&mut self.pucks[i].pending);
+        ids.sort_by(|&x, &y| {
+            let (kx, ky) = (
+                self.kicks[x].map_or(0.0, |k| k.t),
+                self.kicks[y].map_or(0.0, |k| k.t),
+            );
+            kx.total_cmp(&ky)
+        });
+        self.pucks[i].pending = ids.clone();
+        for id in ids {
+            self.stats.early_kicks += 1;
+            self.land_kick(id);
+        }
+        true
     }
 
     fn cushion_contact(&mut self, i: usize, cushion: Cushion, t: f64) {
@@ -479,6 +544,14 @@ impl Billiard {
                 version_at_contact: self.pucks[i].version,
                 record,
                 slot: k,
+                generation: 0,
+            };
+            let kick = Kick {
+                generation: {
+                    self.kick_generation = self.kick_generation.wrapping_add(1);
+                    self.kick_generation
+                },
+                ..kick
             };
             let id = match self.free_kicks.pop() {
                 Some(id) => {
@@ -494,7 +567,7 @@ impl Billiard {
             self.calendar.push(Entry {
                 t: kick.t,
                 slot: Slot::Kick(id),
-                versions: [0, 0],
+                versions: [kick.generation, 0],
                 predicted_at: kick.t,
             });
         }
@@ -506,7 +579,6 @@ impl Billiard {
         };
         self.free_kicks.push(id);
         let i = kick.puck as usize;
-        self.time = self.time.max(kick.t);
         let puck = &mut self.pucks[i];
         puck.pending.retain(|&k| k != id);
         let now = Body {
@@ -516,16 +588,31 @@ impl Billiard {
         let next = if puck.version == kick.version_at_contact {
             kick.after
         } else {
-            // The puck changed since the contact: add the impulse.
-            let mass = now.mass + (kick.after.mass - kick.before.mass);
-            let p = now.u.0 * now.mass
-                + (kick.after.u.0 * kick.after.mass - kick.before.u.0 * kick.before.mass);
-            Body {
-                mass,
-                u: ProperVelocity(p / mass),
+            // The puck was struck again before light from this contact had
+            // crossed it: add this contact's 4-momentum transfer to its
+            // present 4-momentum. Energy and momentum stay exactly
+            // conserved; the difference from a rigid body's outcome shows
+            // as a change of rest mass (internal energy of a body that, in
+            // relativity, cannot be rigid).
+            self.stats.overlapping_kicks += 1;
+            let p = now.momentum() + (kick.after.momentum() - kick.before.momentum());
+            let mass = p.invariant_mass();
+            if mass > 1e-3 * now.mass && p.energy > 0.0 {
+                Body {
+                    mass,
+                    u: ProperVelocity(p.momentum / mass),
+                }
+            } else {
+                // Not a timelike 4-momentum any more: keep the mass, add
+                // the 3-momentum.
+                Body {
+                    mass: now.mass,
+                    u: ProperVelocity(p.momentum / now.mass),
+                }
             }
         };
-        let t = kick.t.max(puck.worldline.last().start.t);
+        // At its scheduled time, or now if it lands early (flushed).
+        let t = kick.t.min(self.time).max(puck.worldline.last().start.t);
         if puck.worldline.push(t, next.u).is_err() {
             return;
         }
@@ -722,8 +809,10 @@ impl Billiard {
             return;
         }
         let pucks = &self.pucks;
+        let kicks = &self.kicks;
         self.calendar.retain(|e| match e.slot {
-            Slot::Kick(_) | Slot::Horizon => true,
+            Slot::Horizon => true,
+            Slot::Kick(k) => kicks[k].is_some_and(|kick| kick.generation == e.versions[0]),
             Slot::Cushion(i, _) => pucks[i as usize].version == e.versions[0],
             Slot::Pair(a, b) => {
                 pucks[a as usize].version == e.versions[0]

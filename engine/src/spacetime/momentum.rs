@@ -66,6 +66,16 @@ impl FourMomentum {
     }
 }
 
+impl core::ops::Sub for FourMomentum {
+    type Output = Self;
+    fn sub(self, rhs: Self) -> Self {
+        Self {
+            energy: self.energy - rhs.energy,
+            momentum: self.momentum - rhs.momentum,
+        }
+    }
+}
+
 impl core::ops::Add for FourMomentum {
     type Output = Self;
     fn add(self, rhs: Self) -> Self {

@@ -1,0 +1,145 @@
+//! The JSON shapes of what the physics did, shared by `lightcone simulate`
+//! and the Python API. Documented in the README ("simulate output").
+//!
+//! Velocities are given twice: `u`, the proper velocity γβ (the engine's
+//! exact state), and `beta`, for reading. Vectors on the board are `[x, y]`.
+
+use serde::Serialize;
+
+use crate::physics::{Billiard, Collision, CollisionKind, PuckOutcome};
+
+/// One collision line.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CollisionLine {
+    /// `"puck_puck"` or `"cushion"`.
+    pub kind: &'static str,
+    /// Which cushion (`"x0"`, `"x1"`, `"y0"`, `"y1"`), for a cushion hit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cushion: Option<&'static str>,
+    /// Board time of the contact, s.
+    pub t: f64,
+    /// Contact point, m.
+    pub contact: [f64; 2],
+    /// Each puck's own velocity-change event.
+    pub pucks: Vec<PuckLine>,
+}
+
+/// One puck's part in a collision.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PuckLine {
+    /// Puck name.
+    pub name: String,
+    /// Board time of this puck's velocity change, s.
+    pub t: f64,
+    /// Its centre then, m.
+    pub position: [f64; 2],
+    /// Proper velocity γβ before.
+    pub u_before: [f64; 2],
+    /// Proper velocity γβ after.
+    pub u_after: [f64; 2],
+    /// β before.
+    pub beta_before: [f64; 2],
+    /// β after.
+    pub beta_after: [f64; 2],
+    /// Rest mass before, kg: only when an inelastic collision changed it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass_before: Option<f64>,
+    /// Rest mass after, kg: only when an inelastic collision changed it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass_after: Option<f64>,
+    /// Present and true when light from the contact had not yet reached
+    /// the centre at the end of the run: `t` and `u_after` are scheduled.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub pending: bool,
+}
+
+/// The last line: every puck at the end of the run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StateLine {
+    /// Always `"state"`.
+    pub kind: &'static str,
+    /// Board time, s.
+    pub t: f64,
+    /// Every puck, in scene order.
+    pub pucks: Vec<PuckState>,
+}
+
+/// A puck at one board time.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PuckState {
+    /// Puck name.
+    pub name: String,
+    /// Centre, m.
+    pub position: [f64; 2],
+    /// Proper velocity γβ.
+    pub u: [f64; 2],
+    /// β.
+    pub beta: [f64; 2],
+    /// Proper time, s.
+    pub proper_time: f64,
+}
+
+fn xy(v: glam::DVec3) -> [f64; 2] {
+    [v.x, v.y]
+}
+
+impl PuckLine {
+    fn new(billiard: &Billiard, o: &PuckOutcome) -> Self {
+        let changed = o.mass_before != o.mass_after;
+        Self {
+            name: billiard.name(o.puck).to_owned(),
+            t: o.t,
+            position: xy(o.position),
+            u_before: xy(o.u_before.0),
+            u_after: xy(o.u_after.0),
+            beta_before: xy(o.u_before.beta()),
+            beta_after: xy(o.u_after.beta()),
+            mass_before: changed.then_some(o.mass_before),
+            mass_after: changed.then_some(o.mass_after),
+            pending: o.pending,
+        }
+    }
+}
+
+impl CollisionLine {
+    /// The line for `collision`.
+    pub fn new(billiard: &Billiard, collision: &Collision) -> Self {
+        let (kind, cushion) = match collision.kind {
+            CollisionKind::PuckPuck => ("puck_puck", None),
+            CollisionKind::Cushion(c) => ("cushion", Some(c.name())),
+        };
+        Self {
+            kind,
+            cushion,
+            t: collision.t,
+            contact: xy(collision.contact),
+            pucks: collision
+                .pucks
+                .iter()
+                .map(|o| PuckLine::new(billiard, o))
+                .collect(),
+        }
+    }
+}
+
+impl StateLine {
+    /// Every puck at board time `t` (≤ the billiard's time).
+    pub fn new(billiard: &Billiard, t: f64) -> Self {
+        Self {
+            kind: "state",
+            t,
+            pucks: (0..billiard.len())
+                .map(|i| {
+                    let s = billiard.worldline(i).state_at(t);
+                    PuckState {
+                        name: billiard.name(i).to_owned(),
+                        position: xy(s.position),
+                        u: xy(s.u.0),
+                        beta: xy(s.u.beta()),
+                        proper_time: s.proper_time,
+                    }
+                })
+                .collect(),
+        }
+    }
+}
