@@ -191,7 +191,7 @@ fn opening(c: &Collision) -> (f64, f64, f64) {
 fn opening_angle_is_below_90_degrees_and_shrinks_as_v_goes_to_c() {
     let mut last = std::f64::consts::FRAC_PI_2;
     let mut limit = (0.0, 0.0);
-    for g in [1.0001, 1.5, 3.0, 10.0, 100.0, 1e4, 1e6] {
+    for g in [1.0001f64, 1.5, 3.0, 10.0, 100.0, 1e4, 1e6] {
         let u = ProperVelocity(DVec3::new(((g - 1.0) * (g + 1.0)).sqrt(), 0.0, 0.0));
         let c = shot(u, R);
         let (t1, t2, open) = opening(&c);
