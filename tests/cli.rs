@@ -200,3 +200,21 @@ fn simulate_writes_to_a_file_and_rejects_bad_input() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("no/such.toml"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn bench_physics_quick_prints_the_three_tables() {
+    let out = lightcone(&["bench", "physics", "--quick"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for heading in [
+        "Physics time per frame",
+        "Collision events per second",
+        "What exactness costs",
+    ] {
+        assert!(stdout.contains(heading), "{heading} missing");
+    }
+}

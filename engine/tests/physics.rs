@@ -438,37 +438,9 @@ fn impulses_add_momentum_and_never_reach_c() {
     );
 }
 
-/// Deterministic pseudo-random numbers for the dense box (xorshift).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-/// A box of `n` pucks on a grid with random velocities up to `max_beta`.
+/// A box of `n` pucks on a grid 3R apart with random velocities.
 pub fn dense_box(n: usize, max_beta: f64, seed: u64) -> Billiard {
-    let side = (n as f64).sqrt().ceil() as usize;
-    let spacing = 3.0 * R;
-    let size = DVec2::splat(spacing * side as f64);
-    let mut rng = Rng(seed);
-    let pucks = (0..n)
-        .map(|i| {
-            let (gx, gy) = ((i % side) as f64, (i / side) as f64);
-            let phi = std::f64::consts::TAU * rng.next();
-            let b = max_beta * rng.next();
-            puck(
-                &format!("p{i}"),
-                spacing * (gx + 0.5),
-                spacing * (gy + 0.5),
-                beta(b * phi.cos(), b * phi.sin()),
-            )
-        })
-        .collect();
-    Billiard::new(C, size, 1.0, 1.0, pucks)
+    lightcone_engine::physics::gas::dense_box(n, R, 3.0 * R, max_beta, C, seed)
 }
 
 #[test]

@@ -40,6 +40,20 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Measure the engine and print the figures of BENCHMARKS.md.
+    Bench {
+        /// What to measure: `physics`.
+        what: BenchWhat,
+        /// Shorter runs (for a smoke test).
+        #[arg(long)]
+        quick: bool,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum BenchWhat {
+    /// Frame times, collision rates, fixed-step comparison.
+    Physics,
 }
 
 fn main() -> ExitCode {
@@ -49,6 +63,10 @@ fn main() -> ExitCode {
         Some(Command::Simulate { scene, until, out }) => {
             commands::simulate::run(&scene, until, out.as_ref())
         }
+        Some(Command::Bench {
+            what: BenchWhat::Physics,
+            quick,
+        }) => commands::bench::run(quick),
         None => commands::check::run(&[]),
     }
 }

@@ -214,9 +214,6 @@ impl Billiard {
             zeno: HashMap::new(),
             scratch: Vec::new(),
         };
-        for i in 0..n {
-            billiard.predict_cushions(i);
-        }
         billiard.start_window(0.0);
         billiard
     }
@@ -705,7 +702,8 @@ impl Billiard {
                 self.table,
                 cushion,
                 self.time,
-            ) {
+            ) && hit.t <= self.window_end
+            {
                 self.calendar.push(Entry {
                     t: hit.t,
                     slot: Slot::Cushion(i as u32, cushion),
@@ -731,7 +729,9 @@ impl Billiard {
             return; // light from their last contact is still on its way
         }
         self.stats.predictions += 1;
-        if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, self.time) {
+        if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, self.time)
+            && hit.contact.t <= self.window_end
+        {
             self.calendar.push(Entry {
                 t: hit.contact.t,
                 slot: Slot::Pair(a as u32, b as u32),
@@ -758,7 +758,8 @@ impl Billiard {
     }
 
     /// Starts a new look-ahead window at board time `t`: every swept AABB
-    /// anew, and predictions for the pairs that became candidates.
+    /// anew, and every prediction. Only events inside the window are put on
+    /// the calendar, which keeps it short; the next window predicts again.
     fn start_window(&mut self, t: f64) {
         self.stats.windows += 1;
         self.time = self.time.max(t);
@@ -771,10 +772,16 @@ impl Billiard {
         let mut added = std::mem::take(&mut self.scratch);
         added.clear();
         self.broad.flush(&mut added);
-        for &(a, b) in &added {
-            self.predict_pair(a as usize, b as usize);
-        }
         self.scratch = added;
+        for i in 0..self.pucks.len() {
+            self.predict_cushions(i);
+            for k in 0..self.broad.partners(i).len() {
+                let j = self.broad.partners(i)[k] as usize;
+                if j > i {
+                    self.predict_pair(i, j);
+                }
+            }
+        }
         self.calendar.push(Entry {
             t: self.window_end,
             slot: Slot::Horizon,
@@ -783,8 +790,9 @@ impl Billiard {
         });
     }
 
-    /// Length of a look-ahead window: long enough that a typical puck moves
-    /// a few radii, so swept AABBs stay small and windows are not too many.
+    /// Length of a look-ahead window: the time a typical (RMS-speed) puck
+    /// takes to move one radius. Swept AABBs then stay small, and windows
+    /// are not too many; measured best among 0.25 to 8 radii (BENCHMARKS.md).
     fn horizon(&self) -> f64 {
         let crossing = self.table.length() / self.c;
         let n = self.pucks.len().max(1) as f64;
@@ -796,7 +804,7 @@ impl Billiard {
             / n;
         let mean_radius = self.pucks.iter().map(|p| p.radius).sum::<f64>() / n;
         if mean_sq > 0.0 {
-            (4.0 * mean_radius / mean_sq.sqrt()).clamp(1e-9 * crossing, 10.0 * crossing)
+            (1.0 * mean_radius / mean_sq.sqrt()).clamp(1e-9 * crossing, 10.0 * crossing)
         } else {
             10.0 * crossing
         }

@@ -20,6 +20,8 @@
 mod billiard;
 mod broadphase;
 mod calendar;
+pub mod fixed_step;
+pub mod gas;
 pub mod predict;
 pub mod resolve;
 pub mod systems;

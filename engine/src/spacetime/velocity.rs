@@ -65,10 +65,16 @@ impl ProperVelocity {
         Self(direction * eta.sinh())
     }
 
-    /// Lorentz factor `γ = √(1 + u²)`; never overflows below |u| ≈ 1e308.
+    /// Lorentz factor `γ = √(1 + u²)`, correctly rounded to within an ulp;
+    /// beyond |u| = 1e150, where `u²` would overflow, γ = |u| exactly in f64.
     #[inline]
     pub fn gamma(self) -> f64 {
-        1.0f64.hypot(self.0.length())
+        let u_sq = self.0.length_squared();
+        if u_sq < 1e300 {
+            (1.0 + u_sq).sqrt()
+        } else {
+            self.0.length()
+        }
     }
 
     /// `γ − 1 = u² / (γ + 1)`, exact also in the classical limit where the

@@ -84,6 +84,23 @@ pub fn predict(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
     let (ua, ub) = (a.segment.u, b.segment.u);
     let origin = Event::new(now, a.segment.position_at(now));
     let separation = b.segment.position_at(now) - origin.position;
+    let reach = a.radius + b.radius;
+
+    // Cheap board-frame rejection. At the contact's board time both
+    // contracted shapes contain the contact point, and each lies inside its
+    // rest-radius disc, so the centres are then at most R₁ + R₂ apart. If the
+    // centres' closest approach from now on is farther, there is no contact.
+    let closing = b.segment.velocity() - a.segment.velocity();
+    let approach = separation.dot(closing);
+    let closest_sq = if approach < 0.0 {
+        let cc = closing.length_squared();
+        (separation - closing * (approach / cc)).length_squared()
+    } else {
+        separation.length_squared()
+    };
+    if closest_sq > reach * reach * (1.0 + 1e-9) {
+        return None;
+    }
 
     // Pair frame: normalised sum of the 4-velocities.
     let gamma_rel = Boost::into_frame(ua).apply_velocity(ub).gamma();
@@ -107,7 +124,6 @@ pub fn predict(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
     let along = r0.dot(n);
     let across = r0 - n * along;
     let impact = across.length();
-    let reach = a.radius + b.radius;
     if impact >= reach || along <= 0.0 {
         return None; // they miss, or B is not ahead of A along the approach
     }
