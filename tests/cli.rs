@@ -218,3 +218,84 @@ fn bench_physics_quick_prints_the_three_tables() {
         assert!(stdout.contains(heading), "{heading} missing");
     }
 }
+
+#[test]
+fn observe_prints_the_documented_json() {
+    let out = lightcone(&[
+        "observe",
+        "assets/scenes/parallel_tracks.toml",
+        "--at",
+        "1.0",
+        "--observer",
+        "side",
+        "--vertices",
+        "--effects",
+        "all",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
+    assert_eq!(v["t"].as_f64(), Some(1.0));
+    let o = &v["observer"];
+    assert_eq!(o["name"], "side");
+    assert_eq!(o["position"].as_array().unwrap().len(), 3);
+    assert_eq!(o["beta"].as_array().unwrap().len(), 3);
+    assert_eq!(o["proper_time"].as_f64(), Some(1.0));
+    let pucks = v["pucks"].as_array().unwrap();
+    assert_eq!(pucks.len(), 5);
+    let c = 1.42;
+    for p in pucks {
+        let e = &p["emission"];
+        let te = e["t"].as_f64().unwrap();
+        let pos: Vec<f64> = e["position"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        // On the observer's past light cone (observer at rest): c (t − tₑ) = |x − xₑ|.
+        let eye = [1.42, -1.2, 0.6];
+        let d = ((pos[0] - eye[0]).powi(2) + (pos[1] - eye[1]).powi(2) + (pos[2] - eye[2]).powi(2))
+            .sqrt();
+        assert!((c * (1.0 - te) - d).abs() < 1e-12);
+        // Observer at rest: apparent distance is that light path.
+        assert!((p["distance"].as_f64().unwrap() - d).abs() < 1e-12);
+        let dir: Vec<f64> = p["direction"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert!((dir.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-12);
+        assert!(p["doppler"].as_f64().unwrap() > 0.0);
+        assert!(p["seen_proper_time"].as_f64().unwrap() < te + 1e-12);
+        assert!(p["vertices"].as_array().unwrap().len() > 90);
+    }
+    // Without --vertices there is no vertex list; an unknown observer is
+    // an error that lists the known ones.
+    let out = lightcone(&["observe", "assets/scenes/paper_carom.toml", "--at", "2"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["pucks"][0].get("vertices").is_none());
+    let out = lightcone(&[
+        "observe",
+        "assets/scenes/paper_carom.toml",
+        "--at",
+        "2",
+        "--observer",
+        "nobody",
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("the scene has: eye"));
+    let out = lightcone(&[
+        "observe",
+        "assets/scenes/paper_carom.toml",
+        "--at",
+        "2",
+        "--effects",
+        "redshift",
+    ]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown effect `redshift`"));
+}

@@ -15,6 +15,7 @@
 //! velocities are proper velocities `u = γβ` (dimensionless).
 
 pub mod kinematics;
+pub mod optics;
 pub mod physics;
 pub mod report;
 pub mod scene;

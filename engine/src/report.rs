@@ -143,3 +143,120 @@ impl StateLine {
         }
     }
 }
+
+/// `lightcone observe` output: what one observer sees at board time `t`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ObserveReport {
+    /// Board time of the observation, s.
+    pub t: f64,
+    /// The observer then.
+    pub observer: ObserverLine,
+    /// Every puck as seen.
+    pub pucks: Vec<SeenPuck>,
+}
+
+/// The observer at the observation event.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ObserverLine {
+    /// Name.
+    pub name: String,
+    /// Eye position, board frame, m.
+    pub position: [f64; 3],
+    /// β.
+    pub beta: [f64; 3],
+    /// Proper time, s.
+    pub proper_time: f64,
+}
+
+/// An emission event.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EmissionLine {
+    /// Board time, s.
+    pub t: f64,
+    /// Board position, m.
+    pub position: [f64; 3],
+}
+
+/// One point as seen.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SeenPoint {
+    /// Where and when its light left.
+    pub emission: EmissionLine,
+    /// Unit vector from the observer, in its rest frame.
+    pub direction: [f64; 3],
+    /// Apparent distance in the observer's rest frame, m.
+    pub distance: f64,
+    /// Observed / emitted frequency (> 1 approaching); 1 when the doppler
+    /// effect is off.
+    pub doppler: f64,
+    /// Searchlight intensity factor D⁴; 1 when the effect is off.
+    pub intensity: f64,
+}
+
+/// One puck as seen.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SeenPuck {
+    /// Name.
+    pub name: String,
+    /// Its centre at mid-height.
+    #[serde(flatten)]
+    pub centre: SeenPoint,
+    /// The proper time its clock shows in the image, s.
+    pub seen_proper_time: f64,
+    /// Every mesh vertex, only when asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<Vec<SeenPoint>>,
+}
+
+fn xyz(v: glam::DVec3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+impl SeenPoint {
+    /// From the optics' view of a point.
+    pub fn new(p: &crate::optics::view::PointView) -> Self {
+        Self {
+            emission: EmissionLine {
+                t: p.emission.event.t,
+                position: xyz(p.emission.event.position),
+            },
+            direction: xyz(p.seen.direction),
+            distance: p.seen.distance,
+            doppler: p.seen.doppler,
+            intensity: p.intensity,
+        }
+    }
+}
+
+impl ObserveReport {
+    /// The report of `view` for the observer `name` whose proper time at
+    /// the observation is `proper_time`.
+    pub fn new(
+        billiard: &Billiard,
+        view: &crate::optics::View,
+        name: &str,
+        proper_time: f64,
+        with_vertices: bool,
+    ) -> Self {
+        Self {
+            t: view.eye.event.t,
+            observer: ObserverLine {
+                name: name.to_owned(),
+                position: xyz(view.eye.event.position),
+                beta: xyz(view.eye.u.beta()),
+                proper_time,
+            },
+            pucks: view
+                .bodies
+                .iter()
+                .map(|b| SeenPuck {
+                    name: billiard.name(b.puck).to_owned(),
+                    centre: SeenPoint::new(&b.centre),
+                    seen_proper_time: b.seen_proper_time,
+                    vertices: with_vertices
+                        .then(|| b.vertices.iter().map(SeenPoint::new).collect()),
+                })
+                .collect(),
+        }
+    }
+}

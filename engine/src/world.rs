@@ -11,6 +11,7 @@ use bevy_ecs::prelude::*;
 use glam::{DVec2, DVec3};
 
 use crate::kinematics;
+use crate::optics::systems as optics;
 use crate::physics::{Billiard, Collision};
 use crate::scene::{Color, Effect, Effects, Scene, TableSpec};
 use crate::spacetime::Event;
@@ -109,6 +110,11 @@ pub fn effect_on(effect: Effect) -> impl Fn(Res<Effects>) -> bool + Clone {
     move |effects: Res<Effects>| effects.is_on(effect)
 }
 
+/// Run condition: any of `effects` is on.
+pub fn any_effect_on(effects: &'static [Effect]) -> impl Fn(Res<Effects>) -> bool + Clone {
+    move |on: Res<Effects>| effects.iter().any(|e| on.is_on(*e))
+}
+
 /// Run condition: `effect` is off.
 pub fn effect_off(effect: Effect) -> impl Fn(Res<Effects>) -> bool + Clone {
     move |effects: Res<Effects>| !effects.is_on(effect)
@@ -129,6 +135,26 @@ pub fn frame_schedule() -> Schedule {
             .chain(),
     );
     schedule.add_systems(crate::physics::systems::advance.in_set(Phase::Physics));
+    schedule.add_systems(
+        (
+            (
+                optics::light_delay.run_if(effect_on(Effect::LightDelay)),
+                optics::simultaneous.run_if(effect_off(Effect::LightDelay)),
+            ),
+            (
+                optics::aberration.run_if(effect_on(Effect::Aberration)),
+                optics::board_directions.run_if(effect_off(Effect::Aberration)),
+            ),
+            optics::doppler.run_if(any_effect_on(&[Effect::Doppler, Effect::Searchlight])),
+            (
+                optics::searchlight.run_if(effect_on(Effect::Searchlight)),
+                optics::no_searchlight.run_if(effect_off(Effect::Searchlight)),
+            ),
+            optics::no_colour_shift.run_if(effect_off(Effect::Doppler)),
+        )
+            .chain()
+            .in_set(Phase::Optics),
+    );
     schedule.add_systems(
         (
             kinematics::contraction.run_if(effect_on(Effect::Contraction)),
@@ -181,6 +207,7 @@ impl Simulation {
                 BodyName(o.name.clone()),
                 Worldline::new(Event::new(0.0, o.position), o.u, scene.c),
                 ProperTime::default(),
+                optics::Apparent::default(),
             ));
         }
         let mut sim = Self {
@@ -293,6 +320,52 @@ mod tests {
         let (shape, tau, centre) = fast_puck(&mut sim);
         assert!((tau - 0.36).abs() < 1e-12);
         assert!((extent_x(&shape, centre) - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn optics_systems_follow_the_effects() {
+        use crate::optics::systems::Apparent;
+        let scene = scene::parse(SCENE, "test.toml").unwrap();
+        let mut sim = Simulation::new(&scene);
+        let eye = sim.entity("eye").unwrap();
+        let apparent = |sim: &Simulation| sim.world.get::<Apparent>(eye).unwrap().clone();
+        for (light_delay, aberration, doppler, searchlight) in [
+            (false, false, false, false),
+            (true, false, false, false),
+            (true, true, false, false),
+            (true, true, true, false),
+            (true, true, false, true),
+            (false, true, true, true),
+        ] {
+            sim.set_effect(Effect::LightDelay, light_delay);
+            sim.set_effect(Effect::Aberration, aberration);
+            sim.set_effect(Effect::Doppler, doppler);
+            sim.set_effect(Effect::Searchlight, searchlight);
+            sim.advance_to(0.5);
+            let a = apparent(&sim);
+            let e = a.eye.unwrap();
+            let body = &a.bodies[0];
+            assert_eq!(body.emissions.len(), body.seen.len());
+            assert_eq!(body.seen.len(), body.intensity.len());
+            for ((em, seen), intensity) in
+                body.emissions.iter().zip(&body.seen).zip(&body.intensity)
+            {
+                if light_delay {
+                    assert!(em.event.t < 0.5);
+                } else {
+                    assert_eq!(em.event.t, 0.5);
+                }
+                if !aberration {
+                    assert!(
+                        (seen.position - (em.event.position - e.event.position)).length() < 1e-12
+                    );
+                }
+                let d = e.doppler_of(em.event, em.u);
+                assert_eq!(seen.doppler, if doppler { d } else { 1.0 });
+                let expected = if searchlight { d.powi(4) } else { 1.0 };
+                assert!((intensity - expected).abs() < 1e-12 * expected);
+            }
+        }
     }
 
     #[test]

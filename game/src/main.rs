@@ -40,6 +40,25 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// What an observer sees at a board time, as one JSON object (schema in
+    /// the README).
+    Observe {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Board time of the observation, s.
+        #[arg(long)]
+        at: f64,
+        /// Observer name (default: the scene's first).
+        #[arg(long)]
+        observer: Option<String>,
+        /// List every mesh vertex of every puck.
+        #[arg(long)]
+        vertices: bool,
+        /// Effects: `scene`, `all`, `none`, or a list such as
+        /// `contraction,light_delay,doppler`.
+        #[arg(long, default_value = "scene")]
+        effects: String,
+    },
     /// Measure the engine and print the figures of BENCHMARKS.md.
     Bench {
         /// What to measure: `physics`.
@@ -63,6 +82,13 @@ fn main() -> ExitCode {
         Some(Command::Simulate { scene, until, out }) => {
             commands::simulate::run(&scene, until, out.as_ref())
         }
+        Some(Command::Observe {
+            scene,
+            at,
+            observer,
+            vertices,
+            effects,
+        }) => commands::observe::run_named(&scene, at, observer.as_deref(), vertices, &effects),
         Some(Command::Bench {
             what: BenchWhat::Physics,
             quick,

@@ -1,0 +1,279 @@
+//! The emission event, exactly: on a piecewise-linear worldline, a binary
+//! search over segments, then a stable closed-form root.
+//!
+//! A vertex rigidly attached to a body at rest-frame offset `r` moves, on
+//! segment `k`, as `x(t) = cₖ(t) + rₖ` with `cₖ` the centre's straight line
+//! and `rₖ` the offset contracted along that segment's velocity (or not, when
+//! contraction is off). Its light reaches the observation event `(t₀, x₀)`
+//! from the event at look-back time `τ` where `|x₀ − x(t₀ − τ)| = c τ`:
+//!
+//! ```text
+//! (c² − v²) τ² − 2 (d·v) τ − |d|² = 0,   d = x₀ − x(t₀) (extrapolated on the segment)
+//! ```
+//!
+//! with `c² − v² = c²/γ²` exact, solved in its cancellation-free form.
+//! `f(t) = c (t₀ − t) − |x₀ − x(t)|` decreases along a worldline, so the
+//! segment holding the root is the last one whose start has `f ≥ 0`
+//! (binary search, O(log S)). At a kink the contracted offset jumps; if the
+//! jump carries the vertex across the light cone the emission is taken at
+//! the kink.
+
+use glam::DVec3;
+
+use crate::physics::predict::puck_puck::light_catch_up;
+use crate::spacetime::{Event, ProperVelocity};
+use crate::worldline::{Segment, Worldline, contract};
+
+/// Where and how fast a point was when it emitted the light seen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emission {
+    /// The emission event, board frame.
+    pub event: Event,
+    /// The emitter's proper velocity then (for the Doppler factor).
+    pub u: ProperVelocity,
+    /// Index of the worldline segment it lies on.
+    pub segment: usize,
+}
+
+/// The vertex's position at the start of segment `s`.
+#[inline]
+fn start_position(s: &Segment, offset: DVec3, contracted: bool) -> DVec3 {
+    s.start.position
+        + if contracted {
+            contract(offset, s.u)
+        } else {
+            offset
+        }
+}
+
+/// `f` at the start of segment `s`: ≥ 0 when that event is in (or on) the
+/// observation's past light cone.
+#[inline]
+fn in_past_cone(s: &Segment, offset: DVec3, contracted: bool, observation: Event, c: f64) -> bool {
+    let a = start_position(s, offset, contracted);
+    c * (observation.t - s.start.t) >= (observation.position - a).length()
+}
+
+/// Index of the segment holding the emission for a point at `offset`
+/// (rest frame, from the reference point), O(log S).
+pub fn segment_index(
+    worldline: &Worldline,
+    offset: DVec3,
+    contracted: bool,
+    observation: Event,
+) -> usize {
+    let c = worldline.speed_of_light();
+    worldline
+        .segments()
+        .partition_point(|s| in_past_cone(s, offset, contracted, observation, c))
+        .saturating_sub(1)
+}
+
+/// Moves a segment index found for a nearby point (the body's centre) to
+/// the one for this point: the vertices of a body share the search, and
+/// this walk is usually zero or one step.
+pub fn refine_index(
+    worldline: &Worldline,
+    mut k: usize,
+    offset: DVec3,
+    contracted: bool,
+    observation: Event,
+) -> usize {
+    let c = worldline.speed_of_light();
+    let segments = worldline.segments();
+    while k > 0 && !in_past_cone(&segments[k], offset, contracted, observation, c) {
+        k -= 1;
+    }
+    while k + 1 < segments.len()
+        && in_past_cone(&segments[k + 1], offset, contracted, observation, c)
+    {
+        k += 1;
+    }
+    k
+}
+
+/// The emission event on segment `k` (see the module doc).
+pub fn solve_on_segment(
+    worldline: &Worldline,
+    k: usize,
+    offset: DVec3,
+    contracted: bool,
+    observation: Event,
+) -> Emission {
+    let segments = worldline.segments();
+    let s = &segments[k];
+    let c = worldline.speed_of_light();
+    let a = start_position(s, offset, contracted);
+    let v = s.velocity();
+    let since_start = observation.t - s.start.t;
+    let d = observation.position - (a + v * since_start);
+    let tau = light_catch_up(d, v, c, s.u.gamma());
+    let mut dt = since_start - tau; // emission time relative to the segment start
+    if k > 0 {
+        dt = dt.max(0.0);
+    }
+    if let Some(next) = segments.get(k + 1) {
+        dt = dt.min(next.start.t - s.start.t);
+    }
+    Emission {
+        event: Event::new(s.start.t + dt, a + v * dt),
+        u: s.u,
+        segment: k,
+    }
+}
+
+/// The emission event of the point at rest-frame `offset` from the
+/// reference point of the body moving along `worldline`, for light reaching
+/// `observation`. Before the first segment the body keeps its initial
+/// motion (the worldline's convention), so there is always an answer.
+pub fn solve(
+    worldline: &Worldline,
+    offset: DVec3,
+    contracted: bool,
+    observation: Event,
+) -> Emission {
+    let k = segment_index(worldline, offset, contracted, observation);
+    solve_on_segment(worldline, k, offset, contracted, observation)
+}
+
+/// Emission events of every point of a body (rest-frame `offsets`), the
+/// segment search shared: one binary search for `reference`, then a short
+/// walk per point. Appends to `out`.
+pub fn solve_body(
+    worldline: &Worldline,
+    offsets: &[DVec3],
+    reference: DVec3,
+    contracted: bool,
+    observation: Event,
+    out: &mut Vec<Emission>,
+) {
+    let k0 = segment_index(worldline, reference, contracted, observation);
+    if worldline.segments().len() == 1 {
+        out.extend(
+            offsets
+                .iter()
+                .map(|&r| solve_on_segment(worldline, 0, r, contracted, observation)),
+        );
+        return;
+    }
+    out.extend(offsets.iter().map(|&r| {
+        let k = refine_index(worldline, k0, r, contracted, observation);
+        solve_on_segment(worldline, k, r, contracted, observation)
+    }));
+}
+
+/// The board-frame-simultaneous "emission" (light delay off): the point
+/// where it is at the observation's board time.
+pub fn simultaneous(worldline: &Worldline, offset: DVec3, contracted: bool, t: f64) -> Emission {
+    let k = worldline.segment_index_at(t);
+    let s = &worldline.segments()[k];
+    let r = if contracted {
+        contract(offset, s.u)
+    } else {
+        offset
+    };
+    Emission {
+        event: Event::new(t, s.position_at(t) + r),
+        u: s.u,
+        segment: k,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const C: f64 = 1.42;
+
+    #[test]
+    fn uniform_motion_closed_form_retarded_time() {
+        // A point moving along x at v passes x = 0 at t = 0; an observer at
+        // (0, h) at time t₀ sees it at the retarded time t_r, the earlier
+        // root of c²(t₀ − t)² = (v t)² + h² (textbook quadratic formula).
+        let beta = 0.8;
+        let u = ProperVelocity::try_from_beta(DVec3::new(beta, 0.0, 0.0)).unwrap();
+        let w = Worldline::new(Event::new(0.0, DVec3::ZERO), u, C);
+        for (t0, h) in [(1.0, 0.5), (3.0, 2.0), (-2.0, 0.1), (0.0, 1.0)] {
+            let e = solve(
+                &w,
+                DVec3::ZERO,
+                true,
+                Event::new(t0, DVec3::new(0.0, h, 0.0)),
+            );
+            // (c² − v²) t² − 2 c² t₀ t + c² t₀² − h² = 0, earlier root.
+            let v = beta * C;
+            let (a, b, cc) = (C * C - v * v, -2.0 * C * C * t0, C * C * t0 * t0 - h * h);
+            let t_r = (-b - (b * b - 4.0 * a * cc).sqrt()) / (2.0 * a);
+            assert!(
+                (e.event.t - t_r).abs() < 1e-12,
+                "{t0} {h}: {} vs {t_r}",
+                e.event.t
+            );
+            let dist = (e.event.position - DVec3::new(0.0, h, 0.0)).length();
+            assert!((dist - C * (t0 - e.event.t)).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn across_a_kink_the_emission_is_continuous_for_the_centre() {
+        let u = ProperVelocity::try_from_beta(DVec3::new(0.6, 0.0, 0.0)).unwrap();
+        let mut w = Worldline::new(Event::new(0.0, DVec3::new(1.0, 0.5, 0.0)), u, C);
+        w.push(
+            1.0,
+            ProperVelocity::try_from_beta(DVec3::new(-0.3, 0.4, 0.0)).unwrap(),
+        )
+        .unwrap();
+        let eye = DVec3::new(0.5, -1.0, 0.8);
+        let mut last: Option<Emission> = None;
+        for i in 0..400 {
+            let t0 = 0.5 + 0.01 * f64::from(i);
+            let e = solve(&w, DVec3::ZERO, true, Event::new(t0, eye));
+            // On the cone, on the worldline.
+            assert!((C * (t0 - e.event.t) - (eye - e.event.position).length()).abs() < 1e-12);
+            assert!((w.position_at(e.event.t) - e.event.position).length() < 1e-12);
+            if let Some(l) = last {
+                assert!(e.event.t > l.event.t && e.event.t - l.event.t < 0.02);
+            }
+            last = Some(e);
+        }
+    }
+
+    #[test]
+    fn before_the_first_event_the_initial_motion_extends_back() {
+        let u = ProperVelocity::try_from_beta(DVec3::new(0.5, 0.0, 0.0)).unwrap();
+        let w = Worldline::new(Event::new(10.0, DVec3::new(1.0, 0.0, 0.0)), u, C);
+        let e = solve(
+            &w,
+            DVec3::ZERO,
+            true,
+            Event::new(0.0, DVec3::new(1.0, 1.0, 0.0)),
+        );
+        assert!(e.event.t < 0.0);
+        assert!((w.position_at(e.event.t) - e.event.position).length() < 1e-12);
+    }
+
+    #[test]
+    fn shared_search_matches_independent_search() {
+        let mut w = Worldline::new(
+            Event::new(0.0, DVec3::new(0.2, 0.5, 0.0)),
+            ProperVelocity(DVec3::new(2.0, 0.3, 0.0)),
+            C,
+        );
+        for k in 1..50 {
+            let u = ProperVelocity(DVec3::new(if k % 2 == 0 { 2.0 } else { -2.0 }, 0.3, 0.0));
+            w.push(0.1 * f64::from(k), u).unwrap();
+        }
+        let offsets: Vec<DVec3> = (0..16)
+            .map(|i| {
+                let a = std::f64::consts::TAU * f64::from(i) / 16.0;
+                DVec3::new(a.cos(), a.sin(), 0.5) * 0.03
+            })
+            .collect();
+        let obs = Event::new(3.7, DVec3::new(1.0, -1.0, 0.5));
+        let mut shared = Vec::new();
+        solve_body(&w, &offsets, DVec3::ZERO, true, obs, &mut shared);
+        for (r, e) in offsets.iter().zip(&shared) {
+            assert_eq!(*e, solve(&w, *r, true, obs));
+        }
+    }
+}

@@ -1,0 +1,127 @@
+//! `lightcone observe SCENE --at T --observer NAME [--vertices] [--effects LIST]`:
+//! what an observer sees at board time T, as one JSON object.
+
+use std::path::Path;
+use std::process::ExitCode;
+
+use lightcone_engine::optics::view::{Method, observe};
+use lightcone_engine::optics::{Eye, mesh};
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::report::ObserveReport;
+use lightcone_engine::scene::{self, Effect, Effects};
+use lightcone_engine::spacetime::Event;
+use lightcone_engine::world::PUCK_SEGMENTS;
+
+/// Parses `--effects`: `scene` (as the scene says), `all`, `none`, or a
+/// comma-separated list of effect keys to turn on (the others off).
+pub fn parse_effects(spec: &str, scene: Effects) -> Result<Effects, String> {
+    match spec {
+        "scene" => return Ok(scene),
+        "all" => {
+            let mut e = Effects::NONE;
+            for k in Effect::ALL {
+                e.set(k, true);
+            }
+            return Ok(e);
+        }
+        "none" => return Ok(Effects::NONE),
+        _ => {}
+    }
+    let mut e = Effects::NONE;
+    for key in spec.split(',').map(str::trim).filter(|k| !k.is_empty()) {
+        let effect = Effect::ALL.iter().find(|x| x.key() == key).ok_or_else(|| {
+            let known: Vec<_> = Effect::ALL.iter().map(|x| x.key()).collect();
+            format!(
+                "--effects: unknown effect `{key}`; known: scene, all, none, {}",
+                known.join(", ")
+            )
+        })?;
+        e.set(*effect, true);
+    }
+    Ok(e)
+}
+
+/// Prints what `observer` (default: the scene's first) sees at `at`.
+pub fn run_named(
+    path: &Path,
+    at: f64,
+    observer: Option<&str>,
+    vertices: bool,
+    effects: &str,
+) -> ExitCode {
+    match observer {
+        Some(name) => run(path, at, name, vertices, effects),
+        None => match scene::load(path) {
+            Ok(s) => run(path, at, &s.observers[0].name, vertices, effects),
+            Err(e) => {
+                eprintln!("{e}");
+                ExitCode::FAILURE
+            }
+        },
+    }
+}
+
+/// Prints what `observer` sees at board time `at`.
+pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) -> ExitCode {
+    if !at.is_finite() {
+        eprintln!("--at {at}: give a finite board time in seconds");
+        return ExitCode::FAILURE;
+    }
+    let scene = match scene::load(path) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let effects = match parse_effects(effects, scene.effects) {
+        Ok(e) => e,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let Some(spec) = scene.observer(observer) else {
+        let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
+        eprintln!(
+            "{}: no observer named \"{observer}\"; the scene has: {}",
+            path.display(),
+            names.join(", ")
+        );
+        return ExitCode::FAILURE;
+    };
+    let mut billiard = Billiard::from_scene(&scene);
+    billiard.advance_to(at);
+    let v = spec.u.velocity(scene.c);
+    let eye = Eye {
+        event: Event::new(at, spec.position + v * at),
+        u: spec.u,
+    };
+    let shapes: Vec<_> = scene
+        .pucks
+        .iter()
+        .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
+        .collect();
+    let heights: Vec<f64> = scene.pucks.iter().map(|p| p.height).collect();
+    let view = observe(
+        &billiard,
+        &shapes,
+        &heights,
+        eye,
+        effects,
+        Method::Exact,
+        vertices,
+    );
+    let proper_time = at / spec.u.gamma();
+    let report = ObserveReport::new(&billiard, &view, &spec.name, proper_time, vertices);
+    match serde_json::to_string(&report) {
+        Ok(s) => {
+            println!("{s}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("cannot write the output: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
