@@ -300,3 +300,20 @@ fn observe_prints_the_documented_json() {
     ]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown effect `redshift`"));
 }
+
+#[test]
+fn bench_optics_quick_prints_its_tables_and_csv() {
+    let dir = std::env::temp_dir().join(format!("lightcone-bo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("acc.csv");
+    let csv_s = csv.to_string_lossy().into_owned();
+    let out = lightcone(&["bench", "optics", "--quick", "--csv", &csv_s]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for heading in ["Accuracy and cost", "History memory", "Exact emission solves", "What each effect costs"] {
+        assert!(stdout.contains(heading), "{heading} missing");
+    }
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.lines().count() >= 10);
+    let _ = std::fs::remove_dir_all(&dir);
+}

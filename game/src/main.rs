@@ -66,6 +66,9 @@ enum Command {
         /// Shorter runs (for a smoke test).
         #[arg(long)]
         quick: bool,
+        /// Also write the optics accuracy table as CSV (for the plot).
+        #[arg(long)]
+        csv: Option<PathBuf>,
     },
 }
 
@@ -73,6 +76,8 @@ enum Command {
 enum BenchWhat {
     /// Frame times, collision rates, fixed-step comparison.
     Physics,
+    /// Emission-solve accuracy and cost, solves per second, effect costs.
+    Optics,
 }
 
 fn main() -> ExitCode {
@@ -89,10 +94,10 @@ fn main() -> ExitCode {
             vertices,
             effects,
         }) => commands::observe::run_named(&scene, at, observer.as_deref(), vertices, &effects),
-        Some(Command::Bench {
-            what: BenchWhat::Physics,
-            quick,
-        }) => commands::bench::run(quick),
+        Some(Command::Bench { what, quick, csv }) => match what {
+            BenchWhat::Physics => commands::bench::run(quick),
+            BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),
+        },
         None => commands::check::run(&[]),
     }
 }

@@ -22,7 +22,7 @@ use glam::DVec3;
 
 use crate::physics::predict::puck_puck::light_catch_up;
 use crate::spacetime::{Event, ProperVelocity};
-use crate::worldline::{Segment, Worldline, contract};
+use crate::worldline::{Segment, Worldline};
 
 /// Where and how fast a point was when it emitted the light seen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,7 +40,7 @@ pub struct Emission {
 fn start_position(s: &Segment, offset: DVec3, contracted: bool) -> DVec3 {
     s.start.position
         + if contracted {
-            contract(offset, s.u)
+            s.contract(offset)
         } else {
             offset
         }
@@ -107,7 +107,7 @@ pub fn solve_on_segment(
     let v = s.velocity();
     let since_start = observation.t - s.start.t;
     let d = observation.position - (a + v * since_start);
-    let tau = light_catch_up(d, v, c, s.u.gamma());
+    let tau = light_catch_up(d, v, c, s.gamma());
     let mut dt = since_start - tau; // emission time relative to the segment start
     if k > 0 {
         dt = dt.max(0.0);
@@ -168,7 +168,7 @@ pub fn simultaneous(worldline: &Worldline, offset: DVec3, contracted: bool, t: f
     let k = worldline.segment_index_at(t);
     let s = &worldline.segments()[k];
     let r = if contracted {
-        contract(offset, s.u)
+        s.contract(offset)
     } else {
         offset
     };

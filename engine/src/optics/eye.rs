@@ -66,10 +66,25 @@ impl Eye {
     /// with `emitter`. `aberration` off keeps board-frame directions and
     /// distances (as if the eye were at rest).
     pub fn see(&self, emission: Event, emitter: ProperVelocity, c: f64, aberration: bool) -> Seen {
+        Seen {
+            doppler: self.doppler_of(emission, emitter),
+            ..self.place(&self.frame(), emission, c, aberration)
+        }
+    }
+
+    /// The boost into this eye's rest frame (compute once per frame, pass to
+    /// [`Self::see_in`] for every vertex).
+    pub fn frame(&self) -> Boost {
+        Boost::into_frame(self.u)
+    }
+
+    /// Where the light from `emission` appears ([`Self::see`] without the
+    /// Doppler factor, which is left at 1), with the eye's frame precomputed.
+    pub fn place(&self, frame: &Boost, emission: Event, c: f64, aberration: bool) -> Seen {
         let to_source = emission.position - self.event.position;
         let position = if aberration {
             let ray = FourVector::new(c * (emission.t - self.event.t), to_source);
-            Boost::into_frame(self.u).apply(ray).space
+            frame.apply(ray).space
         } else {
             to_source
         };
@@ -83,7 +98,7 @@ impl Eye {
             position,
             direction,
             distance,
-            doppler: self.doppler_of(emission, emitter),
+            doppler: 1.0,
         }
     }
 

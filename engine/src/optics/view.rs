@@ -94,11 +94,12 @@ pub fn emissions(
 /// at 1 (see [`doppler`]).
 pub fn seen(eye: &Eye, c: f64, effects: &Effects, emissions: &[Emission], out: &mut Vec<Seen>) {
     out.clear();
-    out.extend(emissions.iter().map(|e| {
-        let mut s = eye.see(e.event, e.u, c, effects.aberration);
-        s.doppler = 1.0;
-        s
-    }));
+    let frame = eye.frame();
+    out.extend(
+        emissions
+            .iter()
+            .map(|e| eye.place(&frame, e.event, c, effects.aberration)),
+    );
 }
 
 /// Doppler factors of emissions, into `seen` (same order).

@@ -37,18 +37,45 @@ pub struct Segment {
     velocity: DVec3,
     /// `1 / γ`, the rate of proper time per board time (cached).
     inverse_gamma: f64,
+    /// Unit direction of motion (zero at rest), for contraction (cached).
+    direction: DVec3,
+    /// `γ` (cached).
+    gamma: f64,
 }
 
 impl Segment {
     fn new(start: Event, u: ProperVelocity, proper_time: f64, c: f64) -> Self {
         let gamma = u.gamma();
+        let speed = u.0.length();
         Self {
             start,
             u,
             proper_time,
             velocity: u.0 * (c / gamma),
             inverse_gamma: 1.0 / gamma,
+            direction: if speed > 0.0 {
+                u.0 / speed
+            } else {
+                DVec3::ZERO
+            },
+            gamma,
         }
+    }
+
+    /// Lorentz factor along the segment.
+    #[inline]
+    pub fn gamma(&self) -> f64 {
+        self.gamma
+    }
+
+    /// A rest-frame offset contracted along this segment's motion, as
+    /// [`crate::worldline::contract`] does, with the direction and `1/γ`
+    /// cached: `r⊥ + n (n·r) / γ`.
+    #[inline]
+    pub fn contract(&self, r: DVec3) -> DVec3 {
+        let n = self.direction;
+        let along = n.dot(r);
+        (r - n * along) + n * (along * self.inverse_gamma)
     }
 
     /// Board-frame velocity, m/s.

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod bench;
+pub mod bench_optics;
 pub mod check;
 pub mod observe;
 pub mod simulate;

@@ -1,0 +1,473 @@
+//! `lightcone bench optics [--quick] [--csv FILE]`: what accuracy costs in
+//! time and memory, for the exact emission solve and the paper's sampled
+//! history, and what each effect costs in the frame schedule.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use glam::DVec3;
+use lightcone_engine::optics::eye::Eye;
+use lightcone_engine::optics::history::{SampledHistory, Search};
+use lightcone_engine::optics::view::{self, Method};
+use lightcone_engine::optics::{Emission, mesh};
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::physics::gas::dense_box;
+use lightcone_engine::scene::{self, Effect, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
+use lightcone_engine::spacetime::{Event, ProperVelocity};
+use lightcone_engine::world::{PUCK_SEGMENTS, Simulation};
+use lightcone_engine::worldline::{RestShape, Worldline};
+use rayon::prelude::*;
+
+/// Bytes per vertex per frame of the paper's history table, from its
+/// Table 1 (94.6 MB for 4 960 vertices × 1 000 events).
+const PAPER_BYTES_PER_VERTEX_FRAME: f64 = 94.6e6 / (4960.0 * 1000.0);
+/// Vertical field of view used to turn angles into pixels at 1080p.
+const FOV: f64 = std::f64::consts::FRAC_PI_3;
+
+struct Row {
+    method: String,
+    fps: f64,
+    frames: usize,
+    iterations: String,
+    interpolate: bool,
+    max_m: f64,
+    mean_m: f64,
+    max_px: f64,
+    mean_px: f64,
+    ns_per_vertex: f64,
+    memory: f64,
+    paper_memory: f64,
+}
+
+/// Runs the optics benchmarks.
+pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
+    let scene = match scene::load(Path::new("assets/scenes/paper_carom.toml")) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let rows = accuracy(&scene, quick);
+    print_rows(&rows);
+    if let Some(path) = csv {
+        let mut text = String::from(
+            "method,fps,frames,iterations,interpolate,max_m,mean_m,max_px,mean_px,ns_per_vertex,memory_bytes\n",
+        );
+        for r in &rows {
+            text += &format!(
+                "{},{},{},{},{},{:e},{:e},{:e},{:e},{},{}\n",
+                r.method,
+                r.fps,
+                r.frames,
+                r.iterations,
+                r.interpolate,
+                r.max_m,
+                r.mean_m,
+                r.max_px,
+                r.mean_px,
+                r.ns_per_vertex,
+                r.memory
+            );
+        }
+        if let Err(e) = std::fs::write(path, text) {
+            eprintln!("{}: {e}", path.display());
+            return ExitCode::FAILURE;
+        }
+    }
+    match memory_ten_pucks() {
+        Ok(text) => println!("{text}"),
+        Err(e) => eprintln!("{e}"),
+    }
+    println!("{}", throughput(quick));
+    println!("{}", effect_costs(quick));
+    ExitCode::SUCCESS
+}
+
+fn shapes_of(scene: &Scene) -> (Vec<RestShape>, Vec<f64>) {
+    (
+        scene
+            .pucks
+            .iter()
+            .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
+            .collect(),
+        scene.pucks.iter().map(|p| p.height).collect(),
+    )
+}
+
+/// Apparent positions of every vertex of every puck for `eye`.
+fn apparent(
+    billiard: &Billiard,
+    shapes: &[RestShape],
+    eye: &Eye,
+    method: Method,
+    effects: &Effects,
+    out: &mut Vec<DVec3>,
+) {
+    out.clear();
+    let mut e: Vec<Emission> = Vec::new();
+    let mut s = Vec::new();
+    for (puck, shape) in shapes.iter().enumerate() {
+        view::emissions(
+            billiard,
+            puck,
+            &shape.vertices,
+            eye,
+            effects,
+            method,
+            &mut e,
+        );
+        view::seen(eye, billiard.c(), effects, &e, &mut s);
+        out.extend(s.iter().map(|x| x.position));
+    }
+}
+
+/// Table: error and cost of each emission method on the paper's scene.
+fn accuracy(scene: &Scene, quick: bool) -> Vec<Row> {
+    let (shapes, _) = shapes_of(scene);
+    let vertices: usize = shapes.iter().map(|s| s.vertices.len()).sum();
+    let observer = &scene.observers[0];
+    let effects = Effects::default();
+    let until = 20.0;
+    let mut billiard = Billiard::from_scene(scene);
+    billiard.advance_to(until);
+    let times: Vec<f64> = (4..=(until as usize * 2)).map(|k| k as f64 * 0.5).collect();
+    let eyes: Vec<Eye> = times
+        .iter()
+        .map(|&t| Eye {
+            event: Event::new(t, observer.position + observer.u.velocity(scene.c) * t),
+            u: observer.u,
+        })
+        .collect();
+    let mut exact = Vec::new();
+    let mut reference: Vec<Vec<DVec3>> = Vec::new();
+    for eye in &eyes {
+        apparent(&billiard, &shapes, eye, Method::Exact, &effects, &mut exact);
+        reference.push(exact.clone());
+    }
+    let reps = if quick { 1 } else { 20 };
+    let time_method = |method: Method| {
+        let mut buf = Vec::new();
+        let start = Instant::now();
+        for _ in 0..reps {
+            for eye in &eyes {
+                apparent(&billiard, &shapes, eye, method, &effects, &mut buf);
+            }
+        }
+        start.elapsed().as_secs_f64() * 1e9 / (reps * eyes.len() * vertices) as f64
+    };
+    let segments: usize = (0..billiard.len())
+        .map(|i| billiard.worldline(i).segments().len())
+        .sum();
+    let mut rows = vec![Row {
+        method: "exact".into(),
+        fps: f64::NAN,
+        frames: 0,
+        iterations: "–".into(),
+        interpolate: false,
+        max_m: 0.0,
+        mean_m: 0.0,
+        max_px: 0.0,
+        mean_px: 0.0,
+        ns_per_vertex: time_method(Method::Exact),
+        memory: (segments * std::mem::size_of::<lightcone_engine::worldline::Segment>()) as f64,
+        paper_memory: f64::NAN,
+    }];
+    let settings: Vec<(f64, usize, u32, bool)> = {
+        let mut v = Vec::new();
+        for &fps in &[30.0, 60.0, 120.0] {
+            for &interp in &[false, true] {
+                v.push((fps, 1000, u32::MAX, interp));
+            }
+        }
+        for &it in &[3u32, 6] {
+            v.push((60.0, 1000, it, true));
+        }
+        v.push((60.0, 100, u32::MAX, true));
+        v
+    };
+    for (fps, frames, iterations, interpolate) in settings {
+        let mut history = SampledHistory::new(billiard.len(), frames);
+        let worldlines: Vec<&Worldline> =
+            (0..billiard.len()).map(|i| billiard.worldline(i)).collect();
+        let search = Search {
+            iterations,
+            interpolate,
+        };
+        let (mut max_m, mut sum_m, mut max_px, mut sum_px, mut n) =
+            (0.0f64, 0.0, 0.0f64, 0.0, 0usize);
+        let mut next = 0.0;
+        let mut frame = 0usize;
+        let mut sampled = Vec::new();
+        let mut elapsed = 0.0;
+        for (k, eye) in eyes.iter().enumerate() {
+            // Record frames up to the observation, as the game loop would.
+            while next <= eye.event.t + 1e-12 {
+                history.record(next, worldlines.iter().copied());
+                frame += 1;
+                next = frame as f64 / fps;
+            }
+            let start = Instant::now();
+            apparent(
+                &billiard,
+                &shapes,
+                eye,
+                Method::Sampled(&history, search),
+                &effects,
+                &mut sampled,
+            );
+            elapsed += start.elapsed().as_secs_f64();
+            for (a, b) in sampled.iter().zip(&reference[k]) {
+                let m = (*a - *b).length();
+                let angle = a.normalize().dot(b.normalize()).clamp(-1.0, 1.0).acos();
+                let px = angle * 1080.0 / FOV;
+                max_m = max_m.max(m);
+                max_px = max_px.max(px);
+                sum_m += m;
+                sum_px += px;
+                n += 1;
+            }
+        }
+        rows.push(Row {
+            method: "sampled".into(),
+            fps,
+            frames,
+            iterations: if iterations == u32::MAX {
+                "full".into()
+            } else {
+                iterations.to_string()
+            },
+            interpolate,
+            max_m,
+            mean_m: sum_m / n as f64,
+            max_px,
+            mean_px: sum_px / n as f64,
+            ns_per_vertex: elapsed * 1e9 / (eyes.len() * vertices) as f64,
+            memory: history.memory_bytes() as f64,
+            paper_memory: PAPER_BYTES_PER_VERTEX_FRAME * (vertices * history.len()) as f64,
+        });
+    }
+    rows
+}
+
+fn print_rows(rows: &[Row]) {
+    println!(
+        "### Accuracy and cost of the emission solve: the paper's 3-puck scene\n\n\
+         Observer \"eye\" at rest beside the table, observation every 0.5 s from 2 s to 20 s, every vertex of \
+         the three pucks (48-segment meshes). Error: apparent position against the exact solve, in metres and \
+         in pixels at 1080p (60° vertical field of view). Memory: the history held; for the sampled method \
+         also what the paper's per-vertex table would take (its Table 1: 19 bytes per vertex per frame).\n\n\
+         | method | samples/s | frames kept | dichotomy steps | interpolation | max error (m) | mean error (m) | max (px) | mean (px) | time per vertex (ns) | memory (bytes) | paper's layout (bytes) |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+    );
+    for r in rows {
+        println!(
+            "| {} | {} | {} | {} | {} | {:.2e} | {:.2e} | {:.3} | {:.3} | {:.1} | {:.0} | {} |",
+            r.method,
+            if r.fps.is_nan() {
+                "–".into()
+            } else {
+                format!("{}", r.fps)
+            },
+            if r.frames == 0 {
+                "–".into()
+            } else {
+                r.frames.to_string()
+            },
+            r.iterations,
+            if r.method == "exact" {
+                "–"
+            } else if r.interpolate {
+                "on"
+            } else {
+                "off"
+            },
+            r.max_m,
+            r.mean_m,
+            r.max_px,
+            r.mean_px,
+            r.ns_per_vertex,
+            r.memory,
+            if r.paper_memory.is_nan() {
+                "–".into()
+            } else {
+                format!("{:.0}", r.paper_memory)
+            }
+        );
+    }
+    println!();
+}
+
+/// History memory for the paper's 10-puck scene over 1 000 frames (its
+/// Table 1 case).
+fn memory_ten_pucks() -> Result<String, String> {
+    let scene =
+        scene::load(Path::new("assets/scenes/ten_pucks.toml")).map_err(|e| e.to_string())?;
+    let (shapes, _) = shapes_of(&scene);
+    let vertices: usize = shapes.iter().map(|s| s.vertices.len()).sum();
+    let mut b = Billiard::from_scene(&scene);
+    let mut history = SampledHistory::new(b.len(), 1000);
+    for f in 1..=1000 {
+        b.advance_to(f as f64 / 60.0);
+        let w: Vec<&Worldline> = (0..b.len()).map(|i| b.worldline(i)).collect();
+        history.record(f as f64 / 60.0, w);
+    }
+    let segments: usize = (0..b.len()).map(|i| b.worldline(i).segments().len()).sum();
+    let exact = segments * std::mem::size_of::<lightcone_engine::worldline::Segment>();
+    Ok(format!(
+        "### History memory: the paper's 10-puck scene, 1 000 frames (its Table 1 case: 94.6 MB)\n\n\
+         | what is kept | bytes |\n| --- | --- |\n\
+         | exact: worldline segments ({segments} segments, {} collisions) | {exact} |\n\
+         | sampled history, one centre and velocity per body per frame | {} |\n\
+         | the paper's layout, every vertex every frame ({vertices} vertices × 1 000 × 19 B) | {:.0} |\n",
+        b.stats().contacts(),
+        history.memory_bytes(),
+        PAPER_BYTES_PER_VERTEX_FRAME * vertices as f64 * 1000.0
+    ))
+}
+
+/// Table: vertex solves per second at 10⁵–10⁶ vertices, 1 and 2 threads.
+fn throughput(quick: bool) -> String {
+    let mut out = String::from(
+        "### Exact emission solves per second\n\n\
+         A gas of pucks (β < 0.8) run for 2 s of board time (so worldlines have kinks), observed from beside \
+         the box; every vertex of every puck solved (emission event and apparent position, aberration on).\n\n\
+         | pucks | vertices | threads | vertex solves / s | ns per vertex |\n| --- | --- | --- | --- | --- |\n",
+    );
+    let configs: &[(usize, u32)] = if quick {
+        &[(100, 48)]
+    } else {
+        &[(1000, 48), (1000, 512)]
+    };
+    for &(n, segments) in configs {
+        let r = 0.0305;
+        let mut b = dense_box(n, r, 3.0 * r, 0.8, 1.42, 11);
+        b.advance_to(2.0);
+        let shape = mesh::puck(r, 0.02, segments);
+        let size = b.table();
+        let eye = Eye {
+            event: Event::new(2.0, DVec3::new(size.x / 2.0, -1.0, 0.8)),
+            u: ProperVelocity::ZERO,
+        };
+        let effects = Effects::default();
+        let vertices = n * shape.vertices.len();
+        let solve_all = |parallel: bool| {
+            let work = |puck: usize| {
+                let mut e = Vec::with_capacity(shape.vertices.len());
+                let mut s = Vec::with_capacity(shape.vertices.len());
+                view::emissions(
+                    &b,
+                    puck,
+                    &shape.vertices,
+                    &eye,
+                    &effects,
+                    Method::Exact,
+                    &mut e,
+                );
+                view::seen(&eye, b.c(), &effects, &e, &mut s);
+                s.len()
+            };
+            if parallel {
+                (0..n).into_par_iter().map(work).sum::<usize>()
+            } else {
+                (0..n).map(work).sum::<usize>()
+            }
+        };
+        for (threads, parallel) in [(1, false), (rayon::current_num_threads(), true)] {
+            let reps = if quick { 1 } else { 5 };
+            let start = Instant::now();
+            let mut total = 0;
+            for _ in 0..reps {
+                total += solve_all(parallel);
+            }
+            let secs = start.elapsed().as_secs_f64();
+            out += &format!(
+                "| {n} | {vertices} | {threads} | {:.3e} | {:.1} |\n",
+                total as f64 / secs,
+                secs * 1e9 / total as f64
+            );
+        }
+    }
+    out
+}
+
+/// A scene of `n` pucks in a row of lanes, for the schedule benchmarks.
+fn lanes(n: usize) -> Scene {
+    let size = glam::DVec2::new(2.84 * 4.0, 1.42 * 4.0);
+    let per_row = 40;
+    let pucks = (0..n)
+        .map(|i| PuckSpec {
+            name: format!("p{i}"),
+            position: glam::DVec2::new(
+                0.2 + 0.25 * (i % per_row) as f64,
+                0.2 + 0.25 * (i / per_row) as f64,
+            ),
+            u: ProperVelocity::try_from_beta(DVec3::new(
+                0.5 + 0.4 * ((i * 7 % 10) as f64 / 10.0),
+                0.3,
+                0.0,
+            ))
+            .unwrap_or(ProperVelocity::ZERO),
+            radius: 0.0305,
+            height: 0.02,
+            mass: 0.21,
+            color: lightcone_engine::scene::Color::default_for(i),
+        })
+        .collect();
+    Scene {
+        title: "lanes".into(),
+        description: String::new(),
+        c: size.x / 2.0,
+        table: TableSpec {
+            size,
+            cushion_restitution: 1.0,
+        },
+        restitution: 1.0,
+        effects: Effects::NONE,
+        pucks,
+        observers: vec![ObserverSpec {
+            name: "eye".into(),
+            position: DVec3::new(size.x / 2.0, -1.0, 1.0),
+            look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
+            u: ProperVelocity::try_from_beta(DVec3::new(0.3, 0.0, 0.0))
+                .unwrap_or(ProperVelocity::ZERO),
+        }],
+    }
+}
+
+/// Table: time per frame of the whole schedule with each effect alone.
+fn effect_costs(quick: bool) -> String {
+    let n = if quick { 50 } else { 400 };
+    let mut out = format!(
+        "### What each effect costs: one frame of the schedule, {n} pucks (48-segment meshes, {} vertices), one moving observer\n\n\
+         | effects on | ms per frame |\n| --- | --- |\n",
+        n * mesh::puck(0.0305, 0.02, PUCK_SEGMENTS).vertices.len()
+    );
+    let mut configs: Vec<(String, Effects)> = vec![("none".into(), Effects::NONE)];
+    for e in Effect::ALL {
+        let mut fx = Effects::NONE;
+        fx.set(e, true);
+        configs.push((e.key().into(), fx));
+    }
+    let mut all = Effects::NONE;
+    for e in Effect::ALL {
+        all.set(e, true);
+    }
+    configs.push(("all".into(), all));
+    let frames = if quick { 5 } else { 120 };
+    for (name, fx) in configs {
+        let mut s = lanes(n);
+        s.effects = fx;
+        let mut sim = Simulation::new(&s);
+        let start = Instant::now();
+        for f in 1..=frames {
+            sim.advance_to(f as f64 / 60.0);
+        }
+        out += &format!(
+            "| {name} | {:.3} |\n",
+            start.elapsed().as_secs_f64() * 1e3 / frames as f64
+        );
+    }
+    out
+}
