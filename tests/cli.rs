@@ -309,8 +309,17 @@ fn bench_optics_quick_prints_its_tables_and_csv() {
     let csv_s = csv.to_string_lossy().into_owned();
     let out = lightcone(&["bench", "optics", "--quick", "--csv", &csv_s]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    for heading in ["Accuracy and cost", "History memory", "Exact emission solves", "What each effect costs"] {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for heading in [
+        "Accuracy and cost",
+        "History memory",
+        "Exact emission solves",
+        "What each effect costs",
+    ] {
         assert!(stdout.contains(heading), "{heading} missing");
     }
     let text = std::fs::read_to_string(&csv).unwrap();

@@ -136,6 +136,11 @@ pub fn frame_schedule() -> Schedule {
     );
     schedule.add_systems(crate::physics::systems::advance.in_set(Phase::Physics));
     schedule.add_systems(
+        optics::record_history
+            .run_if(optics::sampled_history)
+            .in_set(Phase::History),
+    );
+    schedule.add_systems(
         (
             (
                 optics::light_delay.run_if(effect_on(Effect::LightDelay)),
@@ -182,6 +187,13 @@ impl Simulation {
         world.insert_resource(SpeedOfLight(scene.c));
         world.insert_resource(Table(scene.table));
         world.insert_resource(scene.effects);
+        world.insert_resource(scene.optics);
+        if scene.optics.sampled {
+            world.insert_resource(optics::History(crate::optics::SampledHistory::new(
+                scene.pucks.len(),
+                scene.optics.history_frames,
+            )));
+        }
         world.insert_resource(Physics(Billiard::from_scene(scene)));
         world.insert_resource(FrameCollisions::default());
         for (i, p) in scene.pucks.iter().enumerate() {
@@ -365,6 +377,35 @@ mod tests {
                 let expected = if searchlight { d.powi(4) } else { 1.0 };
                 assert!((intensity - expected).abs() < 1e-12 * expected);
             }
+        }
+    }
+
+    #[test]
+    fn the_sampled_history_is_recorded_only_when_the_scene_asks() {
+        use crate::optics::systems::{Apparent, History};
+        let exact = Simulation::new(&scene::parse(SCENE, "test.toml").unwrap());
+        assert!(exact.world.get_resource::<History>().is_none());
+        let text = format!("{SCENE}\n[optics]\nmethod = \"sampled\"\nhistory_frames = 500\n");
+        let text = text.replace("[effects]\n", "[effects]\nlight_delay = true\n");
+        let mut sim = Simulation::new(&scene::parse(&text, "test.toml").unwrap());
+        for f in 1..=120 {
+            sim.advance_to(f64::from(f) / 60.0);
+        }
+        assert_eq!(sim.world.resource::<History>().0.len(), 121);
+        // The sampled view is close to the exact one (interpolated, 60/s).
+        let eye = sim.entity("eye").unwrap();
+        let sampled = sim.world.get::<Apparent>(eye).unwrap().clone();
+        let mut exact =
+            Simulation::new(&scene::parse(&text.replace("sampled", "exact"), "t.toml").unwrap());
+        exact.advance_to(2.0);
+        let eye_exact = exact.entity("eye").unwrap();
+        let reference = exact.world.get::<Apparent>(eye_exact).unwrap().clone();
+        for (a, b) in sampled.bodies[0]
+            .emissions
+            .iter()
+            .zip(&reference.bodies[0].emissions)
+        {
+            assert!((a.event.position - b.event.position).length() < 1e-3);
         }
     }
 

@@ -242,3 +242,32 @@ fn u_states_speeds_beyond_what_beta_can() {
     assert!((u.gamma() / 1e8 - 1.0).abs() < 1e-15);
     assert!(u.speed_deficit() > 0.0);
 }
+
+#[test]
+fn optics_table() {
+    let s = scene::parse("[optics]\nmethod = \"sampled\"\nhistory_frames = 300\ndichotomy_steps = 4\ninterpolate = false\n", "ok.toml").unwrap();
+    assert!(
+        s.optics.sampled
+            && s.optics.history_frames == 300
+            && s.optics.dichotomy_steps == 4
+            && !s.optics.interpolate
+    );
+    expect_one(
+        "[optics]\nmethod = \"guess\"\n",
+        2,
+        "optics.method",
+        "use \"exact\" or \"sampled\"",
+    );
+    expect_one(
+        "[optics]\nhistory_frames = 1\n",
+        2,
+        "optics.history_frames",
+        "at least 2",
+    );
+    expect_one(
+        "[optics]\ndichotomy_steps = -3\n",
+        2,
+        "optics.dichotomy_steps",
+        "0 (full) or more",
+    );
+}

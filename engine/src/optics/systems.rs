@@ -9,8 +9,9 @@ use rayon::prelude::*;
 
 use super::emission::Emission;
 use super::eye::{Eye, Seen, searchlight as searchlight_factor};
+use super::history::{SampledHistory, Search};
 use super::view::{self, Method};
-use crate::scene::Effects;
+use crate::scene::{Effects, OpticsSpec};
 use crate::world::{Clock, Physics, Puck, PuckIndex};
 use crate::worldline::{RestShape, Worldline};
 
@@ -51,6 +52,7 @@ fn solve_emissions(
     clock: &Clock,
     physics: &Physics,
     effects: &Effects,
+    method: Method,
     pucks: &Query<(&PuckIndex, &RestShape), With<Puck>>,
     observers: &mut Query<(&Worldline, &mut Apparent)>,
 ) {
@@ -73,23 +75,58 @@ fn solve_emissions(
                     &shape.vertices,
                     &eye,
                     effects,
-                    Method::Exact,
+                    method,
                     &mut body.emissions,
                 );
             });
     }
 }
 
-/// Effect `light_delay`: each vertex seen where it was when its light left
-/// (the exact emission solve).
+/// The paper's per-frame history table, kept when the scene's `[optics]`
+/// asks for the sampled method.
+#[derive(Resource, Clone, Debug)]
+pub struct History(pub SampledHistory);
+
+/// Run condition: the scene asks for the sampled history.
+pub fn sampled_history(spec: Res<OpticsSpec>) -> bool {
+    spec.sampled
+}
+
+/// History phase (the design's *history* system): records every body's
+/// state at the clock's board time, as the paper's loop does each frame.
+pub fn record_history(clock: Res<Clock>, physics: Res<Physics>, mut history: ResMut<History>) {
+    let b = &physics.0;
+    history
+        .0
+        .record(clock.t, (0..b.len()).map(|i| b.worldline(i)));
+}
+
+/// Effect `light_delay`: each vertex seen where it was when its light left,
+/// exactly, or from the sampled history when the scene asks for it.
 pub fn light_delay(
     clock: Res<Clock>,
     physics: Res<Physics>,
     effects: Res<Effects>,
+    spec: Res<OpticsSpec>,
+    history: Option<Res<History>>,
     pucks: Query<(&PuckIndex, &RestShape), With<Puck>>,
     mut observers: Query<(&Worldline, &mut Apparent)>,
 ) {
-    solve_emissions(&clock, &physics, &effects, &pucks, &mut observers);
+    let method = match (&history, spec.sampled) {
+        (Some(h), true) => Method::Sampled(
+            &h.0,
+            Search {
+                iterations: if spec.dichotomy_steps == 0 {
+                    u32::MAX
+                } else {
+                    spec.dichotomy_steps
+                },
+                interpolate: spec.interpolate,
+            },
+        ),
+        _ => Method::Exact,
+    };
+    solve_emissions(&clock, &physics, &effects, method, &pucks, &mut observers);
 }
 
 /// With `light_delay` off: each vertex where it is at the board time of
@@ -101,7 +138,14 @@ pub fn simultaneous(
     pucks: Query<(&PuckIndex, &RestShape), With<Puck>>,
     mut observers: Query<(&Worldline, &mut Apparent)>,
 ) {
-    solve_emissions(&clock, &physics, &effects, &pucks, &mut observers);
+    solve_emissions(
+        &clock,
+        &physics,
+        &effects,
+        Method::Exact,
+        &pucks,
+        &mut observers,
+    );
 }
 
 fn place(physics: &Physics, effects: &Effects, observers: &mut Query<&mut Apparent>) {

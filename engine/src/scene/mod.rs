@@ -12,7 +12,7 @@ mod raw;
 mod validate;
 
 pub use error::{SceneError, SceneErrors};
-pub use model::{Color, Effect, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
+pub use model::{Color, Effect, Effects, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec};
 
 use std::path::Path;
 

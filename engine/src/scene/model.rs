@@ -31,6 +31,9 @@ pub struct Scene {
     pub restitution: f64,
     /// Which effects the views show.
     pub effects: Effects,
+    /// How emission events are found (`[optics]`).
+    #[serde(default)]
+    pub optics: OpticsSpec,
     /// Pucks, in file order.
     pub pucks: Vec<PuckSpec>,
     /// Observers, in file order (never empty: a default one is added).
@@ -78,6 +81,31 @@ pub struct ObserverSpec {
     pub look_at: DVec3,
     /// Proper velocity γβ.
     pub u: ProperVelocity,
+}
+
+/// The `[optics]` table: how the light-delay view finds emission events.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, bevy_ecs::resource::Resource)]
+pub struct OpticsSpec {
+    /// `false` (default): exactly, on the worldlines. `true`: the paper's
+    /// sampled history, recorded every frame and searched by dichotomy.
+    pub sampled: bool,
+    /// Frames the sampled history keeps (default 1 000, as in the paper).
+    pub history_frames: usize,
+    /// Dichotomy steps (0 = until one frame apart; the default).
+    pub dichotomy_steps: u32,
+    /// Interpolate between the two frames around the light cone (default on).
+    pub interpolate: bool,
+}
+
+impl Default for OpticsSpec {
+    fn default() -> Self {
+        Self {
+            sampled: false,
+            history_frames: 1000,
+            dichotomy_steps: 0,
+            interpolate: true,
+        }
+    }
 }
 
 /// An sRGB colour.

@@ -19,6 +19,7 @@ pub struct RawScene {
     pub table: Option<RawTable>,
     pub physics: Option<RawPhysics>,
     pub effects: Option<RawEffects>,
+    pub optics: Option<RawOptics>,
     #[serde(default)]
     pub puck: Vec<At<RawPuck>>,
     #[serde(default)]
@@ -50,6 +51,16 @@ pub struct RawEffects {
     pub doppler: Option<bool>,
     pub searchlight: Option<bool>,
     pub time_dilation: Option<bool>,
+}
+
+/// `[optics]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOptics {
+    pub method: Option<At<String>>,
+    pub history_frames: Option<At<i64>>,
+    pub dichotomy_steps: Option<At<i64>>,
+    pub interpolate: Option<bool>,
 }
 
 /// `[[puck]]`.

@@ -204,6 +204,7 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         1.0,
     );
     let effects = effects(raw.effects.unwrap_or_default());
+    let optics = optics(&mut ck, raw.optics.unwrap_or_default());
 
     let mut names = Vec::new();
     let mut pucks = Vec::with_capacity(raw.puck.len());
@@ -257,6 +258,7 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         table,
         restitution,
         effects,
+        optics,
         pucks,
         observers,
     })
@@ -272,6 +274,45 @@ fn effects(raw: super::raw::RawEffects) -> Effects {
         searchlight: raw.searchlight.unwrap_or(d.searchlight),
         time_dilation: raw.time_dilation.unwrap_or(d.time_dilation),
     }
+}
+
+fn optics(ck: &mut Checker, raw: super::raw::RawOptics) -> super::model::OpticsSpec {
+    let mut o = super::model::OpticsSpec::default();
+    if let Some(m) = &raw.method {
+        match m.get_ref().as_str() {
+            "exact" => o.sampled = false,
+            "sampled" => o.sampled = true,
+            other => ck.error(
+                m,
+                "optics.method",
+                format!("\"{other}\" is not a method: use \"exact\" or \"sampled\""),
+            ),
+        }
+    }
+    if let Some(f) = &raw.history_frames {
+        match usize::try_from(*f.get_ref()) {
+            Ok(n) if n >= 2 => o.history_frames = n,
+            _ => ck.error(
+                f,
+                "optics.history_frames",
+                format!("{} must be at least 2", f.get_ref()),
+            ),
+        }
+    }
+    if let Some(d) = &raw.dichotomy_steps {
+        match u32::try_from(*d.get_ref()) {
+            Ok(n) => o.dichotomy_steps = n,
+            Err(_) => ck.error(
+                d,
+                "optics.dichotomy_steps",
+                format!("{} must be 0 (full) or more", d.get_ref()),
+            ),
+        }
+    }
+    if let Some(i) = raw.interpolate {
+        o.interpolate = i;
+    }
+    o
 }
 
 fn puck(ck: &mut Checker, at: &At<RawPuck>, i: usize, c: f64, names: &mut Vec<String>) -> PuckSpec {
