@@ -5,10 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-mod commands;
-
-/// The scene used when none is named.
-pub const DEFAULT_SCENE: &str = "assets/scenes/paper_carom.toml";
+use lightcone::{commands, render};
 
 #[derive(Parser)]
 #[command(
@@ -59,6 +56,26 @@ enum Command {
         #[arg(long, default_value = "scene")]
         effects: String,
     },
+    /// Render what an observer sees to a PNG, headless.
+    Render {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Board time, s.
+        #[arg(long)]
+        at: f64,
+        /// Observer name (default: the scene's first).
+        #[arg(long)]
+        observer: Option<String>,
+        /// Output PNG.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "1280x720")]
+        size: String,
+        /// `seen` (the scene's effects) or `truth` (board-simultaneous).
+        #[arg(long, value_enum, default_value = "seen")]
+        view: ViewArg,
+    },
     /// Measure the engine and print the figures of BENCHMARKS.md.
     Bench {
         /// What to measure: `physics`.
@@ -70,6 +87,14 @@ enum Command {
         #[arg(long)]
         csv: Option<PathBuf>,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ViewArg {
+    /// What the observer sees.
+    Seen,
+    /// The board-frame truth.
+    Truth,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -94,6 +119,20 @@ fn main() -> ExitCode {
             vertices,
             effects,
         }) => commands::observe::run_named(&scene, at, observer.as_deref(), vertices, &effects),
+        Some(Command::Render {
+            scene,
+            at,
+            observer,
+            out,
+            size,
+            view,
+        }) => {
+            let kind = match view {
+                ViewArg::Seen => render::frame::ViewKind::Seen,
+                ViewArg::Truth => render::frame::ViewKind::Truth,
+            };
+            commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
+        }
         Some(Command::Bench { what, quick, csv }) => match what {
             BenchWhat::Physics => commands::bench::run(quick),
             BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),

@@ -4,4 +4,5 @@ pub mod bench;
 pub mod bench_optics;
 pub mod check;
 pub mod observe;
+pub mod render;
 pub mod simulate;

@@ -1,0 +1,8 @@
+//! The Lightcone game: its command-line tools, the wgpu renderer, and the
+//! interactive front end. The physics and optics live in `lightcone-engine`.
+
+pub mod commands;
+pub mod render;
+
+/// The scene used when none is named.
+pub const DEFAULT_SCENE: &str = "assets/scenes/paper_carom.toml";

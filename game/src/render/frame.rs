@@ -1,0 +1,276 @@
+//! One frame's geometry: every triangle of every puck and of the table, at
+//! the apparent positions the optics computed, in the observer's frame and
+//! relative to the eye (so f32 is enough), with Doppler factor and
+//! intensity per vertex.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{DVec3, Mat4, Vec3};
+use lightcone_engine::optics::view::{self, Method};
+use lightcone_engine::optics::{Emission, Eye, Seen, mesh};
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::scene::{Color, Effects, Scene};
+use lightcone_engine::world::PUCK_SEGMENTS;
+use lightcone_engine::worldline::RestShape;
+
+/// One vertex as the GPU takes it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct FrameVertex {
+    /// Apparent position, observer's frame, relative to the eye, m.
+    pub position: [f32; 3],
+    /// Base colour, linear RGB.
+    pub colour: [f32; 3],
+    /// Doppler factor (1: no shift).
+    pub doppler: f32,
+    /// Brightness factor (1: unchanged).
+    pub intensity: f32,
+}
+
+/// Which view to draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewKind {
+    /// What the observer sees, with the scene's effects.
+    Seen,
+    /// The board-frame "truth": every body where it is at this board time,
+    /// contracted, no light delay, no aberration, no colour change.
+    Truth,
+}
+
+impl ViewKind {
+    /// The effects this view uses, given the scene's.
+    pub fn effects(self, scene: Effects) -> Effects {
+        match self {
+            ViewKind::Seen => scene,
+            ViewKind::Truth => Effects {
+                contraction: true,
+                ..Effects::NONE
+            },
+        }
+    }
+}
+
+/// A pinhole camera at the eye.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Viewing direction (observer's frame).
+    pub forward: DVec3,
+    /// Vertical field of view, radians.
+    pub fovy: f64,
+}
+
+impl Camera {
+    /// View-projection matrix for an image of aspect `width / height`:
+    /// right-handed, z up, depth in [0, 1] as wgpu wants.
+    pub fn view_proj(&self, aspect: f32) -> Mat4 {
+        let f = self.forward.normalize_or(DVec3::Y).as_vec3();
+        let up = if f.cross(Vec3::Z).length() < 1e-6 {
+            Vec3::Y
+        } else {
+            Vec3::Z
+        };
+        let view = glam::camera::rh::view::look_to_mat4(Vec3::ZERO, f, up);
+        // wgpu's clip space is DirectX's: y up, depth in [0, 1].
+        let proj =
+            glam::camera::rh::proj::directx::perspective(self.fovy as f32, aspect, 0.01, 200.0);
+        proj * view
+    }
+}
+
+/// The meshes of a scene, built once.
+pub struct SceneMeshes {
+    pucks: Vec<RestShape>,
+    colours: Vec<[f32; 3]>,
+    table: Vec<RestShape>,
+}
+
+fn linear(c: Color) -> [f32; 3] {
+    let f = |x: u8| (f32::from(x) / 255.0).powf(2.2);
+    [f(c.r), f(c.g), f(c.b)]
+}
+
+const CLOTH: [f32; 3] = [0.02, 0.16, 0.05];
+const CUSHION: [f32; 3] = [0.05, 0.09, 0.04];
+
+impl SceneMeshes {
+    /// Meshes for every puck of `scene` and its table.
+    pub fn new(scene: &Scene) -> Self {
+        Self {
+            pucks: scene
+                .pucks
+                .iter()
+                .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
+                .collect(),
+            colours: scene.pucks.iter().map(|p| linear(p.color)).collect(),
+            table: mesh::table(scene.table.size, 0.04, 0.06),
+        }
+    }
+}
+
+/// The dark stripe on each puck's side facing its rest-frame +x: it shows
+/// the puck's orientation and how its shape is distorted.
+fn marked(shape: &RestShape, tri: [u32; 3]) -> bool {
+    let c = tri
+        .iter()
+        .map(|&i| shape.vertices[i as usize])
+        .sum::<DVec3>()
+        / 3.0;
+    let r = c.truncate().length();
+    r > 0.0 && c.x / r > 0.94
+}
+
+fn push_triangles(
+    shape: &RestShape,
+    seen: &[Seen],
+    intensity: impl Fn(usize) -> f32,
+    colour: impl Fn([u32; 3]) -> [f32; 3],
+    out: &mut Vec<FrameVertex>,
+) {
+    for &tri in &shape.triangles {
+        let c = colour(tri);
+        for i in tri {
+            let s = &seen[i as usize];
+            out.push(FrameVertex {
+                position: s.position.as_vec3().to_array(),
+                colour: c,
+                doppler: s.doppler as f32,
+                intensity: intensity(i as usize),
+            });
+        }
+    }
+}
+
+/// Builds the triangle list of what `eye` sees with `effects`.
+pub fn build(
+    billiard: &Billiard,
+    meshes: &SceneMeshes,
+    eye: &Eye,
+    effects: Effects,
+    out: &mut Vec<FrameVertex>,
+) {
+    out.clear();
+    let c = billiard.c();
+    let shifts = effects.doppler || effects.searchlight;
+    let mut emissions: Vec<Emission> = Vec::new();
+    let mut seen: Vec<Seen> = Vec::new();
+    // The table: at rest on the board.
+    for part in &meshes.table {
+        seen.clear();
+        seen.extend(part.vertices.iter().map(|&p| {
+            let mut s = eye.see_static(p, c, effects.aberration);
+            if !shifts {
+                s.doppler = 1.0;
+            }
+            s
+        }));
+        let colour = if part.vertices.iter().all(|v| v.z <= 1e-9) {
+            CLOTH
+        } else {
+            CUSHION
+        };
+        let intensity = |i: usize| {
+            if effects.searchlight {
+                seen[i].doppler.powi(4) as f32
+            } else {
+                1.0
+            }
+        };
+        push_triangles(part, &seen, intensity, |_| colour, out);
+        if !effects.doppler {
+            let n = part.triangles.len() * 3;
+            let len = out.len();
+            for v in &mut out[len - n..] {
+                v.doppler = 1.0;
+            }
+        }
+    }
+    // The pucks.
+    for (puck, shape) in meshes.pucks.iter().enumerate() {
+        view::emissions(
+            billiard,
+            puck,
+            &shape.vertices,
+            eye,
+            &effects,
+            Method::Exact,
+            &mut emissions,
+        );
+        view::seen(eye, c, &effects, &emissions, &mut seen);
+        if shifts {
+            view::doppler(eye, &emissions, &mut seen);
+        }
+        let base = meshes.colours[puck];
+        let dark = [base[0] * 0.15, base[1] * 0.15, base[2] * 0.15];
+        let intensity = |i: usize| {
+            if effects.searchlight {
+                seen[i].doppler.powi(4) as f32
+            } else {
+                1.0
+            }
+        };
+        let start = out.len();
+        push_triangles(
+            shape,
+            &seen,
+            intensity,
+            |t| if marked(shape, t) { dark } else { base },
+            out,
+        );
+        if !effects.doppler {
+            for v in &mut out[start..] {
+                v.doppler = 1.0;
+            }
+        }
+    }
+}
+
+/// The eye of observer `index` of `scene` at board time `t` (constant
+/// velocity from its position at t = 0), and its camera.
+pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
+    let o = &scene.observers[index];
+    let eye = Eye {
+        event: lightcone_engine::spacetime::Event::new(t, o.position + o.u.velocity(scene.c) * t),
+        u: o.u,
+    };
+    let camera = Camera {
+        forward: o.look_at - o.position,
+        fovy: std::f64::consts::FRAC_PI_3,
+    };
+    (eye, camera)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_vertex_is_finite_in_every_shipped_scene() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let scene = lightcone_engine::scene::load(&path).unwrap();
+            let meshes = SceneMeshes::new(&scene);
+            let mut billiard = Billiard::from_scene(&scene);
+            let mut out = Vec::new();
+            for t in [0.0, 1.0, 5.0] {
+                billiard.advance_to(t);
+                let (eye, _) = eye_of(&scene, 0, t);
+                let mut all = Effects::NONE;
+                for e in lightcone_engine::scene::Effect::ALL {
+                    all.set(e, true);
+                }
+                for fx in [scene.effects, all, Effects::NONE] {
+                    build(&billiard, &meshes, &eye, fx, &mut out);
+                    assert!(!out.is_empty());
+                    for v in &out {
+                        assert!(
+                            v.position.iter().all(|x| x.is_finite()),
+                            "{}",
+                            path.display()
+                        );
+                        assert!(v.doppler.is_finite() && v.intensity.is_finite());
+                    }
+                }
+            }
+        }
+    }
+}

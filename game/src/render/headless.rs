@@ -1,0 +1,208 @@
+//! Rendering without a window: into a texture, read back, written as PNG.
+
+use std::path::Path;
+
+use super::frame::{self, Camera, FrameVertex, SceneMeshes, ViewKind};
+use super::gpu::Gpu;
+use super::pipeline::Renderer;
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::scene::Scene;
+
+/// The colour format of headless images (sRGB, 8 bits per channel).
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The background: a dark room.
+pub const BACKGROUND: wgpu::Color = wgpu::Color {
+    r: 0.01,
+    g: 0.01,
+    b: 0.015,
+    a: 1.0,
+};
+
+/// An RGBA8 image.
+pub struct Image {
+    /// Width, px.
+    pub width: u32,
+    /// Height, px.
+    pub height: u32,
+    /// Rows top to bottom, 4 bytes a pixel.
+    pub rgba: Vec<u8>,
+}
+
+impl Image {
+    /// The pixel at (x, y), RGBA.
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
+        let i = 4 * (y as usize * self.width as usize + x as usize);
+        [
+            self.rgba[i],
+            self.rgba[i + 1],
+            self.rgba[i + 2],
+            self.rgba[i + 3],
+        ]
+    }
+
+    /// Writes a PNG.
+    pub fn save_png(&self, path: &Path) -> Result<(), String> {
+        let file = std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), self.width, self.height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder
+            .write_header()
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        writer
+            .write_image_data(&self.rgba)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Reads a PNG written by [`Self::save_png`].
+    pub fn load_png(path: &Path) -> Result<Self, String> {
+        let file = std::fs::File::open(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+        decoder.set_transformations(png::Transformations::EXPAND);
+        let mut reader = decoder
+            .read_info()
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let size = reader
+            .output_buffer_size()
+            .ok_or_else(|| format!("{}: image too large", path.display()))?;
+        let mut buf = vec![0; size];
+        let info = reader
+            .next_frame(&mut buf)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        if info.color_type != png::ColorType::Rgba || info.bit_depth != png::BitDepth::Eight {
+            return Err(format!("{}: not an 8-bit RGBA PNG", path.display()));
+        }
+        buf.truncate(info.buffer_size());
+        Ok(Self {
+            width: info.width,
+            height: info.height,
+            rgba: buf,
+        })
+    }
+}
+
+/// Draws `vertices` with `camera` into a `width × height` image.
+pub fn draw(
+    gpu: &Gpu,
+    vertices: &[FrameVertex],
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> Result<Image, String> {
+    let device = &gpu.device;
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("headless target"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut renderer = Renderer::new(device, FORMAT, width, height);
+    let padded = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+        * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("headless readback"),
+        size: u64::from(padded) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("headless frame"),
+    });
+    let view_proj = camera.view_proj(width as f32 / height as f32);
+    renderer.render(
+        device,
+        &gpu.queue,
+        &mut encoder,
+        &view,
+        super::pipeline::Draw {
+            vertices,
+            view_proj,
+            clear: BACKGROUND,
+        },
+    );
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture: &texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &readback,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    gpu.queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: None,
+        })
+        .map_err(|e| format!("the GPU did not finish: {e}"))?;
+    rx.recv()
+        .map_err(|e| format!("readback lost: {e}"))?
+        .map_err(|e| format!("readback failed: {e}"))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| format!("readback failed: {e}"))?;
+    let mut rgba = Vec::with_capacity((4 * width * height) as usize);
+    for row in 0..height {
+        let start = (row * padded) as usize;
+        rgba.extend_from_slice(&data[start..start + (4 * width) as usize]);
+    }
+    drop(data);
+    readback.unmap();
+    Ok(Image {
+        width,
+        height,
+        rgba,
+    })
+}
+
+/// Renders what observer `observer` of `scene` sees at board time `t`.
+pub fn render_scene(
+    gpu: &Gpu,
+    scene: &Scene,
+    t: f64,
+    observer: usize,
+    kind: ViewKind,
+    width: u32,
+    height: u32,
+) -> Result<Image, String> {
+    let mut billiard = Billiard::from_scene(scene);
+    billiard.advance_to(t);
+    let meshes = SceneMeshes::new(scene);
+    let (eye, camera) = frame::eye_of(scene, observer, t);
+    let mut vertices = Vec::new();
+    frame::build(
+        &billiard,
+        &meshes,
+        &eye,
+        kind.effects(scene.effects),
+        &mut vertices,
+    );
+    draw(gpu, &vertices, &camera, width, height)
+}

@@ -1,0 +1,62 @@
+// The scene pass: flat-shaded triangles in the observer's frame, coloured
+// by their base colour shifted by the Doppler factor and scaled by the
+// searchlight intensity. Positions arrive relative to the eye.
+
+struct Camera {
+    view_proj: mat4x4<f32>,
+    light: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> camera: Camera;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) colour: vec3<f32>,
+    @location(2) doppler: f32,
+    @location(3) intensity: f32,
+};
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) position: vec3<f32>,
+    @location(1) colour: vec3<f32>,
+    @location(2) doppler: f32,
+    @location(3) intensity: f32,
+};
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = camera.view_proj * vec4<f32>(v.position, 1.0);
+    out.position = v.position;
+    out.colour = v.colour;
+    out.doppler = v.doppler;
+    out.intensity = v.intensity;
+    return out;
+}
+
+// The emitted spectrum implied by an RGB colour: piecewise linear through
+// the channels at 465 (B), 550 (G) and 610 nm (R), fading to 0 at 380 and
+// 720 nm.
+fn spectrum(c: vec3<f32>, lambda: f32) -> f32 {
+    if (lambda <= 380.0 || lambda >= 720.0) { return 0.0; }
+    if (lambda < 465.0) { return c.b * (lambda - 380.0) / 85.0; }
+    if (lambda < 550.0) { return mix(c.b, c.g, (lambda - 465.0) / 85.0); }
+    if (lambda < 610.0) { return mix(c.g, c.r, (lambda - 550.0) / 60.0); }
+    return c.r * (720.0 - lambda) / 110.0;
+}
+
+// Doppler shift: light observed at wavelength λ left the source at λ·D.
+fn shift(c: vec3<f32>, d: f32) -> vec3<f32> {
+    if (abs(d - 1.0) < 1e-6) { return c; }
+    return vec3<f32>(spectrum(c, 610.0 * d), spectrum(c, 550.0 * d), spectrum(c, 465.0 * d));
+}
+
+@fragment
+fn fs_main(f: VertexOut) -> @location(0) vec4<f32> {
+    let n = normalize(cross(dpdx(f.position), dpdy(f.position)));
+    let facing = abs(dot(n, normalize(camera.light.xyz)));
+    let lit = 0.35 + 0.65 * facing;
+    let c = shift(f.colour, f.doppler) * f.intensity * lit;
+    return vec4<f32>(min(c, vec3<f32>(1.0)), 1.0);
+}

@@ -1,0 +1,199 @@
+//! Image tests: headless rendering on whatever adapter the machine has
+//! (Mesa's lavapipe on CI), checked against the pinhole model, against
+//! physics, and against golden images.
+
+use std::path::{Path, PathBuf};
+
+use glam::{DVec2, DVec3};
+use lightcone::render::frame::{self, SceneMeshes, ViewKind};
+use lightcone::render::gpu;
+use lightcone::render::headless::{self, Image};
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::scene::{self, Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
+use lightcone_engine::spacetime::ProperVelocity;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// One red puck, seen from `eye` looking at `look_at`.
+fn one_puck(
+    u: ProperVelocity,
+    position: DVec2,
+    eye: DVec3,
+    look_at: DVec3,
+    effects: Effects,
+) -> Scene {
+    Scene {
+        title: "test".into(),
+        description: String::new(),
+        c: 1.42,
+        table: TableSpec {
+            size: DVec2::new(2.84, 1.42),
+            cushion_restitution: 1.0,
+        },
+        restitution: 1.0,
+        effects,
+        optics: Default::default(),
+        pucks: vec![PuckSpec {
+            name: "red".into(),
+            position,
+            u,
+            radius: 0.0305,
+            height: 0.02,
+            mass: 0.21,
+            color: Color::rgb(255, 0, 0),
+        }],
+        observers: vec![ObserverSpec {
+            name: "eye".into(),
+            position: eye,
+            look_at,
+            u: ProperVelocity::ZERO,
+        }],
+    }
+}
+
+fn is_red(p: [u8; 4]) -> bool {
+    p[0] > 90 && p[1] < 40 && p[2] < 40
+}
+
+/// Centroid (x, y) and count of red pixels.
+fn red_centroid(img: &Image) -> (f64, f64, usize) {
+    let (mut sx, mut sy, mut n) = (0.0, 0.0, 0usize);
+    for y in 0..img.height {
+        for x in 0..img.width {
+            if is_red(img.pixel(x, y)) {
+                sx += f64::from(x);
+                sy += f64::from(y);
+                n += 1;
+            }
+        }
+    }
+    (sx / n.max(1) as f64, sy / n.max(1) as f64, n)
+}
+
+#[test]
+fn a_puck_at_rest_renders_where_the_pinhole_model_puts_it() {
+    let gpu = gpu::headless().expect("a graphics adapter (CI installs mesa-vulkan-drivers)");
+    let eye = DVec3::new(1.2, 0.3, 0.25);
+    let look = DVec3::new(1.4, 0.7, 0.0);
+    let puck = DVec2::new(1.5, 0.6);
+    let scene = one_puck(ProperVelocity::ZERO, puck, eye, look, Effects::default());
+    let (w, h) = (320u32, 240u32);
+    let img = headless::render_scene(&gpu, &scene, 3.0, 0, ViewKind::Seen, w, h).unwrap();
+    // Pinhole projection of the puck's top centre, written out here
+    // independently of the renderer's matrices.
+    let p = DVec3::new(puck.x, puck.y, 0.02);
+    let f = (look - eye).normalize();
+    let right = f.cross(DVec3::Z).normalize();
+    let up = right.cross(f);
+    let d = p - eye;
+    let scale = (f64::from(h) / 2.0) / (std::f64::consts::FRAC_PI_3 / 2.0).tan();
+    let px = f64::from(w) / 2.0 + scale * d.dot(right) / d.dot(f);
+    let py = f64::from(h) / 2.0 - scale * d.dot(up) / d.dot(f);
+    let pixel = img.pixel(px.round() as u32, py.round() as u32);
+    assert!(is_red(pixel), "pixel at ({px:.1}, {py:.1}) is {pixel:?}");
+    // The red blob (top face and the side facing us) is centred on that
+    // column within two pixels, and lies between the projections of the
+    // top centre and the bottom centre (plus a pixel).
+    let bottom = p - DVec3::new(0.0, 0.0, 0.02) - eye;
+    let py_bottom = f64::from(h) / 2.0 - scale * bottom.dot(up) / bottom.dot(f);
+    let (cx, cy, n) = red_centroid(&img);
+    assert!(n > 50, "{n} red pixels");
+    assert!((cx - px).abs() < 2.0, "centroid x {cx} vs {px}");
+    assert!(
+        cy > py - 1.0 && cy < py_bottom + 1.0,
+        "centroid y {cy} not in [{py}, {py_bottom}]"
+    );
+}
+
+#[test]
+fn the_seen_fast_puck_lags_behind_the_truth() {
+    // A puck at 0.9 c moving +x across the view of an observer looking +y:
+    // light delay shows it where it was, further back along its motion.
+    let gpu = gpu::headless().expect("a graphics adapter");
+    let eye = DVec3::new(1.42, -1.0, 0.6);
+    let look = DVec3::new(1.42, 0.71, 0.0);
+    let u = ProperVelocity::try_from_beta(DVec3::new(0.7, 0.0, 0.0)).unwrap();
+    let scene = one_puck(u, DVec2::new(0.6, 0.5), eye, look, Effects::default());
+    let t = 1.5;
+    let truth = headless::render_scene(&gpu, &scene, t, 0, ViewKind::Truth, 640, 360).unwrap();
+    let seen = headless::render_scene(&gpu, &scene, t, 0, ViewKind::Seen, 640, 360).unwrap();
+    let (tx, _, tn) = red_centroid(&truth);
+    let (sx, _, sn) = red_centroid(&seen);
+    assert!(tn > 20 && sn > 20, "{tn} {sn}");
+    assert!(sx < tx - 50.0, "seen at x = {sx}, truth at x = {tx}");
+    // How far behind: where the optics puts the centre, projected.
+    let mut b = Billiard::from_scene(&scene);
+    b.advance_to(t);
+    let (e, _) = frame::eye_of(&scene, 0, t);
+    let delayed =
+        lightcone_engine::optics::emission::solve(b.worldline(0), DVec3::ZERO, true, e.event);
+    // About 1.2 m behind (light takes ≈ 1.2 s from where it was).
+    let behind = b.worldline(0).position_at(t).x - delayed.event.position.x;
+    assert!((0.9..1.5).contains(&behind), "{behind}");
+}
+
+/// Mean absolute difference per channel (0–255) and the share of pixels
+/// that differ by more than 48 in any channel.
+fn difference(a: &Image, b: &Image) -> (f64, f64) {
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    let (mut sum, mut big) = (0u64, 0usize);
+    for (pa, pb) in a.rgba.chunks(4).zip(b.rgba.chunks(4)) {
+        let d: Vec<u32> = (0..3).map(|i| u32::from(pa[i].abs_diff(pb[i]))).collect();
+        sum += u64::from(d.iter().sum::<u32>());
+        if d.iter().any(|&x| x > 48) {
+            big += 1;
+        }
+    }
+    let n = (a.width * a.height) as f64;
+    (sum as f64 / (3.0 * n), big as f64 / n)
+}
+
+#[test]
+fn golden_images() {
+    // Tolerance: mean difference ≤ 2 / 255 per channel and ≤ 0.5 % of
+    // pixels off by more than 48 (software rasterisers differ at edges).
+    // Set LIGHTCONE_BLESS=1 to rewrite the goldens after an intended change.
+    let gpu = gpu::headless().expect("a graphics adapter");
+    let bless = std::env::var_os("LIGHTCONE_BLESS").is_some();
+    for (name, file, t, kind) in [
+        ("paper_seen", "paper_carom.toml", 1.0, ViewKind::Seen),
+        ("parallel_seen", "parallel_tracks.toml", 1.2, ViewKind::Seen),
+        (
+            "parallel_truth",
+            "parallel_tracks.toml",
+            1.2,
+            ViewKind::Truth,
+        ),
+    ] {
+        let scene = scene::load(&repo().join("assets/scenes").join(file)).unwrap();
+        let img = headless::render_scene(&gpu, &scene, t, 0, kind, 320, 180).unwrap();
+        let golden = repo().join("tests/golden").join(format!("{name}.png"));
+        if bless {
+            img.save_png(&golden).unwrap();
+            continue;
+        }
+        let expected = Image::load_png(&golden).unwrap();
+        let (mean, big) = difference(&img, &expected);
+        assert!(
+            mean <= 2.0 && big <= 0.005,
+            "{name}: mean {mean:.2}, {:.2} % pixels off",
+            big * 100.0
+        );
+    }
+}
+
+#[test]
+fn the_meshes_cover_every_shipped_scene() {
+    for entry in std::fs::read_dir(repo().join("assets/scenes")).unwrap() {
+        let scene = scene::load(&entry.unwrap().path()).unwrap();
+        let meshes = SceneMeshes::new(&scene);
+        let mut b = Billiard::from_scene(&scene);
+        b.advance_to(2.0);
+        let (eye, _) = frame::eye_of(&scene, 0, 2.0);
+        let mut out = Vec::new();
+        frame::build(&b, &meshes, &eye, scene.effects, &mut out);
+        assert_eq!(out.len() % 3, 0);
+    }
+}
