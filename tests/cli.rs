@@ -88,8 +88,8 @@ fn check_reports_a_bad_scene_with_file_line_and_field() {
 }
 
 #[test]
-fn no_arguments_checks_the_default_scene() {
-    let out = lightcone(&[]);
+fn check_without_a_scene_checks_the_default_scene() {
+    let out = lightcone(&["check"]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).contains("paper_carom.toml: ok"));
 }
@@ -324,5 +324,37 @@ fn bench_optics_quick_prints_its_tables_and_csv() {
     }
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.lines().count() >= 10);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `play` under Xvfb (a virtual X display): the window opens, the game
+/// runs 20 frames, and its screenshot shows the green table cloth.
+#[test]
+fn play_runs_under_xvfb_and_shows_the_table() {
+    let dir = std::env::temp_dir().join(format!("lightcone-play-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = dir.join("play.png");
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x720x24"])
+        .arg(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["play", "assets/scenes/paper_carom.toml", "--screenshot"])
+        .arg(&shot)
+        .args(["--frames", "20"])
+        .current_dir(repo())
+        .output()
+        .expect("xvfb-run runs (apt-get install xvfb xauth; .ci/run installs them)");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = lightcone::render::headless::Image::load_png(&shot).unwrap();
+    assert_eq!((img.width, img.height), (1280, 720));
+    let cloth = img
+        .rgba
+        .chunks(4)
+        .filter(|p| p[1] > 80 && p[1] > 2 * p[0] && p[1] > 2 * p[2])
+        .count();
+    assert!(cloth > 1280 * 720 / 10, "only {cloth} cloth-green pixels");
     let _ = std::fs::remove_dir_all(&dir);
 }

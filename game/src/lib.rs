@@ -2,6 +2,7 @@
 //! interactive front end. The physics and optics live in `lightcone-engine`.
 
 pub mod commands;
+pub mod play;
 pub mod render;
 
 /// The scene used when none is named.

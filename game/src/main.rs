@@ -20,6 +20,18 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Play: the interactive game on a scene (the default scene if none).
+    Play {
+        /// Scene file (TOML).
+        scene: Option<PathBuf>,
+        /// Save a screenshot of the window (with its panels) to this PNG
+        /// after `--frames` frames, then quit.
+        #[arg(long)]
+        screenshot: Option<PathBuf>,
+        /// Frames to run before the screenshot.
+        #[arg(long, default_value_t = 30)]
+        frames: u32,
+    },
     /// Validate scene files and print a short summary of each.
     Check {
         /// Scene files (TOML); the default scene when none is given.
@@ -137,6 +149,11 @@ fn main() -> ExitCode {
             BenchWhat::Physics => commands::bench::run(quick),
             BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),
         },
-        None => commands::check::run(&[]),
+        Some(Command::Play {
+            scene,
+            screenshot,
+            frames,
+        }) => commands::play::run(scene.as_deref(), screenshot, frames),
+        None => commands::play::run(None, None, 0),
     }
 }

@@ -4,5 +4,6 @@ pub mod bench;
 pub mod bench_optics;
 pub mod check;
 pub mod observe;
+pub mod play;
 pub mod render;
 pub mod simulate;

@@ -15,6 +15,8 @@ pub struct Gpu {
     pub adapter: String,
     /// The instance (kept for surfaces).
     pub instance: wgpu::Instance,
+    /// The adapter (for surface configuration).
+    pub handle: wgpu::Adapter,
 }
 
 /// Opens the best available adapter (a software one is fine) without a
@@ -57,5 +59,6 @@ pub fn open(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Re
         queue,
         adapter: format!("{} ({:?})", info.name, info.backend),
         instance,
+        handle: adapter,
     })
 }

@@ -126,7 +126,8 @@ pub fn draw(
         super::pipeline::Draw {
             vertices,
             view_proj,
-            clear: BACKGROUND,
+            clear: Some(BACKGROUND),
+            viewport: None,
         },
     );
     encoder.copy_texture_to_buffer(

@@ -24,8 +24,12 @@ pub struct Draw<'a> {
     pub vertices: &'a [FrameVertex],
     /// Camera: view and projection.
     pub view_proj: Mat4,
-    /// Background colour.
-    pub clear: wgpu::Color,
+    /// Background colour; `None` keeps what the target holds (a second
+    /// view drawn beside the first).
+    pub clear: Option<wgpu::Color>,
+    /// The part of the target to draw into, `[x, y, width, height]` in
+    /// pixels; `None` for all of it.
+    pub viewport: Option<[f32; 4]>,
 }
 
 /// The scene renderer for one colour format and image size.
@@ -187,10 +191,14 @@ impl Renderer {
             vertices,
             view_proj,
             clear,
+            viewport,
         } = draw;
         if vertices.len() as u64 > self.capacity {
             self.capacity = (vertices.len() as u64).next_power_of_two();
             self.vertices = vertex_buffer(device, self.capacity);
+        }
+        if vertices.is_empty() {
+            return;
         }
         queue.write_buffer(&self.vertices, 0, bytemuck::cast_slice(vertices));
         let uniform = CameraUniform {
@@ -205,7 +213,7 @@ impl Renderer {
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
+                    load: clear.map_or(wgpu::LoadOp::Load, wgpu::LoadOp::Clear),
                     store: wgpu::StoreOp::Store,
                 },
             })],
@@ -221,6 +229,9 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        if let Some([x, y, w, h]) = viewport {
+            pass.set_viewport(x, y, w, h, 0.0, 1.0);
+        }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
         pass.set_vertex_buffer(0, self.vertices.slice(..));

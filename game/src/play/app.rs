@@ -1,0 +1,747 @@
+//! The window: winit events, the wgpu surface, the scene renderer and the
+//! egui panels. The rules live in [`super::state`].
+
+use std::collections::HashSet;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use glam::{DVec2, DVec3, Vec4};
+use lightcone_engine::scene::{Effect, Scene};
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, MouseButton, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{Window, WindowId};
+
+use super::state::{GameState, ViewMode};
+use crate::render::frame::{self, Camera, FrameVertex, ViewKind};
+use crate::render::gpu::{self, Gpu};
+use crate::render::headless::BACKGROUND;
+use crate::render::pipeline::{Draw, Renderer};
+
+/// How `play` runs.
+pub struct Options {
+    /// The scene.
+    pub scene: Scene,
+    /// Save a screenshot of frame `frames` to this PNG and quit (for docs
+    /// and the Xvfb test).
+    pub screenshot: Option<PathBuf>,
+    /// Frames to run before the screenshot.
+    pub frames: u32,
+}
+
+/// Opens the window and runs the game until it is closed.
+pub fn run(options: Options) -> Result<(), String> {
+    let event_loop = EventLoop::new().map_err(|e| {
+        format!("cannot open a window ({e}); on a machine without a display, use `lightcone render`, or run under Xvfb")
+    })?;
+    let mut app = App {
+        state: GameState::new(options.scene.clone()),
+        options,
+        gfx: None,
+        last: Instant::now(),
+        frame: 0,
+        keys: HashSet::new(),
+        cursor: DVec2::ZERO,
+        looking: false,
+        aiming: None,
+        scene_left: 0.0,
+        result: Ok(()),
+    };
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| format!("the window's event loop failed: {e}"))?;
+    app.result
+}
+
+struct Gfx {
+    window: Arc<Window>,
+    surface: wgpu::Surface<'static>,
+    gpu: Gpu,
+    config: wgpu::SurfaceConfiguration,
+    views: [Renderer; 2],
+    egui: egui::Context,
+    egui_state: egui_winit::State,
+    egui_renderer: egui_wgpu::Renderer,
+}
+
+struct App {
+    options: Options,
+    state: GameState,
+    gfx: Option<Gfx>,
+    last: Instant,
+    frame: u32,
+    keys: HashSet<KeyCode>,
+    cursor: DVec2,
+    looking: bool,
+    /// Puck being aimed and where the drag started (physical px).
+    aiming: Option<(usize, DVec2)>,
+    /// Left edge (physical px) of the area the panels leave for the views.
+    scene_left: f32,
+    result: Result<(), String>,
+}
+
+/// The rectangles (x, y, w, h in physical px) and view kinds drawn in the
+/// area `[x0, x0 + w] × [0, h]` left free by the panels.
+fn layout(mode: ViewMode, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], ViewKind)> {
+    let (w, h) = (w.max(1.0), h.max(1.0));
+    match mode {
+        ViewMode::Seen => vec![([x0, 0.0, w, h], ViewKind::Seen)],
+        ViewMode::Truth => vec![([x0, 0.0, w, h], ViewKind::Truth)],
+        ViewMode::Split => vec![
+            ([x0, 0.0, w / 2.0, h], ViewKind::Truth),
+            ([x0 + w / 2.0, 0.0, w / 2.0, h], ViewKind::Seen),
+        ],
+    }
+}
+
+/// Screen position (physical px) of a point at `p` relative to the eye in
+/// the observer's frame, inside `rect`; `None` behind the camera.
+fn project(camera: &Camera, rect: [f32; 4], p: DVec3) -> Option<DVec2> {
+    let m = camera.view_proj(rect[2] / rect[3]);
+    let clip = m * Vec4::new(p.x as f32, p.y as f32, p.z as f32, 1.0);
+    if clip.w <= 1e-6 {
+        return None;
+    }
+    let (x, y) = (clip.x / clip.w, clip.y / clip.w);
+    Some(DVec2::new(
+        f64::from(rect[0] + (x + 1.0) / 2.0 * rect[2]),
+        f64::from(rect[1] + (1.0 - y) / 2.0 * rect[3]),
+    ))
+}
+
+impl App {
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
+        let attributes = Window::default_attributes()
+            .with_title(format!("Lightcone: {}", self.state.scene.title))
+            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| format!("cannot open a window: {e}"))?,
+        );
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+            backends: wgpu::Backends::VULKAN | wgpu::Backends::GL,
+            ..wgpu::InstanceDescriptor::new_without_display_handle()
+        });
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| format!("cannot draw into the window: {e}"))?;
+        let gpu = gpu::open(instance, Some(&surface))?;
+        let size = window.inner_size();
+        let mut config = surface
+            .get_default_config(&gpu.handle, size.width.max(1), size.height.max(1))
+            .ok_or_else(|| format!("the adapter {} cannot draw into this window", gpu.adapter))?;
+        config.usage |=
+            wgpu::TextureUsages::COPY_SRC & surface.get_capabilities(&gpu.handle).usages;
+        surface.configure(&gpu.device, &config);
+        let views = [
+            Renderer::new(&gpu.device, config.format, config.width, config.height),
+            Renderer::new(&gpu.device, config.format, config.width, config.height),
+        ];
+        let egui = egui::Context::default();
+        let egui_state = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            &*window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(gpu.device.limits().max_texture_dimension_2d as usize),
+        );
+        let egui_renderer =
+            egui_wgpu::Renderer::new(&gpu.device, config.format, Default::default());
+        self.gfx = Some(Gfx {
+            window,
+            surface,
+            gpu,
+            config,
+            views,
+            egui,
+            egui_state,
+            egui_renderer,
+        });
+        Ok(())
+    }
+
+    /// Held keys fly the eye: W/S forward and back, A/D sideways, R/F up
+    /// and down, at a proper acceleration of 0.5 c per second.
+    fn fly(&mut self, dt: f64) {
+        let f = self.state.eye.forward();
+        let flat = DVec3::new(f.x, f.y, 0.0).normalize_or(DVec3::X);
+        let side = flat.cross(DVec3::Z);
+        let mut dir = DVec3::ZERO;
+        for (key, d) in [
+            (KeyCode::KeyW, flat),
+            (KeyCode::KeyS, -flat),
+            (KeyCode::KeyD, side),
+            (KeyCode::KeyA, -side),
+            (KeyCode::KeyR, DVec3::Z),
+            (KeyCode::KeyF, -DVec3::Z),
+        ] {
+            if self.keys.contains(&key) {
+                dir += d;
+            }
+        }
+        if dir != DVec3::ZERO {
+            let dir = dir.normalize();
+            self.state.thrust(dir * 0.5 * dt, dir * 1.0 * dt);
+        }
+    }
+
+    fn key(&mut self, code: KeyCode) {
+        let s = &mut self.state;
+        match code {
+            KeyCode::KeyP | KeyCode::Space => s.paused = !s.paused,
+            KeyCode::KeyL => s.go_live(),
+            KeyCode::KeyX => s.halt(),
+            KeyCode::KeyT => {
+                s.view = match s.view {
+                    ViewMode::Seen => ViewMode::Truth,
+                    ViewMode::Truth => ViewMode::Split,
+                    ViewMode::Split => ViewMode::Seen,
+                }
+            }
+            KeyCode::Digit1
+            | KeyCode::Digit2
+            | KeyCode::Digit3
+            | KeyCode::Digit4
+            | KeyCode::Digit5
+            | KeyCode::Digit6 => {
+                let i = match code {
+                    KeyCode::Digit1 => 0,
+                    KeyCode::Digit2 => 1,
+                    KeyCode::Digit3 => 2,
+                    KeyCode::Digit4 => 3,
+                    KeyCode::Digit5 => 4,
+                    _ => 5,
+                };
+                let e = Effect::ALL[i];
+                let on = s.effects.is_on(e);
+                s.effects.set(e, !on);
+            }
+            _ => {}
+        }
+    }
+
+    /// The rectangle and view in which the cue picks pucks: the seen view
+    /// (the right half when split).
+    fn pick_rect(&self) -> Option<([f32; 4], ViewKind)> {
+        let gfx = self.gfx.as_ref()?;
+        let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
+        layout(self.state.view, self.scene_left, w - self.scene_left, h)
+            .into_iter()
+            .last()
+    }
+
+    fn effects_for(&self, kind: ViewKind) -> lightcone_engine::scene::Effects {
+        kind.effects(self.state.effects)
+    }
+
+    fn press(&mut self) {
+        let Some((rect, kind)) = self.pick_rect() else {
+            return;
+        };
+        let (_, camera) = self.state.eye_and_camera();
+        let centres = self.state.apparent_centres(&self.effects_for(kind));
+        let best = centres
+            .iter()
+            .enumerate()
+            .filter_map(|(i, (_, s))| {
+                project(&camera, rect, s.position).map(|p| (i, p.distance(self.cursor)))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((i, d)) = best
+            && d < 30.0
+        {
+            self.aiming = Some((i, self.cursor));
+        }
+    }
+
+    fn drag(&mut self) {
+        let Some((puck, start)) = self.aiming else {
+            return;
+        };
+        let (_, camera) = self.state.eye_and_camera();
+        let f = camera.forward;
+        let flat = DVec3::new(f.x, f.y, 0.0).normalize_or(DVec3::Y);
+        let right = flat.cross(DVec3::Z);
+        let d = self.cursor - start;
+        // 60 px of pull = one unit of γβ.
+        let pull = (right * d.x - flat * d.y) / 60.0;
+        self.state.aim(puck, pull.truncate());
+    }
+
+    fn release(&mut self) {
+        if self.aiming.take().is_some()
+            && let Err(e) = self.state.strike()
+        {
+            self.state.message = e;
+        }
+    }
+
+    fn frame(&mut self, event_loop: &ActiveEventLoop) {
+        let now = Instant::now();
+        let dt = (now - self.last).as_secs_f64().min(0.1);
+        self.last = now;
+        self.fly(dt);
+        self.state.step(dt);
+        self.frame += 1;
+        let shot = self.options.screenshot.is_some() && self.frame >= self.options.frames;
+        if let Err(e) = self.draw(shot) {
+            self.result = Err(e);
+            event_loop.exit();
+            return;
+        }
+        if shot {
+            event_loop.exit();
+        }
+    }
+}
+
+/// The egui panels and the clocks drawn on the pucks. Returns the left edge
+/// (physical px) of the area left for the views.
+fn panels(state: &mut GameState, ctx: &egui::Context, ui: &mut egui::Ui, size: (u32, u32)) -> f32 {
+    let ppp = ctx.pixels_per_point();
+    let left;
+    {
+        let s = &mut *state;
+        egui::Panel::left("controls")
+            .default_size(260.0)
+            .show(ui, |ui| {
+                ui.heading("Lightcone");
+                ui.label(&s.scene.title);
+                ui.separator();
+                ui.horizontal(|ui| {
+                    if ui
+                        .button(if s.paused { "play (P)" } else { "pause (P)" })
+                        .clicked()
+                    {
+                        s.paused = !s.paused;
+                    }
+                    if ui.button("live (L)").clicked() {
+                        s.go_live();
+                    }
+                });
+                ui.add(
+                    egui::Slider::new(&mut s.time_scale, 0.01..=4.0)
+                        .logarithmic(true)
+                        .text("time scale"),
+                );
+                let mut t = s.view_time;
+                let live = s.live_time.max(1e-9);
+                if ui
+                    .add(egui::Slider::new(&mut t, 0.0..=live).text("board time (s)"))
+                    .changed()
+                {
+                    s.replay_to(t);
+                }
+                if s.replaying() {
+                    ui.colored_label(egui::Color32::YELLOW, "replay: what was seen then");
+                }
+                ui.separator();
+                let mut c = s.scene.c;
+                if ui
+                    .add(
+                        egui::Slider::new(&mut c, 0.2..=20.0)
+                            .logarithmic(true)
+                            .text("c (m/s)"),
+                    )
+                    .drag_stopped()
+                {
+                    s.restart_with_c(c);
+                }
+                ui.label("effects (1–6):");
+                for e in Effect::ALL {
+                    let mut on = s.effects.is_on(e);
+                    if ui.checkbox(&mut on, e.key()).changed() {
+                        s.effects.set(e, on);
+                    }
+                }
+                ui.label("view (T):");
+                ui.horizontal(|ui| {
+                    ui.selectable_value(&mut s.view, ViewMode::Seen, "seen");
+                    ui.selectable_value(&mut s.view, ViewMode::Truth, "truth");
+                    ui.selectable_value(&mut s.view, ViewMode::Split, "split");
+                });
+                egui::ComboBox::from_label("eye")
+                    .selected_text(match s.observer {
+                        None => "you (WASD, R/F, right-drag)".to_owned(),
+                        Some(i) => s.scene.observers[i].name.clone(),
+                    })
+                    .show_ui(ui, |ui| {
+                        ui.selectable_value(&mut s.observer, None, "you");
+                        for (i, o) in s.scene.observers.iter().enumerate() {
+                            ui.selectable_value(&mut s.observer, Some(i), &o.name);
+                        }
+                    });
+                let eb = s.eye.u.beta();
+                ui.label(format!(
+                    "your β = ({:.3}, {:.3}, {:.3}), γ = {:.4} (X stops)",
+                    eb.x,
+                    eb.y,
+                    eb.z,
+                    s.eye.u.gamma()
+                ));
+                ui.separator();
+                ui.label("pucks now (board frame):");
+                egui::Grid::new("pucks").striped(true).show(ui, |ui| {
+                    ui.label("name");
+                    ui.label("|β|");
+                    ui.label("γ");
+                    ui.label("τ (s)");
+                    ui.end_row();
+                    for i in 0..s.billiard.len() {
+                        let st = s.billiard.worldline(i).state_at(s.view_time);
+                        ui.label(s.billiard.name(i));
+                        ui.label(format!("{:.4}", st.u.beta().length()));
+                        ui.label(format!("{:.4}", st.u.gamma()));
+                        ui.label(format!("{:.3}", st.proper_time));
+                        ui.end_row();
+                    }
+                });
+                if let Some(c) = s.last_collision() {
+                    ui.label(format!("last collision: {c}"));
+                }
+                if let Some(cue) = s.cue {
+                    let u = lightcone_engine::spacetime::ProperVelocity(
+                        s.billiard.worldline(cue.puck).velocity_at(s.live_time).0 + cue.du,
+                    );
+                    ui.colored_label(
+                        egui::Color32::LIGHT_BLUE,
+                        format!(
+                            "cue on {}: β = {:.6}, γ = {:.4}",
+                            s.billiard.name(cue.puck),
+                            u.beta().length(),
+                            u.gamma()
+                        ),
+                    );
+                }
+                if !s.message.is_empty() {
+                    ui.colored_label(egui::Color32::LIGHT_RED, &s.message);
+                }
+                ui.separator();
+                ui.small("Drag from a puck to aim the cue (pull back, release to strike).");
+            });
+        left = ui.available_rect_before_wrap().left() * ppp;
+    }
+    // Clocks on the pucks: the proper time each shows in the picture.
+    let painter = ctx.layer_painter(egui::LayerId::new(
+        egui::Order::Foreground,
+        egui::Id::unique("clocks"),
+    ));
+    let (_, camera) = state.eye_and_camera();
+    for (rect, kind) in layout(state.view, left, size.0 as f32 - left, size.1 as f32) {
+        let effects = kind.effects(state.effects);
+        for (i, (e, s)) in state.apparent_centres(&effects).iter().enumerate() {
+            let Some(p) = project(&camera, rect, s.position) else {
+                continue;
+            };
+            {
+                let w = state.billiard.worldline(i);
+                let tau = if effects.time_dilation {
+                    w.proper_time_at(e.event.t)
+                } else {
+                    e.event.t
+                };
+                painter.text(
+                    egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp - 14.0),
+                    egui::Align2::CENTER_BOTTOM,
+                    format!("{tau:.2}"),
+                    egui::FontId::monospace(11.0),
+                    egui::Color32::from_gray(230),
+                );
+            }
+        }
+    }
+    left
+}
+
+impl App {
+    fn draw(&mut self, screenshot: bool) -> Result<(), String> {
+        let Some(mut gfx) = self.gfx.take() else {
+            return Ok(());
+        };
+        let result = self.draw_with(&mut gfx, screenshot);
+        self.gfx = Some(gfx);
+        result
+    }
+
+    fn draw_with(&mut self, gfx: &mut Gfx, screenshot: bool) -> Result<(), String> {
+        let raw = gfx.egui_state.take_egui_input(&gfx.window);
+        let ctx = gfx.egui.clone();
+        let size = (gfx.config.width, gfx.config.height);
+        let state = &mut self.state;
+        let mut left = self.scene_left;
+        let output = ctx.run_ui(raw, |ui| {
+            let ctx = ui.ctx().clone();
+            left = panels(state, &ctx, ui, size);
+        });
+        self.scene_left = left;
+        gfx.egui_state
+            .handle_platform_output(&gfx.window, output.platform_output);
+        let jobs = gfx.egui.tessellate(output.shapes, output.pixels_per_point);
+        for (id, deltas) in &output.textures_delta.set {
+            for delta in deltas {
+                gfx.egui_renderer
+                    .update_texture(&gfx.gpu.device, &gfx.gpu.queue, *id, delta);
+            }
+        }
+        let frame = match gfx.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(f)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                gfx.surface.configure(&gfx.gpu.device, &gfx.config);
+                return Ok(());
+            }
+            _ => return Ok(()),
+        };
+        let target = frame
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
+        let (eye, camera) = self.state.eye_and_camera();
+        let mut vertices: Vec<FrameVertex> = Vec::new();
+        for (k, (rect, kind)) in layout(self.state.view, self.scene_left, w - self.scene_left, h)
+            .into_iter()
+            .enumerate()
+        {
+            frame::build(
+                &self.state.billiard,
+                &self.state.meshes,
+                &eye,
+                kind.effects(self.state.effects),
+                &mut vertices,
+            );
+            let mut encoder =
+                gfx.gpu
+                    .device
+                    .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                        label: Some("scene view"),
+                    });
+            gfx.views[k].resize(&gfx.gpu.device, gfx.config.width, gfx.config.height);
+            gfx.views[k].render(
+                &gfx.gpu.device,
+                &gfx.gpu.queue,
+                &mut encoder,
+                &target,
+                Draw {
+                    vertices: &vertices,
+                    view_proj: camera.view_proj(rect[2] / rect[3]),
+                    clear: (k == 0).then_some(BACKGROUND),
+                    viewport: Some(rect),
+                },
+            );
+            gfx.gpu.queue.submit([encoder.finish()]);
+        }
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [gfx.config.width, gfx.config.height],
+            pixels_per_point: output.pixels_per_point,
+        };
+        let mut encoder = gfx
+            .gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("egui"),
+            });
+        gfx.egui_renderer.update_buffers(
+            &gfx.gpu.device,
+            &gfx.gpu.queue,
+            &mut encoder,
+            &jobs,
+            &screen,
+        );
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &target,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            gfx.egui_renderer
+                .render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        let readback = if screenshot {
+            Some(copy_out(gfx, &frame.texture, &mut encoder))
+        } else {
+            None
+        };
+        gfx.gpu.queue.submit([encoder.finish()]);
+        for id in &output.textures_delta.free {
+            gfx.egui_renderer.free_texture(id);
+        }
+        if let (Some((buffer, padded)), Some(path)) = (readback, &self.options.screenshot) {
+            save(gfx, &buffer, padded, path)?;
+        }
+        gfx.gpu.queue.present(frame);
+        Ok(())
+    }
+}
+
+/// Records a copy of the frame into a readable buffer (for `--screenshot`).
+fn copy_out(
+    gfx: &Gfx,
+    texture: &wgpu::Texture,
+    encoder: &mut wgpu::CommandEncoder,
+) -> (wgpu::Buffer, u32) {
+    let (w, h) = (gfx.config.width, gfx.config.height);
+    let padded =
+        (4 * w).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = gfx.gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("screenshot"),
+        size: u64::from(padded) * u64::from(h),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    (buffer, padded)
+}
+
+/// Reads the screenshot buffer back and writes it as PNG (RGBA; BGRA
+/// surfaces are swizzled).
+fn save(
+    gfx: &Gfx,
+    buffer: &wgpu::Buffer,
+    padded: u32,
+    path: &std::path::Path,
+) -> Result<(), String> {
+    let (w, h) = (gfx.config.width, gfx.config.height);
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    gfx.gpu
+        .device
+        .poll(wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: None,
+        })
+        .map_err(|e| format!("the GPU did not finish: {e}"))?;
+    rx.recv()
+        .map_err(|e| format!("screenshot lost: {e}"))?
+        .map_err(|e| format!("screenshot failed: {e}"))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| format!("screenshot failed: {e}"))?;
+    let bgra = matches!(
+        gfx.config.format,
+        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+    );
+    let mut rgba = Vec::with_capacity((4 * w * h) as usize);
+    for row in 0..h {
+        let start = (row * padded) as usize;
+        for px in data[start..start + (4 * w) as usize].chunks(4) {
+            if bgra {
+                rgba.extend_from_slice(&[px[2], px[1], px[0], 255]);
+            } else {
+                rgba.extend_from_slice(&[px[0], px[1], px[2], 255]);
+            }
+        }
+    }
+    drop(data);
+    crate::render::headless::Image {
+        width: w,
+        height: h,
+        rgba,
+    }
+    .save_png(path)
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.gfx.is_none()
+            && let Err(e) = self.init(event_loop)
+        {
+            self.result = Err(e);
+            event_loop.exit();
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let Some(gfx) = self.gfx.as_mut() else { return };
+        let consumed = gfx.egui_state.on_window_event(&gfx.window, &event).consumed;
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                gfx.config.width = size.width.max(1);
+                gfx.config.height = size.height.max(1);
+                gfx.surface.configure(&gfx.gpu.device, &gfx.config);
+            }
+            WindowEvent::RedrawRequested => self.frame(event_loop),
+            WindowEvent::KeyboardInput { event, .. } if !consumed => {
+                if let PhysicalKey::Code(code) = event.physical_key {
+                    match event.state {
+                        ElementState::Pressed => {
+                            if !event.repeat {
+                                self.key(code);
+                            }
+                            self.keys.insert(code);
+                        }
+                        ElementState::Released => {
+                            self.keys.remove(&code);
+                        }
+                    }
+                }
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                let p = DVec2::new(position.x, position.y);
+                if self.looking {
+                    let d = p - self.cursor;
+                    let eye = &mut self.state.eye;
+                    eye.yaw -= d.x * 0.004;
+                    eye.pitch = (eye.pitch - d.y * 0.004).clamp(-1.5, 1.5);
+                }
+                self.cursor = p;
+                self.drag();
+            }
+            WindowEvent::MouseInput { state, button, .. }
+                if !consumed || state == ElementState::Released =>
+            {
+                match (button, state) {
+                    (MouseButton::Left, ElementState::Pressed) => self.press(),
+                    (MouseButton::Left, ElementState::Released) => self.release(),
+                    (MouseButton::Right, s) => self.looking = s == ElementState::Pressed,
+                    _ => {}
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(gfx) = &self.gfx {
+            gfx.window.request_redraw();
+        }
+    }
+}

@@ -1,0 +1,6 @@
+//! `lightcone play [SCENE]`: the interactive game. [`state`] holds the
+//! game's logic (time, replay, cue, flight, effects), testable without a
+//! window; [`app`] is the winit + wgpu + egui front end.
+
+pub mod app;
+pub mod state;
