@@ -358,3 +358,18 @@ fn play_runs_under_xvfb_and_shows_the_table() {
     assert!(cloth > 1280 * 720 / 10, "only {cloth} cloth-green pixels");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn bench_render_quick_reports_cpu_and_gpu_time() {
+    let out = lightcone(&["bench", "render", "--quick"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("Headless frame time") && stdout.contains("frames/s"),
+        "{stdout}"
+    );
+}

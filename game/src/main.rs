@@ -115,6 +115,8 @@ enum BenchWhat {
     Physics,
     /// Emission-solve accuracy and cost, solves per second, effect costs.
     Optics,
+    /// Headless frames per second, CPU and GPU parts.
+    Render,
 }
 
 fn main() -> ExitCode {
@@ -148,6 +150,7 @@ fn main() -> ExitCode {
         Some(Command::Bench { what, quick, csv }) => match what {
             BenchWhat::Physics => commands::bench::run(quick),
             BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),
+            BenchWhat::Render => commands::bench_render::run(quick),
         },
         Some(Command::Play {
             scene,

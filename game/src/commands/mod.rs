@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod bench_optics;
+pub mod bench_render;
 pub mod check;
 pub mod observe;
 pub mod play;

@@ -81,6 +81,135 @@ impl Image {
     }
 }
 
+/// An offscreen target with its renderer and readback buffer, reused
+/// from frame to frame.
+pub struct Offscreen {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+    renderer: Renderer,
+    readback: wgpu::Buffer,
+    padded: u32,
+    width: u32,
+    height: u32,
+}
+
+impl Offscreen {
+    /// A `width × height` target on `gpu`.
+    pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
+        let device = &gpu.device;
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("headless target"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let padded = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("headless readback"),
+            size: u64::from(padded) * u64::from(height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        Self {
+            texture,
+            view,
+            renderer: Renderer::new(device, FORMAT, width, height),
+            readback,
+            padded,
+            width,
+            height,
+        }
+    }
+
+    /// Draws `vertices` with `camera` and reads the image back.
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        vertices: &[FrameVertex],
+        camera: &Camera,
+    ) -> Result<Image, String> {
+        let device = &gpu.device;
+        let (width, height, padded) = (self.width, self.height, self.padded);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("headless frame"),
+        });
+        let view_proj = camera.view_proj(width as f32 / height as f32);
+        self.renderer.render(
+            device,
+            &gpu.queue,
+            &mut encoder,
+            &self.view,
+            super::pipeline::Draw {
+                vertices,
+                view_proj,
+                clear: Some(BACKGROUND),
+                viewport: None,
+            },
+        );
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let slice = self.readback.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        device
+            .poll(wgpu::PollType::Wait {
+                submission_index: None,
+                timeout: None,
+            })
+            .map_err(|e| format!("the GPU did not finish: {e}"))?;
+        rx.recv()
+            .map_err(|e| format!("readback lost: {e}"))?
+            .map_err(|e| format!("readback failed: {e}"))?;
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| format!("readback failed: {e}"))?;
+        let mut rgba = Vec::with_capacity((4 * width * height) as usize);
+        for row in 0..height {
+            let start = (row * padded) as usize;
+            rgba.extend_from_slice(&data[start..start + (4 * width) as usize]);
+        }
+        drop(data);
+        self.readback.unmap();
+        Ok(Image {
+            width,
+            height,
+            rgba,
+        })
+    }
+}
+
 /// Draws `vertices` with `camera` into a `width × height` image.
 pub fn draw(
     gpu: &Gpu,
@@ -89,98 +218,7 @@ pub fn draw(
     width: u32,
     height: u32,
 ) -> Result<Image, String> {
-    let device = &gpu.device;
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("headless target"),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
-    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-    let mut renderer = Renderer::new(device, FORMAT, width, height);
-    let padded = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-        * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("headless readback"),
-        size: u64::from(padded) * u64::from(height),
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("headless frame"),
-    });
-    let view_proj = camera.view_proj(width as f32 / height as f32);
-    renderer.render(
-        device,
-        &gpu.queue,
-        &mut encoder,
-        &view,
-        super::pipeline::Draw {
-            vertices,
-            view_proj,
-            clear: Some(BACKGROUND),
-            viewport: None,
-        },
-    );
-    encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture: &texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        wgpu::TexelCopyBufferInfo {
-            buffer: &readback,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded),
-                rows_per_image: Some(height),
-            },
-        },
-        wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-    );
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device
-        .poll(wgpu::PollType::Wait {
-            submission_index: None,
-            timeout: None,
-        })
-        .map_err(|e| format!("the GPU did not finish: {e}"))?;
-    rx.recv()
-        .map_err(|e| format!("readback lost: {e}"))?
-        .map_err(|e| format!("readback failed: {e}"))?;
-    let data = slice
-        .get_mapped_range()
-        .map_err(|e| format!("readback failed: {e}"))?;
-    let mut rgba = Vec::with_capacity((4 * width * height) as usize);
-    for row in 0..height {
-        let start = (row * padded) as usize;
-        rgba.extend_from_slice(&data[start..start + (4 * width) as usize]);
-    }
-    drop(data);
-    readback.unmap();
-    Ok(Image {
-        width,
-        height,
-        rgba,
-    })
+    Offscreen::new(gpu, width, height).draw(gpu, vertices, camera)
 }
 
 /// Renders what observer `observer` of `scene` sees at board time `t`.

@@ -1,0 +1,115 @@
+//! `lightcone bench render [--quick]`: headless frames per second, split
+//! into the CPU's part (physics, optics, building the triangle list) and the
+//! GPU's (drawing and reading the image back), for the paper's scene and a
+//! large one.
+
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use glam::{DVec2, DVec3};
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::scene::{self, Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
+use lightcone_engine::spacetime::ProperVelocity;
+
+use crate::render::frame::{self, SceneMeshes};
+use crate::render::{gpu, headless};
+
+/// A large scene: `n` pucks on a grid with assorted velocities.
+fn large(n: usize) -> Scene {
+    let per_row = (n as f64).sqrt().ceil() as usize;
+    let size = DVec2::new(0.2 * per_row as f64 + 0.4, 0.2 * per_row as f64 + 0.4);
+    Scene {
+        title: format!("{n} pucks"),
+        description: String::new(),
+        c: size.x / 2.0,
+        table: TableSpec {
+            size,
+            cushion_restitution: 1.0,
+        },
+        restitution: 1.0,
+        effects: Effects::default(),
+        optics: Default::default(),
+        pucks: (0..n)
+            .map(|i| {
+                let phi = i as f64 * 2.399;
+                PuckSpec {
+                    name: format!("p{i}"),
+                    position: DVec2::new(
+                        0.3 + 0.2 * (i % per_row) as f64,
+                        0.3 + 0.2 * (i / per_row) as f64,
+                    ),
+                    u: ProperVelocity::try_from_beta(DVec3::new(phi.cos(), phi.sin(), 0.0) * 0.7)
+                        .unwrap_or(ProperVelocity::ZERO),
+                    radius: 0.0305,
+                    height: 0.02,
+                    mass: 0.21,
+                    color: Color::default_for(i),
+                }
+            })
+            .collect(),
+        observers: vec![ObserverSpec {
+            name: "eye".into(),
+            position: DVec3::new(size.x / 2.0, -1.5, 2.0),
+            look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
+            u: ProperVelocity::ZERO,
+        }],
+    }
+}
+
+/// Runs the benchmark.
+pub fn run(quick: bool) -> ExitCode {
+    let gpu = match gpu::headless() {
+        Ok(g) => g,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let paper = match scene::load(Path::new("assets/scenes/paper_carom.toml")) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    println!(
+        "### Headless frame time, 1280×720, adapter: {}\n\n\
+         | scene | pucks | triangles | CPU: physics + optics + triangles (ms) | GPU: draw + read back (ms) | frames/s |\n\
+         | --- | --- | --- | --- | --- | --- |",
+        gpu.adapter
+    );
+    let frames = if quick { 3 } else { 30 };
+    for scene in [paper, large(if quick { 100 } else { 1100 })] {
+        let meshes = SceneMeshes::new(&scene);
+        let mut billiard = Billiard::from_scene(&scene);
+        let mut vertices = Vec::new();
+        let (mut cpu, mut gpu_time) = (0.0, 0.0);
+        let mut target = headless::Offscreen::new(&gpu, 1280, 720);
+        for f in 1..=frames {
+            let t = f as f64 / 60.0;
+            let start = Instant::now();
+            billiard.advance_to(t);
+            let (eye, camera) = frame::eye_of(&scene, 0, t);
+            frame::build(&billiard, &meshes, &eye, scene.effects, &mut vertices);
+            let mid = Instant::now();
+            if let Err(e) = target.draw(&gpu, &vertices, &camera) {
+                eprintln!("{e}");
+                return ExitCode::FAILURE;
+            }
+            cpu += (mid - start).as_secs_f64();
+            gpu_time += mid.elapsed().as_secs_f64();
+        }
+        let n = f64::from(frames);
+        println!(
+            "| {} | {} | {} | {:.2} | {:.2} | {:.1} |",
+            scene.title,
+            scene.pucks.len(),
+            vertices.len() / 3,
+            cpu / n * 1e3,
+            gpu_time / n * 1e3,
+            n / (cpu + gpu_time)
+        );
+    }
+    ExitCode::SUCCESS
+}
