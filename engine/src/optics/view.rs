@@ -137,23 +137,21 @@ pub fn observe(
     with_vertices: bool,
 ) -> View {
     let c = billiard.c();
+    // Every point of `offsets` on `puck`, as seen.
+    let points = |puck: usize, offsets: &[DVec3]| -> Vec<PointView> {
+        let (mut e, mut s) = (Vec::new(), Vec::new());
+        emissions(billiard, puck, offsets, &eye, &effects, method, &mut e);
+        seen(&eye, c, &effects, &e, &mut s);
+        doppler(&eye, &e, &mut s);
+        e.iter()
+            .zip(&s)
+            .map(|(e, s)| point(*e, *s, &effects))
+            .collect()
+    };
     let bodies = (0..billiard.len())
         .into_par_iter()
         .map(|puck| {
-            let centre_offset = [DVec3::new(0.0, 0.0, heights[puck] / 2.0)];
-            let (mut e, mut s) = (Vec::new(), Vec::new());
-            emissions(
-                billiard,
-                puck,
-                &centre_offset,
-                &eye,
-                &effects,
-                method,
-                &mut e,
-            );
-            seen(&eye, c, &effects, &e, &mut s);
-            doppler(&eye, &e, &mut s);
-            let centre = point(e[0], s[0], &effects);
+            let centre = points(puck, &[DVec3::new(0.0, 0.0, heights[puck] / 2.0)])[0];
             let w = billiard.worldline(puck);
             let seen_proper_time = if effects.time_dilation {
                 w.proper_time_at(centre.emission.event.t)
@@ -161,21 +159,7 @@ pub fn observe(
                 centre.emission.event.t
             };
             let vertices = if with_vertices {
-                emissions(
-                    billiard,
-                    puck,
-                    &shapes[puck].vertices,
-                    &eye,
-                    &effects,
-                    method,
-                    &mut e,
-                );
-                seen(&eye, c, &effects, &e, &mut s);
-                doppler(&eye, &e, &mut s);
-                e.iter()
-                    .zip(&s)
-                    .map(|(e, s)| point(*e, *s, &effects))
-                    .collect()
+                points(puck, &shapes[puck].vertices)
             } else {
                 Vec::new()
             };

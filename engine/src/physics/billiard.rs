@@ -28,6 +28,18 @@ pub struct PuckInit {
     pub mass: f64,
 }
 
+impl From<&crate::scene::PuckSpec> for PuckInit {
+    fn from(p: &crate::scene::PuckSpec) -> Self {
+        Self {
+            name: p.name.clone(),
+            position: p.position,
+            u: p.u,
+            radius: p.radius,
+            mass: p.mass,
+        }
+    }
+}
+
 /// What a collision did to one puck, at its own velocity-change event.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PuckOutcome {
@@ -220,17 +232,7 @@ impl Billiard {
 
     /// The billiard of a validated scene.
     pub fn from_scene(scene: &Scene) -> Self {
-        let pucks = scene
-            .pucks
-            .iter()
-            .map(|p| PuckInit {
-                name: p.name.clone(),
-                position: p.position,
-                u: p.u,
-                radius: p.radius,
-                mass: p.mass,
-            })
-            .collect();
+        let pucks = scene.pucks.iter().map(PuckInit::from).collect();
         Self::new(
             scene.c,
             scene.table.size,

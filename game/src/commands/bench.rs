@@ -186,18 +186,7 @@ fn exactness(quick: bool) -> String {
     let paper = scene::load(Path::new("assets/scenes/paper_carom.toml")).ok();
     let paper_pucks: Vec<PuckInit> = paper
         .as_ref()
-        .map(|s| {
-            s.pucks
-                .iter()
-                .map(|p| PuckInit {
-                    name: p.name.clone(),
-                    position: p.position,
-                    u: p.u,
-                    radius: p.radius,
-                    mass: p.mass,
-                })
-                .collect()
-        })
+        .map(|s| s.pucks.iter().map(PuckInit::from).collect())
         .unwrap_or_default();
     let reps = if quick { 1 } else { 20 };
     let run_seconds = 20.0;

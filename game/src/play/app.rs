@@ -636,40 +636,17 @@ fn save(
     path: &std::path::Path,
 ) -> Result<(), String> {
     let (w, h) = (gfx.config.width, gfx.config.height);
-    let slice = buffer.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    gfx.gpu
-        .device
-        .poll(wgpu::PollType::Wait {
-            submission_index: None,
-            timeout: None,
-        })
-        .map_err(|e| format!("the GPU did not finish: {e}"))?;
-    rx.recv()
-        .map_err(|e| format!("screenshot lost: {e}"))?
-        .map_err(|e| format!("screenshot failed: {e}"))?;
-    let data = slice
-        .get_mapped_range()
-        .map_err(|e| format!("screenshot failed: {e}"))?;
+    let mut rgba = crate::render::headless::read_rows(&gfx.gpu, buffer, padded, w, h)?;
     let bgra = matches!(
         gfx.config.format,
         wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
     );
-    let mut rgba = Vec::with_capacity((4 * w * h) as usize);
-    for row in 0..h {
-        let start = (row * padded) as usize;
-        for px in data[start..start + (4 * w) as usize].chunks(4) {
-            if bgra {
-                rgba.extend_from_slice(&[px[2], px[1], px[0], 255]);
-            } else {
-                rgba.extend_from_slice(&[px[0], px[1], px[2], 255]);
-            }
+    for px in rgba.chunks_mut(4) {
+        if bgra {
+            px.swap(0, 2);
         }
+        px[3] = 255;
     }
-    drop(data);
     crate::render::headless::Image {
         width: w,
         height: h,

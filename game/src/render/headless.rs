@@ -178,36 +178,49 @@ impl Offscreen {
             },
         );
         gpu.queue.submit([encoder.finish()]);
-        let slice = self.readback.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device
-            .poll(wgpu::PollType::Wait {
-                submission_index: None,
-                timeout: None,
-            })
-            .map_err(|e| format!("the GPU did not finish: {e}"))?;
-        rx.recv()
-            .map_err(|e| format!("readback lost: {e}"))?
-            .map_err(|e| format!("readback failed: {e}"))?;
-        let data = slice
-            .get_mapped_range()
-            .map_err(|e| format!("readback failed: {e}"))?;
-        let mut rgba = Vec::with_capacity((4 * width * height) as usize);
-        for row in 0..height {
-            let start = (row * padded) as usize;
-            rgba.extend_from_slice(&data[start..start + (4 * width) as usize]);
-        }
-        drop(data);
-        self.readback.unmap();
+        let rgba = read_rows(gpu, &self.readback, padded, width, height)?;
         Ok(Image {
             width,
             height,
             rgba,
         })
     }
+}
+
+/// Waits for the GPU, maps `buffer` (rows of `padded` bytes) and returns
+/// its `height` rows of `4 × width` bytes, unpadded.
+pub fn read_rows(
+    gpu: &Gpu,
+    buffer: &wgpu::Buffer,
+    padded: u32,
+    width: u32,
+    height: u32,
+) -> Result<Vec<u8>, String> {
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    gpu.device
+        .poll(wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: None,
+        })
+        .map_err(|e| format!("the GPU did not finish: {e}"))?;
+    rx.recv()
+        .map_err(|e| format!("readback lost: {e}"))?
+        .map_err(|e| format!("readback failed: {e}"))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| format!("readback failed: {e}"))?;
+    let mut rgba = Vec::with_capacity((4 * width * height) as usize);
+    for row in 0..height {
+        let start = (row * padded) as usize;
+        rgba.extend_from_slice(&data[start..start + (4 * width) as usize]);
+    }
+    drop(data);
+    buffer.unmap();
+    Ok(rgba)
 }
 
 /// Draws `vertices` with `camera` into a `width × height` image.
