@@ -1,0 +1,78 @@
+"""The Python module against physics and against its contract."""
+
+import math
+import os
+
+import pytest
+
+import lightcone
+
+ROOT = os.path.join(os.path.dirname(__file__), "..", "..")
+SCENES = os.path.join(ROOT, "assets", "scenes")
+
+
+def scene(name):
+    return lightcone.Scene.load(os.path.join(SCENES, name))
+
+
+def test_load_and_summary():
+    s = scene("paper_carom.toml")
+    assert s.c == pytest.approx(1.42)
+    assert s.pucks == ["white", "yellow", "red"]
+    assert s.observers == ["eye"]
+    assert s.effects["contraction"] is True
+
+
+def test_bad_scene_raises_scene_error_naming_line_and_field():
+    with pytest.raises(lightcone.SceneError) as e:
+        lightcone.Scene.from_toml("[[puck]]\nposition = [0.5, 0.5]\nbeta = [1.2, 0.0]\n", "bad.toml")
+    assert "bad.toml:3:" in str(e.value)
+    assert "puck[0].beta" in str(e.value)
+    with pytest.raises(lightcone.SceneError):
+        lightcone.Scene.load(os.path.join(SCENES, "no_such.toml"))
+    assert issubclass(lightcone.SceneError, ValueError)
+
+
+def test_collisions_conserve_four_momentum():
+    sim = lightcone.Simulation(scene("ten_pucks.toml"))
+    sim.run_until(10.0)
+    pairs = [c for c in sim.collisions() if c["kind"] == "puck_puck"]
+    assert pairs
+    for c in pairs:
+        if any(p.get("pending") for p in c["pucks"]):
+            continue
+        for k in (0, 1):
+            before = sum(p["u_before"][k] for p in c["pucks"])
+            after = sum(p["u_after"][k] for p in c["pucks"])
+            assert after == pytest.approx(before, rel=1e-12, abs=1e-12)
+        e_before = sum(math.sqrt(1 + p["u_before"][0] ** 2 + p["u_before"][1] ** 2) for p in c["pucks"])
+        e_after = sum(math.sqrt(1 + p["u_after"][0] ** 2 + p["u_after"][1] ** 2) for p in c["pucks"])
+        assert e_after == pytest.approx(e_before, rel=1e-12)
+
+
+def test_impulse_never_reaches_c():
+    sim = lightcone.Simulation(scene("paper_carom.toml"))
+    sim.impulse("yellow", (0.0, -1e9))
+    ux, uy = sim.velocity("yellow")
+    assert uy == -1e9
+    sim.step(0.01)
+    beta = sim.state()["pucks"][1]["beta"]
+    assert math.hypot(*beta) <= 1.0
+    with pytest.raises(KeyError):
+        sim.impulse("nobody", (1.0, 0.0))
+
+
+def test_observe_puts_the_emission_on_the_light_cone():
+    sim = lightcone.Simulation(scene("parallel_tracks.toml"))
+    sim.run_until(1.0)
+    view = sim.observe("side", vertices=True)
+    eye = view["observer"]["position"]
+    for p in view["pucks"]:
+        e = p["emission"]
+        d = math.dist(eye, e["position"])
+        assert 1.42 * (1.0 - e["t"]) == pytest.approx(d, abs=1e-12)
+        assert len(p["vertices"]) > 90
+    truth = sim.observe("side", effects=["contraction"])
+    assert all(p["emission"]["t"] == 1.0 for p in truth["pucks"])
+    with pytest.raises(ValueError):
+        sim.observe(effects=["redshift"])
