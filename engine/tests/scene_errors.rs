@@ -271,3 +271,53 @@ fn optics_table() {
         "0 (full) or more",
     );
 }
+
+#[test]
+fn scenes_built_in_code_get_the_same_checks() {
+    use glam::{DVec2, DVec3};
+    use lightcone_engine::scene::{Color, ObserverSpec, PuckSpec, Scene};
+    use lightcone_engine::spacetime::ProperVelocity;
+    let mut s = Scene::empty(DVec2::new(2.0, 1.0), None).unwrap();
+    assert_eq!(s.c, 1.0);
+    let puck = |name: &str, x: f64| PuckSpec {
+        name: name.into(),
+        position: DVec2::new(x, 0.5),
+        u: ProperVelocity::ZERO,
+        radius: 0.05,
+        height: 0.02,
+        mass: 0.2,
+        color: Color::default_for(0),
+    };
+    s.add_puck(puck("a", 0.5)).unwrap();
+    assert!(s.add_puck(puck("a", 1.5)).unwrap_err().contains("unique"));
+    assert!(
+        s.add_puck(puck("b", 0.55))
+            .unwrap_err()
+            .contains("overlaps puck \"a\"")
+    );
+    assert!(
+        s.add_puck(puck("c", 1.99))
+            .unwrap_err()
+            .contains("outside the table")
+    );
+    assert!(
+        s.add_puck(PuckSpec {
+            radius: -1.0,
+            ..puck("d", 1.0)
+        })
+        .unwrap_err()
+        .contains("radius")
+    );
+    assert_eq!(s.pucks.len(), 1);
+    let eye = ObserverSpec {
+        name: "me".into(),
+        position: DVec3::new(1.0, -1.0, 1.0),
+        look_at: DVec3::ZERO,
+        u: ProperVelocity::ZERO,
+    };
+    s.add_observer(eye.clone()).unwrap();
+    assert_eq!(s.observers.len(), 1);
+    assert!(s.add_observer(eye).is_err());
+    assert!(Scene::empty(DVec2::new(-1.0, 1.0), None).is_err());
+    assert!(Scene::empty(DVec2::new(1.0, 1.0), Some(0.0)).is_err());
+}

@@ -32,7 +32,7 @@ fn to_python<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<B
 }
 
 /// A validated scene (see the README's "Scene files").
-#[pyclass(module = "lightcone._lightcone", frozen)]
+#[pyclass(module = "lightcone._lightcone")]
 #[derive(Clone)]
 pub struct Scene {
     inner: scene::Scene,
@@ -58,10 +58,115 @@ impl Scene {
             .map_err(|e| SceneError::new_err(e.to_string()))
     }
 
+    /// An empty scene on a table of `size` metres (default: a match carom
+    /// table) with speed of light `c` (default: light crosses the long side
+    /// in 2 s).
+    #[new]
+    #[pyo3(signature = (size = (2.84, 1.42), c = None, title = "scene"))]
+    fn new(size: (f64, f64), c: Option<f64>, title: &str) -> PyResult<Self> {
+        let mut inner = scene::Scene::empty(glam::DVec2::new(size.0, size.1), c)
+            .map_err(SceneError::new_err)?;
+        inner.title = title.to_owned();
+        Ok(Self { inner })
+    }
+
+    /// Adds a puck; give at most one of `beta` (v/c) or `u` (γβ). Raises
+    /// SceneError if it would be invalid (speed ≥ c, off the table,
+    /// overlapping, duplicate name …).
+    #[pyo3(signature = (name, position, beta = None, u = None, radius = 0.0305, height = 0.02, mass = 0.21, color = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_puck(
+        &mut self,
+        name: &str,
+        position: (f64, f64),
+        beta: Option<(f64, f64)>,
+        u: Option<(f64, f64)>,
+        radius: f64,
+        height: f64,
+        mass: f64,
+        color: Option<&str>,
+    ) -> PyResult<()> {
+        let u = match (beta, u) {
+            (Some(_), Some(_)) => {
+                return Err(SceneError::new_err("give at most one of beta and u"));
+            }
+            (Some(b), None) => ProperVelocity::try_from_beta(DVec3::new(b.0, b.1, 0.0))
+                .map_err(|e| SceneError::new_err(format!("puck {name:?}: {e}")))?,
+            (None, Some(u)) => ProperVelocity(DVec3::new(u.0, u.1, 0.0)),
+            (None, None) => ProperVelocity::ZERO,
+        };
+        let color = match color {
+            None => scene::Color::default_for(self.inner.pucks.len()),
+            Some(c) => scene::Color::parse(c).ok_or_else(|| {
+                SceneError::new_err(format!("{c:?} is not a colour: use \"#rrggbb\" or a name"))
+            })?,
+        };
+        self.inner
+            .add_puck(scene::PuckSpec {
+                name: name.to_owned(),
+                position: glam::DVec2::new(position.0, position.1),
+                u,
+                radius,
+                height,
+                mass,
+                color,
+            })
+            .map_err(SceneError::new_err)
+    }
+
+    /// Adds an observer (the first replaces the default eye).
+    #[pyo3(signature = (name, position, look_at = None, beta = None))]
+    fn add_observer(
+        &mut self,
+        name: &str,
+        position: (f64, f64, f64),
+        look_at: Option<(f64, f64, f64)>,
+        beta: Option<(f64, f64, f64)>,
+    ) -> PyResult<()> {
+        let size = self.inner.table.size;
+        let look_at = look_at.map_or(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0), DVec3::from);
+        let u = match beta {
+            None => ProperVelocity::ZERO,
+            Some(b) => ProperVelocity::try_from_beta(DVec3::from(b))
+                .map_err(|e| SceneError::new_err(format!("observer {name:?}: {e}")))?,
+        };
+        self.inner
+            .add_observer(scene::ObserverSpec {
+                name: name.to_owned(),
+                position: DVec3::from(position),
+                look_at,
+                u,
+            })
+            .map_err(SceneError::new_err)
+    }
+
+    /// Turns an effect on or off (`contraction`, `light_delay`,
+    /// `aberration`, `doppler`, `searchlight`, `time_dilation`).
+    fn set_effect(&mut self, name: &str, on: bool) -> PyResult<()> {
+        let e = Effect::ALL
+            .iter()
+            .find(|e| e.key() == name)
+            .ok_or_else(|| PyValueError::new_err(format!("unknown effect {name:?}")))?;
+        self.inner.effects.set(*e, on);
+        Ok(())
+    }
+
     /// Speed of light, m/s.
     #[getter]
     fn c(&self) -> f64 {
         self.inner.c
+    }
+
+    /// Sets the speed of light, m/s (positive and finite).
+    #[setter]
+    fn set_c(&mut self, c: f64) -> PyResult<()> {
+        if !(c.is_finite() && c > 0.0) {
+            return Err(SceneError::new_err(format!(
+                "c = {c} must be a positive finite number of m/s"
+            )));
+        }
+        self.inner.c = c;
+        Ok(())
     }
 
     /// Scene title.
@@ -260,6 +365,62 @@ impl Simulation {
         let i = self.puck(name)?;
         let u: ProperVelocity = self.billiard.worldline(i).velocity_at(self.billiard.time());
         Ok((u.0.x, u.0.y))
+    }
+
+    /// Renders what `observer` (default: the first) sees now to a PNG,
+    /// headless; `view` is "seen" or "truth". Raises RuntimeError when
+    /// there is no graphics adapter (install mesa-vulkan-drivers).
+    #[pyo3(signature = (path, observer = None, size = (1280, 720), view = "seen"))]
+    fn render(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        observer: Option<&str>,
+        size: (u32, u32),
+        view: &str,
+    ) -> PyResult<()> {
+        use lightcone::render::frame::{self, SceneMeshes, ViewKind};
+        let kind = match view {
+            "seen" => ViewKind::Seen,
+            "truth" => ViewKind::Truth,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "view {other:?}: use \"seen\" or \"truth\""
+                )));
+            }
+        };
+        if size.0 == 0 || size.1 == 0 || size.0 > 16384 || size.1 > 16384 {
+            return Err(PyValueError::new_err(format!(
+                "size {size:?}: 1 to 16384 pixels a side"
+            )));
+        }
+        let index = match observer {
+            None => 0,
+            Some(name) => self
+                .scene
+                .observers
+                .iter()
+                .position(|o| o.name == name)
+                .ok_or_else(|| PyKeyError::new_err(format!("no observer named {name:?}")))?,
+        };
+        let t = self.billiard.time();
+        let (scene, billiard) = (&self.scene, &self.billiard);
+        py.detach(|| {
+            let gpu = lightcone::render::gpu::headless()?;
+            let meshes = SceneMeshes::new(scene);
+            let (eye, camera) = frame::eye_of(scene, index, t);
+            let mut vertices = Vec::new();
+            frame::build(
+                billiard,
+                &meshes,
+                &eye,
+                kind.effects(scene.effects),
+                &mut vertices,
+            );
+            lightcone::render::headless::draw(&gpu, &vertices, &camera, size.0, size.1)?
+                .save_png(&path)
+        })
+        .map_err(pyo3::exceptions::PyRuntimeError::new_err)
     }
 
     /// Warnings (e.g. a Zeno sequence ended).

@@ -76,3 +76,39 @@ def test_observe_puts_the_emission_on_the_light_cone():
     assert all(p["emission"]["t"] == 1.0 for p in truth["pucks"])
     with pytest.raises(ValueError):
         sim.observe(effects=["redshift"])
+
+
+def test_build_a_scene_in_code_and_check_the_head_on_exchange():
+    s = lightcone.Scene(size=(4.0, 2.0), c=2.0, title="head-on")
+    s.add_puck("a", (1.0, 1.0), beta=(0.8, 0.0))
+    s.add_puck("b", (3.0, 1.0))
+    with pytest.raises(lightcone.SceneError):
+        s.add_puck("c", (1.03, 1.0))  # overlaps a
+    with pytest.raises(lightcone.SceneError):
+        s.add_puck("d", (2.0, 1.5), beta=(1.0, 0.0))  # at c
+    s.add_observer("side", (2.0, -1.0, 0.5))
+    s.set_effect("doppler", True)
+    assert s.effects["doppler"] is True
+    with pytest.raises(ValueError):
+        s.set_effect("redshift", True)
+    sim = lightcone.Simulation(s)
+    sim.run_until(1.5)  # after the hit (≈ 1.2 s), before b reaches the cushion
+    # Equal masses head-on, elastic: the velocities are exchanged.
+    ua = sim.velocity("a")
+    ub = sim.velocity("b")
+    assert ua[0] == pytest.approx(0.0, abs=1e-12)
+    assert ub[0] == pytest.approx(0.8 / math.sqrt(1 - 0.64), rel=1e-12)
+    with pytest.raises(lightcone.SceneError):
+        s.c = -1.0
+
+
+def test_render_writes_a_png(tmp_path):
+    sim = lightcone.Simulation(scene("paper_carom.toml"))
+    sim.run_until(1.0)
+    out = tmp_path / "frame.png"
+    sim.render(str(out), size=(160, 90))
+    data = out.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    assert len(data) > 500
+    with pytest.raises(ValueError):
+        sim.render(str(out), view="sideways")

@@ -352,6 +352,109 @@ pub fn overlapping_pairs(pucks: &[PuckSpec]) -> Vec<(usize, usize)> {
 }
 
 impl Scene {
+    /// An empty scene on a table of `size` metres, with `c` (default: light
+    /// crosses the long side in 2 s), default effects and no pucks; one
+    /// default observer until one is added. For scenes built in code
+    /// (Python lessons).
+    pub fn empty(size: DVec2, c: Option<f64>) -> Result<Self, String> {
+        if !(size.is_finite() && size.x > 0.0 && size.y > 0.0) {
+            return Err(format!(
+                "table size {size} must be two positive finite numbers"
+            ));
+        }
+        let c = c.unwrap_or(Self::default_c(size));
+        if !(c.is_finite() && c > 0.0) {
+            return Err(format!("c = {c} must be a positive finite number of m/s"));
+        }
+        Ok(Self {
+            title: "scene".to_owned(),
+            description: String::new(),
+            c,
+            table: TableSpec {
+                size,
+                cushion_restitution: 1.0,
+            },
+            restitution: 1.0,
+            effects: Effects::default(),
+            optics: OpticsSpec::default(),
+            pucks: Vec::new(),
+            observers: vec![Self::default_observer(size)],
+        })
+    }
+
+    /// Adds a puck after the same checks a scene file gets (unique name,
+    /// finite numbers, positive radius, height and mass, on the table, clear
+    /// of the other pucks). Nothing changes if it fails.
+    pub fn add_puck(&mut self, puck: PuckSpec) -> Result<(), String> {
+        let name = puck.name.clone();
+        if name.trim().is_empty() || self.puck(&name).is_some() {
+            return Err(format!("puck name \"{name}\" must be unique and not empty"));
+        }
+        if !(puck.position.is_finite() && puck.u.is_finite()) {
+            return Err(format!(
+                "puck \"{name}\": position and velocity must be finite"
+            ));
+        }
+        for (what, v) in [
+            ("radius", puck.radius),
+            ("height", puck.height),
+            ("mass", puck.mass),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(format!(
+                    "puck \"{name}\": {what} {v} must be a positive finite number"
+                ));
+            }
+        }
+        if let Some(why) = self.table.misplaced(&puck) {
+            return Err(why);
+        }
+        self.pucks.push(puck);
+        if let Some(&(i, j)) = overlapping_pairs(&self.pucks)
+            .iter()
+            .find(|(i, j)| *i == self.pucks.len() - 1 || *j == self.pucks.len() - 1)
+        {
+            let other = if i == self.pucks.len() - 1 { j } else { i };
+            let msg = format!(
+                "puck \"{name}\" overlaps puck \"{}\"",
+                self.pucks[other].name
+            );
+            self.pucks.pop();
+            return Err(msg);
+        }
+        Ok(())
+    }
+
+    /// Adds an observer (the first one added replaces the default eye).
+    pub fn add_observer(&mut self, observer: ObserverSpec) -> Result<(), String> {
+        let name = &observer.name;
+        let default_only = self.observers.len() == 1
+            && self.observers[0] == Self::default_observer(self.table.size);
+        if name.trim().is_empty() || (!default_only && self.observer(name).is_some()) {
+            return Err(format!(
+                "observer name \"{name}\" must be unique and not empty"
+            ));
+        }
+        if !(observer.position.is_finite()
+            && observer.look_at.is_finite()
+            && observer.u.is_finite())
+        {
+            return Err(format!(
+                "observer \"{name}\": position, look_at and velocity must be finite"
+            ));
+        }
+        if observer.position == observer.look_at {
+            return Err(format!(
+                "observer \"{name}\": look_at must differ from position"
+            ));
+        }
+        if default_only {
+            self.observers.clear();
+        }
+        self.observers.push(observer);
+        Ok(())
+    }
+
     /// Speed of light for a table: light crosses the long side in 2 s, as in
     /// the paper's experiments.
     pub fn default_c(size: DVec2) -> f64 {

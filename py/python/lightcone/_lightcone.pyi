@@ -9,12 +9,35 @@ class SceneError(ValueError):
 class Scene:
     """A validated scene."""
 
+    def __init__(self, size: tuple[float, float] = (2.84, 1.42), c: Optional[float] = None, title: str = "scene") -> None: ...
+    def add_puck(
+        self,
+        name: str,
+        position: tuple[float, float],
+        beta: Optional[tuple[float, float]] = None,
+        u: Optional[tuple[float, float]] = None,
+        radius: float = 0.0305,
+        height: float = 0.02,
+        mass: float = 0.21,
+        color: Optional[str] = None,
+    ) -> None: ...
+    def add_observer(
+        self,
+        name: str,
+        position: tuple[float, float, float],
+        look_at: Optional[tuple[float, float, float]] = None,
+        beta: Optional[tuple[float, float, float]] = None,
+    ) -> None: ...
+    def set_effect(self, name: str, on: bool) -> None: ...
+
     @staticmethod
     def load(path: Union[str, PathLike[str]]) -> Scene: ...
     @staticmethod
     def from_toml(text: str, name: str = "<string>") -> Scene: ...
     @property
     def c(self) -> float: ...
+    @c.setter
+    def c(self, c: float) -> None: ...
     @property
     def title(self) -> str: ...
     @property
@@ -42,4 +65,11 @@ class Simulation:
         effects: Optional[Sequence[str]] = None,
     ) -> dict[str, Any]: ...
     def velocity(self, name: str) -> tuple[float, float]: ...
+    def render(
+        self,
+        path: Union[str, PathLike[str]],
+        observer: Optional[str] = None,
+        size: tuple[int, int] = (1280, 720),
+        view: str = "seen",
+    ) -> None: ...
     def warnings(self) -> list[str]: ...
