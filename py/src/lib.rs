@@ -6,12 +6,12 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
+use lightcone_engine::optics::mesh;
 use lightcone_engine::optics::view::{Method, observe};
-use lightcone_engine::optics::{Eye, mesh};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::{CollisionLine, ObserveReport, StateLine};
 use lightcone_engine::scene::{self, Effect};
-use lightcone_engine::spacetime::{Event, ProperVelocity};
+use lightcone_engine::spacetime::ProperVelocity;
 use lightcone_engine::world::PUCK_SEGMENTS;
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
@@ -228,6 +228,19 @@ impl Simulation {
         })
     }
 
+    /// Index of the observer called `name` (the first when `None`).
+    fn observer_index(&self, name: Option<&str>) -> PyResult<usize> {
+        match name {
+            None => Ok(0),
+            Some(name) => self
+                .scene
+                .observers
+                .iter()
+                .position(|o| o.name == name)
+                .ok_or_else(|| PyKeyError::new_err(format!("no observer named {name:?}"))),
+        }
+    }
+
     fn names(&self) -> Vec<String> {
         (0..self.billiard.len())
             .map(|i| self.billiard.name(i).to_owned())
@@ -305,15 +318,7 @@ impl Simulation {
         vertices: bool,
         effects: Option<Vec<String>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let index = match observer {
-            None => 0,
-            Some(name) => self
-                .scene
-                .observers
-                .iter()
-                .position(|o| o.name == name)
-                .ok_or_else(|| PyKeyError::new_err(format!("no observer named {name:?}")))?,
-        };
+        let index = self.observer_index(observer)?;
         let fx = match effects {
             None => self.scene.effects,
             Some(list) => {
@@ -330,10 +335,7 @@ impl Simulation {
         };
         let spec = &self.scene.observers[index];
         let t = self.billiard.time();
-        let eye = Eye {
-            event: Event::new(t, spec.position + spec.u.velocity(self.scene.c) * t),
-            u: spec.u,
-        };
+        let (eye, _) = lightcone::render::frame::eye_of(&self.scene, index, t);
         let shapes: Vec<_> = self
             .scene
             .pucks
@@ -394,15 +396,7 @@ impl Simulation {
                 "size {size:?}: 1 to 16384 pixels a side"
             )));
         }
-        let index = match observer {
-            None => 0,
-            Some(name) => self
-                .scene
-                .observers
-                .iter()
-                .position(|o| o.name == name)
-                .ok_or_else(|| PyKeyError::new_err(format!("no observer named {name:?}")))?,
-        };
+        let index = self.observer_index(observer)?;
         let t = self.billiard.time();
         let (scene, billiard) = (&self.scene, &self.billiard);
         py.detach(|| {

@@ -630,7 +630,6 @@ impl Billiard {
                 pending: false,
             };
         }
-        let _ = kick.partner;
         self.changed(i);
     }
 

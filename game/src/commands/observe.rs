@@ -4,12 +4,11 @@
 use std::path::Path;
 use std::process::ExitCode;
 
+use lightcone_engine::optics::mesh;
 use lightcone_engine::optics::view::{Method, observe};
-use lightcone_engine::optics::{Eye, mesh};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::ObserveReport;
 use lightcone_engine::scene::{self, Effect, Effects};
-use lightcone_engine::spacetime::Event;
 use lightcone_engine::world::PUCK_SEGMENTS;
 
 /// Parses `--effects`: `scene` (as the scene says), `all`, `none`, or a
@@ -81,7 +80,7 @@ pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) 
             return ExitCode::FAILURE;
         }
     };
-    let Some(spec) = scene.observer(observer) else {
+    let Some(index) = scene.observers.iter().position(|o| o.name == observer) else {
         let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
         eprintln!(
             "{}: no observer named \"{observer}\"; the scene has: {}",
@@ -92,11 +91,8 @@ pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) 
     };
     let mut billiard = Billiard::from_scene(&scene);
     billiard.advance_to(at);
-    let v = spec.u.velocity(scene.c);
-    let eye = Eye {
-        event: Event::new(at, spec.position + v * at),
-        u: spec.u,
-    };
+    let spec = &scene.observers[index];
+    let (eye, _) = crate::render::frame::eye_of(&scene, index, at);
     let shapes: Vec<_> = scene
         .pucks
         .iter()
