@@ -2,7 +2,9 @@
 //! interactive front end. The physics and optics live in `lightcone-engine`.
 
 pub mod commands;
+pub mod lesson;
 pub mod play;
+pub mod python;
 pub mod render;
 
 /// The scene used when none is named.

@@ -20,9 +20,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Play: the interactive game on a scene (the default scene if none).
+    /// Play: the interactive game on a scene (the default scene if none),
+    /// or a Python lesson (`.py`).
     Play {
-        /// Scene file (TOML).
+        /// Scene file (TOML) or lesson (`.py`).
         scene: Option<PathBuf>,
         /// Save a screenshot of the window (with its panels) to this PNG
         /// after `--frames` frames, then quit.
@@ -88,6 +89,22 @@ enum Command {
         #[arg(long, value_enum, default_value = "seen")]
         view: ViewArg,
     },
+    /// Run a Python lesson headless: its hooks, questions answered with
+    /// the lesson's answer, and its claims checked. Fails if the lesson
+    /// raises or a claim does not hold.
+    Lesson {
+        /// Lesson file (`.py`).
+        lesson: PathBuf,
+        /// Stop at this board time (s) if the lesson has not finished.
+        #[arg(long, default_value_t = 600.0)]
+        until: f64,
+        /// Frames per real second to step (the lesson's time_scale applies).
+        #[arg(long, default_value_t = 30.0)]
+        fps: f64,
+        /// Print the outcome as one JSON object (schema in the README).
+        #[arg(long)]
+        json: bool,
+    },
     /// Measure the engine and print the figures of BENCHMARKS.md.
     Bench {
         /// What to measure: `physics`.
@@ -147,6 +164,12 @@ fn main() -> ExitCode {
             };
             commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
         }
+        Some(Command::Lesson {
+            lesson,
+            until,
+            fps,
+            json,
+        }) => commands::lesson::run(&lesson, until, fps, json),
         Some(Command::Bench { what, quick, csv }) => match what {
             BenchWhat::Physics => commands::bench::run(quick),
             BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),

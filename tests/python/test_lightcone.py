@@ -112,3 +112,10 @@ def test_render_writes_a_png(tmp_path):
     assert len(data) > 500
     with pytest.raises(ValueError):
         sim.render(str(out), view="sideways")
+
+
+def test_world_is_only_made_by_the_game():
+    """Lessons receive a World from `lightcone play`; Python cannot make one."""
+    assert "World" in lightcone.__all__
+    with pytest.raises(TypeError):
+        lightcone.World()

@@ -4,6 +4,7 @@ pub mod bench;
 pub mod bench_optics;
 pub mod bench_render;
 pub mod check;
+pub mod lesson;
 pub mod observe;
 pub mod play;
 pub mod render;

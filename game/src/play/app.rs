@@ -7,14 +7,16 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use glam::{DVec2, DVec3, Vec4};
-use lightcone_engine::scene::{Effect, Scene};
+use lightcone_engine::scene::Effect;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
+use super::lesson_panel::{self, LessonAction};
 use super::state::{GameState, ViewMode};
+use crate::lesson::LessonHost;
 use crate::render::frame::{self, Camera, FrameVertex, ViewKind};
 use crate::render::gpu::{self, Gpu};
 use crate::render::headless::BACKGROUND;
@@ -22,8 +24,10 @@ use crate::render::pipeline::{Draw, Renderer};
 
 /// How `play` runs.
 pub struct Options {
-    /// The scene.
-    pub scene: Scene,
+    /// The game to start with.
+    pub game: GameState,
+    /// The lesson driving it, if one was given.
+    pub lesson: Option<LessonHost>,
     /// Save a screenshot of frame `frames` to this PNG and quit (for docs
     /// and the Xvfb test).
     pub screenshot: Option<PathBuf>,
@@ -36,9 +40,18 @@ pub fn run(options: Options) -> Result<(), String> {
     let event_loop = EventLoop::new().map_err(|e| {
         format!("cannot open a window ({e}); on a machine without a display, use `lightcone render`, or run under Xvfb")
     })?;
+    let Options {
+        game,
+        lesson,
+        screenshot,
+        frames,
+    } = options;
     let mut app = App {
-        state: GameState::new(options.scene.clone()),
-        options,
+        state: game,
+        lesson,
+        screenshot,
+        frames,
+        reload_checked: Instant::now(),
         gfx: None,
         last: Instant::now(),
         frame: 0,
@@ -47,6 +60,7 @@ pub fn run(options: Options) -> Result<(), String> {
         looking: false,
         aiming: None,
         scene_left: 0.0,
+        scene_right: 0.0,
         result: Ok(()),
     };
     event_loop
@@ -67,8 +81,13 @@ struct Gfx {
 }
 
 struct App {
-    options: Options,
     state: GameState,
+    lesson: Option<LessonHost>,
+    /// Screenshot path and frame count (see [`Options`]).
+    screenshot: Option<PathBuf>,
+    frames: u32,
+    /// When the lesson file was last looked at for edits.
+    reload_checked: Instant,
     gfx: Option<Gfx>,
     last: Instant,
     frame: u32,
@@ -77,8 +96,10 @@ struct App {
     looking: bool,
     /// Puck being aimed and where the drag started (physical px).
     aiming: Option<(usize, DVec2)>,
-    /// Left edge (physical px) of the area the panels leave for the views.
+    /// Left and right edges (physical px) of the area the panels leave for
+    /// the views.
     scene_left: f32,
+    scene_right: f32,
     result: Result<(), String>,
 }
 
@@ -114,7 +135,10 @@ fn project(camera: &Camera, rect: [f32; 4], p: DVec3) -> Option<DVec2> {
 impl App {
     fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
         let attributes = Window::default_attributes()
-            .with_title(format!("Lightcone: {}", self.state.scene.title))
+            .with_title(match &self.lesson {
+                Some(l) => format!("Lightcone lesson: {}", l.path().display()),
+                None => format!("Lightcone: {}", self.state.scene.title),
+            })
             .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
         let window = Arc::new(
             event_loop
@@ -195,6 +219,11 @@ impl App {
             KeyCode::KeyP | KeyCode::Space => s.paused = !s.paused,
             KeyCode::KeyL => s.go_live(),
             KeyCode::KeyX => s.halt(),
+            KeyCode::F5 => {
+                if let Some(lesson) = &mut self.lesson {
+                    lesson.reload(s);
+                }
+            }
             KeyCode::KeyT => {
                 s.view = match s.view {
                     ViewMode::Seen => ViewMode::Truth,
@@ -229,7 +258,12 @@ impl App {
     fn pick_rect(&self) -> Option<([f32; 4], ViewKind)> {
         let gfx = self.gfx.as_ref()?;
         let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
-        layout(self.state.view, self.scene_left, w - self.scene_left, h)
+        let right = if self.scene_right > self.scene_left {
+            self.scene_right
+        } else {
+            w
+        };
+        layout(self.state.view, self.scene_left, right - self.scene_left, h)
             .into_iter()
             .last()
     }
@@ -285,9 +319,18 @@ impl App {
         let dt = (now - self.last).as_secs_f64().min(0.1);
         self.last = now;
         self.fly(dt);
+        let before = self.state.live_time;
         self.state.step(dt);
+        if let Some(lesson) = &mut self.lesson {
+            lesson.after_step(&mut self.state, before);
+            // An edited lesson reloads by itself (checked twice a second).
+            if now - self.reload_checked > std::time::Duration::from_millis(500) {
+                self.reload_checked = now;
+                lesson.reload_if_edited(&mut self.state);
+            }
+        }
         self.frame += 1;
-        let shot = self.options.screenshot.is_some() && self.frame >= self.options.frames;
+        let shot = self.screenshot.is_some() && self.frame >= self.frames;
         if let Err(e) = self.draw(shot) {
             self.result = Err(e);
             event_loop.exit();
@@ -299,11 +342,24 @@ impl App {
     }
 }
 
-/// The egui panels and the clocks drawn on the pucks. Returns the left edge
-/// (physical px) of the area left for the views.
-fn panels(state: &mut GameState, ctx: &egui::Context, ui: &mut egui::Ui, size: (u32, u32)) -> f32 {
+/// The egui panels and the clocks drawn on the pucks. Returns the left and
+/// right edges (physical px) of the area left for the views.
+fn panels(
+    state: &mut GameState,
+    lesson: Option<(&LessonHost, &mut Vec<LessonAction>)>,
+    ctx: &egui::Context,
+    ui: &mut egui::Ui,
+    size: (u32, u32),
+) -> (f32, f32) {
     let ppp = ctx.pixels_per_point();
     let left;
+    let mut right = size.0 as f32;
+    if let Some((host, actions)) = lesson {
+        egui::Panel::right("lesson")
+            .default_size(340.0)
+            .show(ui, |ui| lesson_panel::show(ui, host, actions));
+        right = ui.available_rect_before_wrap().right() * ppp;
+    }
     {
         let s = &mut *state;
         egui::Panel::left("controls")
@@ -431,7 +487,7 @@ fn panels(state: &mut GameState, ctx: &egui::Context, ui: &mut egui::Ui, size: (
         egui::Id::unique("clocks"),
     ));
     let (_, camera) = state.eye_and_camera();
-    for (rect, kind) in layout(state.view, left, size.0 as f32 - left, size.1 as f32) {
+    for (rect, kind) in layout(state.view, left, right - left, size.1 as f32) {
         let effects = kind.effects(state.effects);
         for (i, (e, s)) in state.apparent_centres(&effects).iter().enumerate() {
             let Some(p) = project(&camera, rect, s.position) else {
@@ -454,7 +510,7 @@ fn panels(state: &mut GameState, ctx: &egui::Context, ui: &mut egui::Ui, size: (
             }
         }
     }
-    left
+    (left, right)
 }
 
 impl App {
@@ -472,12 +528,22 @@ impl App {
         let ctx = gfx.egui.clone();
         let size = (gfx.config.width, gfx.config.height);
         let state = &mut self.state;
-        let mut left = self.scene_left;
+        let mut edges = (self.scene_left, self.scene_right);
+        let mut actions = Vec::new();
+        let lesson = self.lesson.as_ref();
         let output = ctx.run_ui(raw, |ui| {
             let ctx = ui.ctx().clone();
-            left = panels(state, &ctx, ui, size);
+            edges = panels(state, lesson.map(|l| (l, &mut actions)), &ctx, ui, size);
         });
-        self.scene_left = left;
+        (self.scene_left, self.scene_right) = edges;
+        if let Some(lesson) = &mut self.lesson {
+            for action in actions {
+                match action {
+                    LessonAction::Answer(i) => lesson.answer(&mut self.state, i),
+                    LessonAction::Reload => lesson.reload(&mut self.state),
+                }
+            }
+        }
         gfx.egui_state
             .handle_platform_output(&gfx.window, output.platform_output);
         let jobs = gfx.egui.tessellate(output.shapes, output.pixels_per_point);
@@ -502,9 +568,15 @@ impl App {
         let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
         let (eye, camera) = self.state.eye_and_camera();
         let mut vertices: Vec<FrameVertex> = Vec::new();
-        for (k, (rect, kind)) in layout(self.state.view, self.scene_left, w - self.scene_left, h)
-            .into_iter()
-            .enumerate()
+        let right = if self.scene_right > self.scene_left {
+            self.scene_right.min(w)
+        } else {
+            w
+        };
+        for (k, (rect, kind)) in
+            layout(self.state.view, self.scene_left, right - self.scene_left, h)
+                .into_iter()
+                .enumerate()
         {
             frame::build(
                 &self.state.billiard,
@@ -580,7 +652,7 @@ impl App {
         for id in &output.textures_delta.free {
             gfx.egui_renderer.free_texture(id);
         }
-        if let (Some((buffer, padded)), Some(path)) = (readback, &self.options.screenshot) {
+        if let (Some((buffer, padded)), Some(path)) = (readback, &self.screenshot) {
             save(gfx, &buffer, padded, path)?;
         }
         gfx.gpu.queue.present(frame);

@@ -3,4 +3,5 @@
 //! window; [`app`] is the winit + wgpu + egui front end.
 
 pub mod app;
+pub mod lesson_panel;
 pub mod state;

@@ -9,8 +9,9 @@
 
 Collision and observation records are the dictionaries that
 `lightcone simulate` and `lightcone observe` print as JSON (README).
+Lessons (`lightcone play LESSON.py`) receive a `World` in their hooks.
 """
 
-from ._lightcone import Scene, SceneError, Simulation
+from ._lightcone import Scene, SceneError, Simulation, World
 
-__all__ = ["Scene", "SceneError", "Simulation"]
+__all__ = ["Scene", "SceneError", "Simulation", "World"]

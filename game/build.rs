@@ -1,0 +1,7 @@
+//! Points the `lightcone` binary and the tests at the libpython they were
+//! linked against (an rpath), so a binary built with pyenv's Python does not
+//! load the system's libpython of the same name at run time.
+
+fn main() {
+    pyo3_build_config::add_libpython_rpath_link_args();
+}

@@ -1,0 +1,523 @@
+//! Lessons: Python scripts run inside the game by an embedded interpreter.
+//!
+//! A lesson is a `.py` file with hooks:
+//!
+//! - `setup(world)` (required): build or load a scene and `world.start(scene)`;
+//! - `on_frame(world, t)`: after every frame in which board time advanced;
+//! - `on_collision(world, event)`: for each collision, with the dict
+//!   `lightcone simulate` prints;
+//! - `on_answer(world, question, choice)`: when the student answers a
+//!   question asked with `world.ask`.
+//!
+//! The interpreter is embedded (`append_to_inittab`, then auto-initialised)
+//! with the game's own copy of the `lightcone` module, so a lesson always
+//! talks to the engine it is shown in, never to a different installed
+//! wheel. The game lends its state to the [`World`] for the length of one
+//! hook call: the hook acts on exactly what the student sees.
+//!
+//! A hook that raises does not take the game down: its traceback is shown,
+//! the hooks stop, the game keeps the state it had (time pauses), and a
+//! reload — of the edited file, without restarting — starts again.
+
+pub mod headless;
+
+use std::ffi::CString;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+use std::time::SystemTime;
+
+use lightcone_engine::report::CollisionLine;
+use lightcone_engine::scene::Scene;
+use pyo3::prelude::*;
+use pyo3::types::{PyModule, PyTuple};
+
+use crate::play::state::GameState;
+use crate::python::{LessonUi, World};
+
+/// The `lightcone` package's Python side, installed in the embedded
+/// interpreter around the embedded extension module.
+const PACKAGE_INIT: &str = include_str!("../../../py/python/lightcone/__init__.py");
+
+/// Starts the embedded interpreter once, with `lightcone` importable.
+fn init_python() -> Result<(), String> {
+    static INIT: Once = Once::new();
+    INIT.call_once(|| {
+        use crate::python::lightcone_embedded;
+        pyo3::append_to_inittab!(lightcone_embedded);
+        Python::initialize();
+    });
+    Python::attach(|py| {
+        if py
+            .import("sys")?
+            .getattr("modules")?
+            .contains("lightcone")?
+        {
+            return Ok(());
+        }
+        let code = CString::new(format!(
+            "import sys, types\n\
+             import lightcone_embedded as _m\n\
+             sys.modules['lightcone._lightcone'] = _m\n\
+             pkg = types.ModuleType('lightcone')\n\
+             pkg.__path__ = []\n\
+             pkg.__package__ = 'lightcone'\n\
+             pkg.__file__ = '<lightcone game>/lightcone/__init__.py'\n\
+             sys.modules['lightcone'] = pkg\n\
+             exec(compile({PACKAGE_INIT:?}, pkg.__file__, 'exec'), pkg.__dict__)\n"
+        ))
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        py.run(&code, None, None)
+    })
+    .map_err(|e| format!("cannot start the embedded Python: {e}"))
+}
+
+/// The traceback of `err` as Python prints it.
+fn traceback(py: Python<'_>, err: &PyErr) -> String {
+    let formatted = py.import("traceback").and_then(|tb| {
+        let lines = tb.call_method1(
+            "format_exception",
+            (
+                err.get_type(py),
+                err.value(py),
+                err.traceback(py)
+                    .map_or_else(|| py.None().into_bound(py), |t| t.into_any()),
+            ),
+        )?;
+        lines.extract::<Vec<String>>()
+    });
+    match formatted {
+        Ok(lines) => lines.concat().trim_end().to_owned(),
+        Err(_) => err.to_string(),
+    }
+}
+
+/// One lesson, running or failed.
+pub struct LessonHost {
+    path: PathBuf,
+    /// The lesson's module (its globals), while it loads and runs.
+    module: Option<Py<PyModule>>,
+    world: Py<World>,
+    /// What the game holds while its real state is lent to the world.
+    spare: Option<GameState>,
+    /// Collisions already passed to `on_collision`.
+    seen_collisions: usize,
+    /// The world's generation those collisions belong to.
+    generation: u64,
+    /// The file's modification time at the last (re)load.
+    modified: Option<SystemTime>,
+    /// The traceback (or other message) of the failure that stopped the
+    /// hooks, shown until a reload works.
+    pub error: Option<String>,
+    /// How many times the lesson has been (re)loaded.
+    pub loads: u32,
+}
+
+/// Builds a placeholder game for the host to hold while the real one is lent.
+fn placeholder() -> GameState {
+    let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
+        .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
+    GameState::new(scene)
+}
+
+impl LessonHost {
+    /// Loads the lesson at `path` and runs its `setup`. Returns the host
+    /// and the game to show: the lesson's, or — when the lesson fails
+    /// before starting a game — `fallback`'s, with the error kept in
+    /// [`Self::error`] for the screen. Fails only when Python itself cannot
+    /// start.
+    pub fn load(
+        path: &Path,
+        fallback: impl FnOnce() -> GameState,
+    ) -> Result<(Self, GameState), String> {
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .map(Path::to_path_buf)
+            .unwrap_or_else(|| PathBuf::from("."));
+        init_python()?;
+        let world = Python::attach(|py| Py::new(py, World::new(dir)))
+            .map_err(|e| format!("cannot start the lesson host: {e}"))?;
+        let mut host = Self {
+            path: path.to_path_buf(),
+            module: None,
+            world,
+            spare: Some(placeholder()),
+            seen_collisions: 0,
+            generation: 0,
+            modified: None,
+            error: None,
+            loads: 0,
+        };
+        let game = host.start().unwrap_or_else(fallback);
+        Ok((host, game))
+    }
+
+    /// The lesson file.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Reads and runs the file, then `setup(world)`. The new game, or
+    /// `None` with [`Self::error`] set.
+    fn start(&mut self) -> Option<GameState> {
+        self.loads += 1;
+        self.modified = modified(&self.path);
+        let source = match std::fs::read_to_string(&self.path) {
+            Ok(s) => s,
+            Err(e) => {
+                self.fail(format!(
+                    "{}: cannot read the lesson: {e}",
+                    self.path.display()
+                ));
+                return None;
+            }
+        };
+        let result = Python::attach(|py| -> PyResult<Option<GameState>> {
+            let code = CString::new(source).map_err(|_| {
+                pyo3::exceptions::PySyntaxError::new_err("the lesson contains a NUL byte")
+            })?;
+            let file = CString::new(self.path.display().to_string()).unwrap_or_default();
+            let name = CString::new(format!("lightcone_lesson_{}", self.loads)).unwrap_or_default();
+            // The lesson's own directory comes first on sys.path, so it can
+            // import helpers beside it.
+            let dir = self.world.borrow(py).dir.display().to_string();
+            let sys_path = py.import("sys")?.getattr("path")?;
+            if !sys_path.contains(&dir)? {
+                sys_path.call_method1("insert", (0, &dir))?;
+            }
+            let module = PyModule::from_code(py, &code, &file, &name)?;
+            if !module.hasattr("setup")? {
+                return Err(pyo3::exceptions::PyAttributeError::new_err(format!(
+                    "{}: a lesson needs a function setup(world) that calls world.start(scene)",
+                    self.path.display()
+                )));
+            }
+            // A fresh world (screen, attributes, no game): setup builds it.
+            let dir = self.world.borrow(py).dir.clone();
+            self.world = Py::new(py, World::new(dir))?;
+            let world = self.world.bind(py);
+            module.call_method1("setup", (world,))?;
+            let game = world.borrow_mut().game.take();
+            if game.is_none() {
+                return Err(pyo3::exceptions::PyRuntimeError::new_err(format!(
+                    "{}: setup(world) did not call world.start(scene)",
+                    self.path.display()
+                )));
+            }
+            self.module = Some(module.unbind());
+            Ok(game)
+        });
+        match result {
+            Ok(game) => {
+                self.error = None;
+                self.generation = Python::attach(|py| self.world.borrow(py).generation);
+                self.seen_collisions = 0;
+                game
+            }
+            Err(e) => {
+                let text = Python::attach(|py| traceback(py, &e));
+                self.module = None;
+                self.fail(text);
+                None
+            }
+        }
+    }
+
+    /// Stops the hooks and keeps `message` for the screen (and stderr, for
+    /// whoever started the game from a terminal).
+    fn fail(&mut self, message: String) {
+        eprintln!("lesson {} stopped:\n{message}", self.path.display());
+        self.error = Some(message);
+    }
+
+    /// Reloads the lesson file (edited or not) and runs `setup` again. On
+    /// success the game is replaced by the lesson's new one; on failure the
+    /// game is left exactly as it was and the error is shown.
+    pub fn reload(&mut self, game: &mut GameState) {
+        if let Some(new) = self.start() {
+            *game = new;
+        } else {
+            game.paused = true;
+        }
+    }
+
+    /// Reloads when the file changed on disk since the last load.
+    pub fn reload_if_edited(&mut self, game: &mut GameState) -> bool {
+        let now = modified(&self.path);
+        if now.is_some() && now != self.modified {
+            self.reload(game);
+            true
+        } else {
+            false
+        }
+    }
+
+    /// What the lesson shows (text, question, claims, charts).
+    pub fn ui(&self) -> LessonUi {
+        Python::attach(|py| self.world.borrow(py).ui.clone())
+    }
+
+    /// Whether hooks run (the lesson loaded and has not failed).
+    pub fn running(&self) -> bool {
+        self.module.is_some() && self.error.is_none()
+    }
+
+    /// Calls `hook(world, *args)` if the lesson defines it, with the game
+    /// lent to the world. A raise stops the hooks and pauses the game.
+    fn call<F>(&mut self, game: &mut GameState, hook: &str, args: F)
+    where
+        F: for<'py> FnOnce(Python<'py>, &Bound<'py, World>) -> PyResult<Bound<'py, PyTuple>>,
+    {
+        if !self.running() {
+            return;
+        }
+        let Some(spare) = self.spare.take() else {
+            return;
+        };
+        let lent = std::mem::replace(game, spare);
+        let result = Python::attach(|py| {
+            let world = self.world.bind(py);
+            world.borrow_mut().game = Some(lent);
+            let result = match &self.module {
+                Some(m) => {
+                    let m = m.bind(py);
+                    match m.getattr(hook) {
+                        Ok(f) => args(py, world).and_then(|a| f.call1(a).map(|_| ())),
+                        Err(_) => Ok(()),
+                    }
+                }
+                None => Ok(()),
+            };
+            let back = world.borrow_mut().game.take();
+            let generation = world.borrow().generation;
+            (
+                back,
+                generation,
+                result.map_err(|e| format!("in {hook}:\n{}", traceback(py, &e))),
+            )
+        });
+        let (back, generation, outcome) = result;
+        // The world always holds a game inside a hook (start replaces, it
+        // never removes), so `back` is the lent game or a restarted one.
+        if let Some(back) = back {
+            self.spare = Some(std::mem::replace(game, back));
+        } else {
+            self.spare = Some(placeholder());
+        }
+        if generation != self.generation {
+            self.generation = generation;
+            self.seen_collisions = 0;
+        }
+        if let Err(e) = outcome {
+            game.paused = true;
+            self.fail(e);
+        }
+    }
+
+    /// Runs the hooks due after a frame: `on_collision` for each new
+    /// collision, then `on_frame` if board time advanced since `before`.
+    pub fn after_step(&mut self, game: &mut GameState, before: f64) {
+        let n = game.billiard.collisions().len();
+        if n < self.seen_collisions {
+            // The game restarted under the lesson (the c slider).
+            self.seen_collisions = 0;
+        }
+        while self.running() && self.seen_collisions < game.billiard.collisions().len() {
+            let i = self.seen_collisions;
+            self.seen_collisions += 1;
+            let line = CollisionLine::new(&game.billiard, &game.billiard.collisions()[i]);
+            let text = match serde_json::to_string(&line) {
+                Ok(t) => t,
+                Err(_) => continue,
+            };
+            self.call(game, "on_collision", move |py, world| {
+                let event = py.import("json")?.call_method1("loads", (text,))?;
+                PyTuple::new(py, [world.clone().into_any(), event])
+            });
+        }
+        if game.live_time > before {
+            let t = game.live_time;
+            self.call(game, "on_frame", move |py, world| {
+                PyTuple::new(
+                    py,
+                    [world.clone().into_any(), t.into_pyobject(py)?.into_any()],
+                )
+            });
+        }
+    }
+
+    /// The student chose `choice` for the open question: record it, resume
+    /// time if the question paused it, and run `on_answer`.
+    pub fn answer(&mut self, game: &mut GameState, choice: usize) {
+        let asked = Python::attach(|py| {
+            let mut w = self.world.borrow_mut(py);
+            let q = w.ui.question.as_mut()?;
+            if q.chosen.is_some() || choice >= q.choices.len() {
+                return None;
+            }
+            q.chosen = Some(choice);
+            Some((q.text.clone(), q.choices[choice].clone(), q.resume))
+        });
+        let Some((question, chosen, resume)) = asked else {
+            return;
+        };
+        if resume {
+            game.paused = false;
+        }
+        self.call(game, "on_answer", move |py, world| {
+            PyTuple::new(
+                py,
+                [
+                    world.clone().into_any(),
+                    question.into_pyobject(py)?.into_any(),
+                    chosen.into_pyobject(py)?.into_any(),
+                ],
+            )
+        });
+    }
+}
+
+fn modified(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
+}
+
+impl LessonHost {
+    /// Looks at the lesson's screen without copying it.
+    pub fn with_ui<R>(&self, f: impl FnOnce(&LessonUi) -> R) -> R {
+        Python::attach(|py| f(&self.world.borrow(py).ui))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fallback() -> GameState {
+        placeholder()
+    }
+
+    fn lesson(title: &str, extra: &str) -> String {
+        format!(
+            "import lightcone\n\
+             def setup(world):\n\
+             \x20   s = lightcone.Scene(title={title:?})\n\
+             \x20   s.add_puck('a', (0.5, 0.71), beta=(0.5, 0.0))\n\
+             \x20   world.start(s)\n\
+             {extra}\n"
+        )
+    }
+
+    fn write(path: &Path, text: &str, age_s: u64) {
+        std::fs::write(path, text).unwrap();
+        // A distinct modification time, whatever the file system's clock
+        // resolution.
+        let t = SystemTime::now() + std::time::Duration::from_secs(age_s);
+        let f = std::fs::File::options().write(true).open(path).unwrap();
+        f.set_modified(t).unwrap();
+    }
+
+    fn temp(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("lightcone-host-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    #[test]
+    fn an_edited_lesson_reloads_and_a_broken_edit_keeps_the_game() {
+        let path = temp("reload.py");
+        write(&path, &lesson("v1", ""), 0);
+        let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+        assert!(host.error.is_none(), "{:?}", host.error);
+        assert_eq!(game.scene.title, "v1");
+        assert!(!host.reload_if_edited(&mut game), "nothing changed yet");
+
+        write(&path, &lesson("v2", ""), 10);
+        assert!(host.reload_if_edited(&mut game));
+        assert_eq!(game.scene.title, "v2");
+        game.step(0.5);
+
+        // A syntax error: the game is kept as it was, the error is shown.
+        write(&path, "def setup(world):\n    world.start(\n", 20);
+        assert!(host.reload_if_edited(&mut game));
+        let error = host.error.clone().expect("an error");
+        assert!(error.contains("SyntaxError"), "{error}");
+        assert!(error.contains("line 2"), "{error}");
+        assert_eq!(game.scene.title, "v2");
+        assert!((game.live_time - 0.5).abs() < 1e-12);
+        assert!(!host.running());
+
+        // Fixed: it runs again, from the start.
+        write(&path, &lesson("v3", ""), 30);
+        assert!(host.reload_if_edited(&mut game));
+        assert!(host.error.is_none());
+        assert!(host.running());
+        assert_eq!(game.scene.title, "v3");
+        assert_eq!(game.live_time, 0.0);
+    }
+
+    #[test]
+    fn a_question_pauses_until_answered_and_on_answer_runs() {
+        let path = temp("ask.py");
+        let extra = "    world.ask('which?', ['a', 'b'], answer=1)\n\
+                     def on_answer(world, question, choice):\n\
+                     \x20   world.say(question + ' ' + choice)\n\
+                     \x20   world.check('answered', choice == 'b')\n";
+        write(&path, &lesson("ask", extra), 0);
+        let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+        assert!(host.error.is_none(), "{:?}", host.error);
+        assert!(game.paused, "the question pauses the game");
+        game.step(1.0);
+        assert_eq!(game.live_time, 0.0);
+        host.answer(&mut game, 5); // not a choice: ignored
+        assert!(game.paused);
+        host.answer(&mut game, 1);
+        assert!(!game.paused, "answering resumes");
+        let ui = host.ui();
+        assert_eq!(ui.text, "which? b");
+        assert_eq!(ui.question.and_then(|q| q.chosen), Some(1));
+        assert!(ui.claims[0].ok);
+        host.answer(&mut game, 0); // already answered: ignored
+        assert_eq!(host.ui().question.and_then(|q| q.chosen), Some(1));
+    }
+
+    #[test]
+    fn hooks_see_the_lent_game_and_a_world_outside_a_hook_says_so() {
+        let path = temp("lend.py");
+        let extra = "    world.kept = world\n\
+                     def on_frame(world, t):\n\
+                     \x20   world.check('t is the game time', abs(world.t - t) < 1e-12, str(t))\n\
+                     \x20   world.impulse('a', (0.1, 0.0))\n\
+                     def on_collision(world, event):\n\
+                     \x20   world.check('cushion', event['kind'] == 'cushion')\n";
+        write(&path, &lesson("lend", extra), 0);
+        let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+        assert!(host.error.is_none(), "{:?}", host.error);
+        let u0 = game.billiard.worldline(0).velocity_at(0.0).0.x;
+        let before = game.live_time;
+        game.step(0.1);
+        host.after_step(&mut game, before);
+        assert!(host.error.is_none(), "{:?}", host.error);
+        // The impulse made in on_frame changed the game that is shown.
+        let u1 = game.billiard.worldline(0).velocity_at(game.live_time).0.x;
+        assert!((u1 - u0 - 0.1).abs() < 1e-12, "{u0} → {u1}");
+        // Outside a hook the world has no game: a clear error, no crash.
+        Python::attach(|py| {
+            let kept = host.world.bind(py).getattr("kept").unwrap();
+            let err = kept.getattr("t").unwrap_err();
+            assert!(err.to_string().contains("only inside a hook"), "{err}");
+        });
+        // Run to the cushion: on_collision sees it.
+        for _ in 0..40 {
+            let before = game.live_time;
+            game.step(0.1);
+            host.after_step(&mut game, before);
+        }
+        assert!(host.error.is_none(), "{:?}", host.error);
+        assert!(
+            host.ui()
+                .claims
+                .iter()
+                .any(|c| c.claim == "cushion" && c.ok)
+        );
+    }
+}

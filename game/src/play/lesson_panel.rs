@@ -1,0 +1,147 @@
+//! The lesson's panel: its text, the open question with a button per
+//! choice, its charts, the claims it checked, and — when it failed — its
+//! traceback, with a reload button.
+
+use egui::{Color32, RichText};
+
+use crate::lesson::LessonHost;
+use crate::python::{Bars, LessonUi};
+
+/// What the student did in the panel (applied after the frame's UI).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LessonAction {
+    /// Chose answer `i` to the open question.
+    Answer(usize),
+    /// Asked to reload the lesson file.
+    Reload,
+}
+
+/// Draws the panel for `host`; clicks become `actions`.
+pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<LessonAction>) {
+    let name = host.path().file_name().map_or_else(
+        || host.path().display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    ui.horizontal(|ui| {
+        ui.heading(format!("Lesson: {name}"));
+        if ui.button("reload (F5)").clicked() {
+            actions.push(LessonAction::Reload);
+        }
+    });
+    ui.separator();
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        if let Some(error) = &host.error {
+            ui.colored_label(
+                Color32::from_rgb(255, 110, 110),
+                "The lesson stopped with an error. The game keeps its last state; fix the file and save (it reloads), or press reload.",
+            );
+            ui.add(
+                egui::Label::new(
+                    RichText::new(error)
+                        .monospace()
+                        .color(Color32::from_rgb(255, 170, 170)),
+                )
+                .wrap(),
+            );
+            ui.separator();
+        }
+        host.with_ui(|lesson| contents(ui, lesson, actions));
+    });
+}
+
+fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<LessonAction>) {
+    if !lesson.text.is_empty() {
+        ui.label(RichText::new(&lesson.text).size(15.0));
+        ui.separator();
+    }
+    if let Some(q) = &lesson.question {
+        ui.label(RichText::new(&q.text).strong().color(Color32::LIGHT_YELLOW));
+        match q.chosen {
+            None => {
+                ui.label("Time is paused: predict, then choose.");
+                for (i, choice) in q.choices.iter().enumerate() {
+                    if ui.button(choice).clicked() {
+                        actions.push(LessonAction::Answer(i));
+                    }
+                }
+            }
+            Some(i) => {
+                let chosen = &q.choices[i];
+                match q.answer {
+                    Some(a) if a == i => {
+                        ui.colored_label(Color32::LIGHT_GREEN, format!("{chosen}: right."));
+                    }
+                    Some(a) => {
+                        ui.colored_label(
+                            Color32::LIGHT_RED,
+                            format!("{chosen}: not quite; the answer is {}.", q.choices[a]),
+                        );
+                    }
+                    None => {
+                        ui.label(format!("You chose {chosen}."));
+                    }
+                }
+            }
+        }
+        ui.separator();
+    }
+    for chart in &lesson.bars {
+        bars(ui, chart);
+    }
+    if !lesson.claims.is_empty() {
+        ui.label("checked:");
+        for c in &lesson.claims {
+            let (mark, colour) = if c.ok {
+                ("✔", Color32::LIGHT_GREEN)
+            } else {
+                ("✘", Color32::LIGHT_RED)
+            };
+            ui.colored_label(colour, format!("{mark} {}", c.claim));
+            if !c.detail.is_empty() {
+                ui.small(&c.detail);
+            }
+        }
+    }
+    if let Some(msg) = &lesson.finished {
+        ui.separator();
+        ui.colored_label(Color32::LIGHT_GREEN, format!("Lesson complete. {msg}"));
+    }
+}
+
+/// A bar chart with the expected values as a line over it.
+fn bars(ui: &mut egui::Ui, chart: &Bars) {
+    ui.label(RichText::new(&chart.title).strong());
+    let width = ui.available_width().max(100.0);
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 140.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 2.0, Color32::from_gray(30));
+    let top = chart
+        .counts
+        .iter()
+        .chain(chart.expected.iter().flatten())
+        .fold(0.0f64, |m, &x| m.max(x))
+        .max(1e-300);
+    let (lo, hi) = (chart.edges[0], chart.edges[chart.edges.len() - 1]);
+    let span = (hi - lo).max(1e-300);
+    let x = |v: f64| rect.left() + ((v - lo) / span) as f32 * rect.width();
+    let y = |v: f64| rect.bottom() - (v / top) as f32 * (rect.height() - 4.0);
+    for (i, &c) in chart.counts.iter().enumerate() {
+        let r = egui::Rect::from_min_max(
+            egui::pos2(x(chart.edges[i]) + 1.0, y(c)),
+            egui::pos2(x(chart.edges[i + 1]) - 1.0, rect.bottom()),
+        );
+        painter.rect_filled(r, 0.0, Color32::from_rgb(90, 150, 230));
+    }
+    if let Some(expected) = &chart.expected {
+        let points: Vec<egui::Pos2> = expected
+            .iter()
+            .enumerate()
+            .map(|(i, &e)| egui::pos2(x((chart.edges[i] + chart.edges[i + 1]) / 2.0), y(e)))
+            .collect();
+        painter.add(egui::Shape::line(
+            points,
+            egui::Stroke::new(2.0, Color32::from_rgb(255, 200, 80)),
+        ));
+    }
+    ui.small(format!("{lo:.3} … {hi:.3}; line: expected"));
+}

@@ -1,0 +1,185 @@
+//! `lightcone.Scene`: a validated scene, loaded or built in code.
+
+use glam::DVec3;
+use lightcone_engine::scene::{self, Effect};
+use lightcone_engine::spacetime::ProperVelocity;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use super::{SceneError, effect};
+
+/// A validated scene (see the README's "Scene files").
+#[pyclass(module = "lightcone._lightcone")]
+#[derive(Clone)]
+pub struct Scene {
+    pub(crate) inner: scene::Scene,
+}
+
+#[pymethods]
+impl Scene {
+    /// Reads and validates a scene file. Raises SceneError naming the
+    /// file, line and field of every problem.
+    #[staticmethod]
+    fn load(path: std::path::PathBuf) -> PyResult<Self> {
+        scene::load(&path)
+            .map(|inner| Self { inner })
+            .map_err(|e| SceneError::new_err(e.to_string()))
+    }
+
+    /// Parses and validates scene TOML text; `name` is used in messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, name = "<string>"))]
+    fn from_toml(text: &str, name: &str) -> PyResult<Self> {
+        scene::parse(text, name)
+            .map(|inner| Self { inner })
+            .map_err(|e| SceneError::new_err(e.to_string()))
+    }
+
+    /// An empty scene on a table of `size` metres (default: a match carom
+    /// table) with speed of light `c` (default: light crosses the long side
+    /// in 2 s).
+    #[new]
+    #[pyo3(signature = (size = (2.84, 1.42), c = None, title = "scene"))]
+    fn new(size: (f64, f64), c: Option<f64>, title: &str) -> PyResult<Self> {
+        let mut inner = scene::Scene::empty(glam::DVec2::new(size.0, size.1), c)
+            .map_err(SceneError::new_err)?;
+        inner.title = title.to_owned();
+        Ok(Self { inner })
+    }
+
+    /// Adds a puck; give at most one of `beta` (v/c) or `u` (γβ). Raises
+    /// SceneError if it would be invalid (speed ≥ c, off the table,
+    /// overlapping, duplicate name …).
+    #[pyo3(signature = (name, position, beta = None, u = None, radius = 0.0305, height = 0.02, mass = 0.21, color = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_puck(
+        &mut self,
+        name: &str,
+        position: (f64, f64),
+        beta: Option<(f64, f64)>,
+        u: Option<(f64, f64)>,
+        radius: f64,
+        height: f64,
+        mass: f64,
+        color: Option<&str>,
+    ) -> PyResult<()> {
+        let u = match (beta, u) {
+            (Some(_), Some(_)) => {
+                return Err(SceneError::new_err("give at most one of beta and u"));
+            }
+            (Some(b), None) => ProperVelocity::try_from_beta(DVec3::new(b.0, b.1, 0.0))
+                .map_err(|e| SceneError::new_err(format!("puck {name:?}: {e}")))?,
+            (None, Some(u)) => ProperVelocity(DVec3::new(u.0, u.1, 0.0)),
+            (None, None) => ProperVelocity::ZERO,
+        };
+        let color = match color {
+            None => scene::Color::default_for(self.inner.pucks.len()),
+            Some(c) => scene::Color::parse(c).ok_or_else(|| {
+                SceneError::new_err(format!("{c:?} is not a colour: use \"#rrggbb\" or a name"))
+            })?,
+        };
+        self.inner
+            .add_puck(scene::PuckSpec {
+                name: name.to_owned(),
+                position: glam::DVec2::new(position.0, position.1),
+                u,
+                radius,
+                height,
+                mass,
+                color,
+            })
+            .map_err(SceneError::new_err)
+    }
+
+    /// Adds an observer (the first replaces the default eye).
+    #[pyo3(signature = (name, position, look_at = None, beta = None))]
+    fn add_observer(
+        &mut self,
+        name: &str,
+        position: (f64, f64, f64),
+        look_at: Option<(f64, f64, f64)>,
+        beta: Option<(f64, f64, f64)>,
+    ) -> PyResult<()> {
+        let size = self.inner.table.size;
+        let look_at = look_at.map_or(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0), DVec3::from);
+        let u = match beta {
+            None => ProperVelocity::ZERO,
+            Some(b) => ProperVelocity::try_from_beta(DVec3::from(b))
+                .map_err(|e| SceneError::new_err(format!("observer {name:?}: {e}")))?,
+        };
+        self.inner
+            .add_observer(scene::ObserverSpec {
+                name: name.to_owned(),
+                position: DVec3::from(position),
+                look_at,
+                u,
+            })
+            .map_err(SceneError::new_err)
+    }
+
+    /// Turns an effect on or off (`contraction`, `light_delay`,
+    /// `aberration`, `doppler`, `searchlight`, `time_dilation`).
+    fn set_effect(&mut self, name: &str, on: bool) -> PyResult<()> {
+        self.inner.effects.set(effect(name)?, on);
+        Ok(())
+    }
+
+    /// Speed of light, m/s.
+    #[getter]
+    fn c(&self) -> f64 {
+        self.inner.c
+    }
+
+    /// Sets the speed of light, m/s (positive and finite).
+    #[setter]
+    fn set_c(&mut self, c: f64) -> PyResult<()> {
+        if !(c.is_finite() && c > 0.0) {
+            return Err(SceneError::new_err(format!(
+                "c = {c} must be a positive finite number of m/s"
+            )));
+        }
+        self.inner.c = c;
+        Ok(())
+    }
+
+    /// Scene title.
+    #[getter]
+    fn title(&self) -> String {
+        self.inner.title.clone()
+    }
+
+    /// Puck names, in file order.
+    #[getter]
+    fn pucks(&self) -> Vec<String> {
+        self.inner.pucks.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// Observer names, in file order.
+    #[getter]
+    fn observers(&self) -> Vec<String> {
+        self.inner
+            .observers
+            .iter()
+            .map(|o| o.name.clone())
+            .collect()
+    }
+
+    /// The effects as a dict of flags.
+    #[getter]
+    fn effects<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for e in Effect::ALL {
+            d.set_item(e.key(), self.inner.effects.is_on(e))?;
+        }
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Scene({:?}, {} pucks, c = {} m/s)",
+            self.inner.title,
+            self.inner.pucks.len(),
+            self.inner.c
+        )
+    }
+}

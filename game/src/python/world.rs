@@ -1,0 +1,444 @@
+//! `lightcone.World`: what a lesson's hooks are given. It is the running
+//! game (board time, pucks, effects, view) plus the lesson's voice on
+//! screen: text, questions that pause for a prediction, checked claims and
+//! bar charts.
+//!
+//! The game lends its state to the world for the length of one hook call
+//! ([`crate::lesson::LessonHost`]), so a hook acts on exactly what the
+//! student sees; outside a hook the world has no game, and says so.
+
+use std::path::PathBuf;
+
+use lightcone_engine::scene::Effect;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use super::Scene;
+use crate::play::state::{GameState, ViewMode};
+
+/// A question on screen, waiting for (or answered with) a choice.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Question {
+    /// The question.
+    pub text: String,
+    /// The possible answers, shown as buttons.
+    pub choices: Vec<String>,
+    /// Index of the right answer, if the lesson gave one.
+    pub answer: Option<usize>,
+    /// Index the student chose, once they have.
+    pub chosen: Option<usize>,
+    /// The game was running when the question paused it (so answering
+    /// resumes it).
+    pub resume: bool,
+}
+
+/// A physics claim the lesson checked, shown as ✓ or ✗ (and failing the
+/// headless run when false).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Claim {
+    /// What is claimed.
+    pub claim: String,
+    /// Whether it held.
+    pub ok: bool,
+    /// The numbers behind it.
+    pub detail: String,
+}
+
+/// A bar chart (for instance a speed histogram) with an optional expected
+/// curve drawn over it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bars {
+    /// Title above the chart.
+    pub title: String,
+    /// Bin edges (one more than the counts).
+    pub edges: Vec<f64>,
+    /// Bar heights.
+    pub counts: Vec<f64>,
+    /// Expected heights per bin, drawn as a line.
+    pub expected: Option<Vec<f64>>,
+}
+
+/// Everything the lesson has put on screen.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LessonUi {
+    /// The lesson's current text.
+    pub text: String,
+    /// The current question.
+    pub question: Option<Question>,
+    /// Claims checked so far, in order.
+    pub claims: Vec<Claim>,
+    /// Charts, by title (a chart with the same title replaces the old).
+    pub bars: Vec<Bars>,
+    /// Set by `finish`: the closing message.
+    pub finished: Option<String>,
+}
+
+/// The running game as a lesson sees it. Hooks receive it: `setup(world)`,
+/// `on_frame(world, t)`, `on_collision(world, event)` and
+/// `on_answer(world, question, choice)`. A lesson may keep its own
+/// attributes on it (`world.hits = {}`); a reload starts a fresh world.
+#[pyclass(module = "lightcone._lightcone", unsendable, dict)]
+pub struct World {
+    /// The game, while a hook runs (lent by the host).
+    pub(crate) game: Option<GameState>,
+    /// What the lesson shows.
+    pub(crate) ui: LessonUi,
+    /// Bumped by `start`, so the host knows the collision list restarted.
+    pub(crate) generation: u64,
+    /// The lesson file, to resolve relative paths.
+    pub(crate) dir: PathBuf,
+}
+
+impl World {
+    /// A world with no game yet, for the lesson in directory `dir`.
+    pub fn new(dir: PathBuf) -> Self {
+        Self {
+            game: None,
+            ui: LessonUi::default(),
+            generation: 0,
+            dir,
+        }
+    }
+
+    /// The lesson's screen.
+    pub fn ui(&self) -> &LessonUi {
+        &self.ui
+    }
+
+    fn game(&self) -> PyResult<&GameState> {
+        self.game.as_ref().ok_or_else(no_game)
+    }
+
+    fn game_mut(&mut self) -> PyResult<&mut GameState> {
+        self.game.as_mut().ok_or_else(no_game)
+    }
+}
+
+fn no_game() -> PyErr {
+    PyRuntimeError::new_err(
+        "the world has no game here: call world.start(scene) in setup(world), and use the world only inside a hook",
+    )
+}
+
+#[pymethods]
+impl World {
+    /// Starts (or restarts) the game on `scene` at board time 0. Keeps the
+    /// view, eye choice and time scale the student had.
+    fn start(&mut self, scene: &Scene) {
+        let mut game = GameState::new(scene.inner.clone());
+        if let Some(old) = &self.game {
+            game.view = old.view;
+            game.time_scale = old.time_scale;
+            if old.observer.is_some_and(|i| i < game.scene.observers.len()) {
+                game.observer = old.observer;
+            }
+        }
+        self.game = Some(game);
+        self.generation += 1;
+    }
+
+    /// Loads a scene file; a relative path is taken from the lesson's
+    /// directory. Raises SceneError naming the file, line and field.
+    fn load(&self, path: PathBuf) -> PyResult<Scene> {
+        let path = if path.is_relative() {
+            self.dir.join(path)
+        } else {
+            path
+        };
+        lightcone_engine::scene::load(&path)
+            .map(|inner| Scene { inner })
+            .map_err(|e| super::SceneError::new_err(e.to_string()))
+    }
+
+    /// A copy of the scene being played.
+    #[getter]
+    fn scene(&self) -> PyResult<Scene> {
+        Ok(Scene {
+            inner: self.game()?.scene.clone(),
+        })
+    }
+
+    /// Board time the physics has reached, s.
+    #[getter]
+    fn t(&self) -> PyResult<f64> {
+        Ok(self.game()?.live_time)
+    }
+
+    /// Speed of light, m/s.
+    #[getter]
+    fn c(&self) -> PyResult<f64> {
+        Ok(self.game()?.scene.c)
+    }
+
+    /// Whether time stands still.
+    #[getter]
+    fn paused(&self) -> PyResult<bool> {
+        Ok(self.game()?.paused)
+    }
+
+    #[setter]
+    fn set_paused(&mut self, paused: bool) -> PyResult<()> {
+        self.game_mut()?.paused = paused;
+        Ok(())
+    }
+
+    /// Stops time (the student can still fly and look around).
+    fn pause(&mut self) -> PyResult<()> {
+        self.set_paused(true)
+    }
+
+    /// Lets time run again.
+    fn resume(&mut self) -> PyResult<()> {
+        self.set_paused(false)
+    }
+
+    /// Board seconds per real second.
+    #[getter]
+    fn time_scale(&self) -> PyResult<f64> {
+        Ok(self.game()?.time_scale)
+    }
+
+    #[setter]
+    fn set_time_scale(&mut self, scale: f64) -> PyResult<()> {
+        if !(scale.is_finite() && scale > 0.0 && scale <= 1e6) {
+            return Err(PyValueError::new_err(format!(
+                "time_scale = {scale}: give a number in (0, 1e6]"
+            )));
+        }
+        self.game_mut()?.time_scale = scale;
+        Ok(())
+    }
+
+    /// Which pictures: "seen", "truth" or "split".
+    #[getter]
+    fn view(&self) -> PyResult<&'static str> {
+        Ok(match self.game()?.view {
+            ViewMode::Seen => "seen",
+            ViewMode::Truth => "truth",
+            ViewMode::Split => "split",
+        })
+    }
+
+    #[setter]
+    fn set_view(&mut self, view: &str) -> PyResult<()> {
+        let mode = match view {
+            "seen" => ViewMode::Seen,
+            "truth" => ViewMode::Truth,
+            "split" => ViewMode::Split,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "view {other:?}: use \"seen\", \"truth\" or \"split\""
+                )));
+            }
+        };
+        self.game_mut()?.view = mode;
+        Ok(())
+    }
+
+    /// The scene observer whose eye is used, or None for the free eye.
+    #[getter]
+    fn observer(&self) -> PyResult<Option<String>> {
+        let g = self.game()?;
+        Ok(g.observer
+            .and_then(|i| g.scene.observers.get(i))
+            .map(|o| o.name.clone()))
+    }
+
+    #[setter]
+    fn set_observer(&mut self, name: Option<&str>) -> PyResult<()> {
+        let g = self.game_mut()?;
+        g.observer = match name {
+            None => None,
+            Some(n) => Some(super::observer_index(&g.scene, Some(n))?),
+        };
+        Ok(())
+    }
+
+    /// The effects shown, as a dict of flags.
+    #[getter]
+    fn effects<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let g = self.game()?;
+        let d = PyDict::new(py);
+        for e in Effect::ALL {
+            d.set_item(e.key(), g.effects.is_on(e))?;
+        }
+        Ok(d)
+    }
+
+    /// Turns an effect on or off in the student's view.
+    fn set_effect(&mut self, name: &str, on: bool) -> PyResult<()> {
+        let e = super::effect(name)?;
+        self.game_mut()?.effects.set(e, on);
+        Ok(())
+    }
+
+    /// Every puck now: the `state` dict of `lightcone simulate`.
+    fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let g = self.game()?;
+        super::state(py, &g.billiard, g.live_time)
+    }
+
+    /// Every collision so far, as the dicts `lightcone simulate` prints.
+    fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        super::collisions(py, &self.game()?.billiard)
+    }
+
+    /// The proper velocity γβ of puck `name` now, as (x, y).
+    fn velocity(&self, name: &str) -> PyResult<(f64, f64)> {
+        let g = self.game()?;
+        super::velocity(&g.billiard, name, g.live_time)
+    }
+
+    /// Strikes puck `name` now: its proper velocity γβ grows by `du`.
+    fn impulse(&mut self, name: &str, du: (f64, f64)) -> PyResult<()> {
+        let g = self.game_mut()?;
+        let t = g.live_time;
+        super::impulse(&mut g.billiard, name, t, du)
+    }
+
+    /// What `observer` (default: the first scene observer) sees at board
+    /// time `t` (default: now), as the dict `lightcone observe` prints.
+    /// `effects`: None for those shown, or a list of effect names.
+    #[pyo3(signature = (observer = None, t = None, vertices = false, effects = None))]
+    fn observe<'py>(
+        &self,
+        py: Python<'py>,
+        observer: Option<&str>,
+        t: Option<f64>,
+        vertices: bool,
+        effects: Option<Vec<String>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let g = self.game()?;
+        let t = super::finite_time(t.unwrap_or(g.live_time))?;
+        if t > g.live_time + 1e-12 {
+            return Err(PyValueError::new_err(format!(
+                "t = {t} is after the present ({}): the future is not computed yet",
+                g.live_time
+            )));
+        }
+        let fx = super::effects_from(g.effects, effects)?;
+        super::observation(py, &g.scene, &g.billiard, t, observer, vertices, fx)
+    }
+
+    /// Shows `text` as the lesson's message (replacing the previous one).
+    fn say(&mut self, text: &str) {
+        self.ui.text = text.to_owned();
+    }
+
+    /// Asks the student a question with `choices` (buttons) and pauses
+    /// until they answer; `on_answer(world, question, choice)` then runs.
+    /// `answer`: index of the right choice, to tell the student.
+    #[pyo3(signature = (question, choices, answer = None))]
+    fn ask(&mut self, question: &str, choices: Vec<String>, answer: Option<usize>) -> PyResult<()> {
+        if choices.is_empty() {
+            return Err(PyValueError::new_err("ask: give at least one choice"));
+        }
+        if let Some(a) = answer
+            && a >= choices.len()
+        {
+            return Err(PyValueError::new_err(format!(
+                "ask: answer {a} is not a choice index (0 to {})",
+                choices.len() - 1
+            )));
+        }
+        let g = self.game_mut()?;
+        let resume = !g.paused;
+        g.paused = true;
+        self.ui.question = Some(Question {
+            text: question.to_owned(),
+            choices,
+            answer,
+            chosen: None,
+            resume,
+        });
+        Ok(())
+    }
+
+    /// Records a physics claim: shown as ✓/✗ with `detail`; a false claim
+    /// fails the headless lesson run. Returns `ok`.
+    #[pyo3(signature = (claim, ok, detail = ""))]
+    fn check(&mut self, claim: &str, ok: bool, detail: &str) -> bool {
+        self.ui.claims.push(Claim {
+            claim: claim.to_owned(),
+            ok,
+            detail: detail.to_owned(),
+        });
+        ok
+    }
+
+    /// The claims checked so far, as (claim, ok, detail) tuples.
+    #[getter]
+    fn claims(&self) -> Vec<(String, bool, String)> {
+        self.ui
+            .claims
+            .iter()
+            .map(|c| (c.claim.clone(), c.ok, c.detail.clone()))
+            .collect()
+    }
+
+    /// Draws a bar chart: `counts` over bins with `edges` (one more edge
+    /// than counts), with `expected` per bin drawn as a line.
+    #[pyo3(signature = (title, edges, counts, expected = None))]
+    fn bars(
+        &mut self,
+        title: &str,
+        edges: Vec<f64>,
+        counts: Vec<f64>,
+        expected: Option<Vec<f64>>,
+    ) -> PyResult<()> {
+        if edges.len() != counts.len() + 1 || counts.is_empty() {
+            return Err(PyValueError::new_err(format!(
+                "bars {title:?}: {} edges for {} counts; give one more edge than counts",
+                edges.len(),
+                counts.len()
+            )));
+        }
+        if expected.as_ref().is_some_and(|e| e.len() != counts.len()) {
+            return Err(PyValueError::new_err(format!(
+                "bars {title:?}: expected has a different length from counts"
+            )));
+        }
+        let all = edges.iter().chain(&counts).chain(expected.iter().flatten());
+        if all.clone().any(|x| !x.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "bars {title:?}: every number must be finite"
+            )));
+        }
+        let chart = Bars {
+            title: title.to_owned(),
+            edges,
+            counts,
+            expected,
+        };
+        match self.ui.bars.iter_mut().find(|b| b.title == title) {
+            Some(b) => *b = chart,
+            None => self.ui.bars.push(chart),
+        }
+        Ok(())
+    }
+
+    /// Ends the lesson with a closing `message`.
+    #[pyo3(signature = (message = ""))]
+    fn finish(&mut self, message: &str) {
+        self.ui.finished = Some(message.to_owned());
+    }
+
+    /// Whether `finish` was called.
+    #[getter]
+    fn finished(&self) -> bool {
+        self.ui.finished.is_some()
+    }
+
+    fn __repr__(&self) -> String {
+        match &self.game {
+            Some(g) => format!(
+                "World({:?}, t = {:.3} s, {} pucks)",
+                g.scene.title,
+                g.live_time,
+                g.billiard.len()
+            ),
+            None => "World(no game)".to_owned(),
+        }
+    }
+}
