@@ -1,0 +1,938 @@
+//! CAVE display geometry and head-tracked off-axis projection.
+//!
+//! Why: in a CAVE each wall is a fixed physical window into the scene. The
+//! correct image for a viewer is a perspective from their *tracked eye*
+//! through that window, i.e. an asymmetric (off-axis) frustum whose edges
+//! pass through the wall's corners. This module implements Robert Kooima's
+//! "Generalized Perspective Projection" (2008) for that, plus the config
+//! format describing the walls and how tracker space maps to board space.
+//!
+//! # Coordinate frames
+//!
+//! * **Tracker space**: the tracker's frame, metres. Wall corners and head
+//!   poses are given in it. By default y is up (`up_axis = "y"`, as OpenVR
+//!   and OptiTrack); set `up_axis = "z"` for z-up trackers.
+//! * **Board space**: the game's frame (z up, metres, origin at a table
+//!   corner). A tracker point `p` maps to
+//!   `board = origin + scale * Rz(yaw) * A * p`, where `A` is identity for a
+//!   z-up tracker and the +90° rotation about x (`(x, y, z) -> (x, -z, y)`)
+//!   for a y-up tracker, so tracker "up" becomes board +z and tracker
+//!   "forward" (-z) becomes board +y.
+//!
+//! Projections are computed in tracker space (near/far are tracker metres);
+//! [`CaveConfig::view_projection_board`] appends the board→tracker transform
+//! so the game can feed board-space vertices directly.
+//!
+//! # Config format (TOML)
+//!
+//! ```toml
+//! # Interocular distance in metres (optional, default 0.064).
+//! eye_separation = 0.064
+//!
+//! # How tracker space sits in board space (optional table; defaults shown).
+//! [tracker]
+//! origin = [0.0, 0.0, 0.0]  # board-space position of the tracker origin
+//! yaw_deg = 0.0             # rotation about board +z, degrees
+//! scale = 1.0               # board units per tracker metre
+//! up_axis = "y"             # tracker axis that points up: "y" or "z"
+//!
+//! # One table per projection surface, corners in tracker space (metres),
+//! # as seen by a viewer standing inside the CAVE.
+//! [[wall]]
+//! name = "front"
+//! lower_left  = [-1.5, 0.0, -1.5]
+//! lower_right = [ 1.5, 0.0, -1.5]
+//! upper_left  = [-1.5, 2.5, -1.5]
+//! pixels = [1920, 1600]     # projector resolution, width x height
+//! ```
+//!
+//! Walls must be rectangles (edges at 90° within 0.5°) with non-zero size;
+//! names must be unique. Unknown keys are errors (typos would otherwise be
+//! silently ignored). Every error names the offending field, e.g.
+//! ``wall[2] ("floor").upper_left: must be finite``.
+//!
+//! The file `cave.toml` at the crate root describes a 3 m × 3 m × 2.5 m CAVE
+//! with front, left and right walls and a floor.
+
+use glam::{DMat4, DQuat, DVec3, DVec4};
+use serde::Deserialize;
+use std::path::Path;
+use thiserror::Error;
+
+/// Default interocular distance (metres).
+pub const DEFAULT_EYE_SEPARATION: f64 = 0.064;
+
+/// Largest allowed deviation of a wall's corner angle from 90°, radians.
+const RECTANGLE_TOLERANCE_RAD: f64 = 0.5 * std::f64::consts::PI / 180.0;
+
+/// Errors loading or validating a CAVE config.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum CaveConfigError {
+    /// The file could not be read.
+    #[error("cannot read CAVE config {path}: {message}")]
+    Io {
+        /// Path given.
+        path: String,
+        /// OS error.
+        message: String,
+    },
+    /// TOML syntax or type error; toml's message names the key and line.
+    #[error("CAVE config: {0}")]
+    Toml(String),
+    /// A value parsed but is not acceptable.
+    #[error("CAVE config: {field}: {message}")]
+    Field {
+        /// Dotted path of the field, e.g. `wall[1] ("left").pixels`.
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Errors computing a projection.
+#[derive(Debug, Clone, Copy, PartialEq, Error)]
+pub enum ProjectionError {
+    /// The eye is on or behind the wall plane (the wall faces away from it).
+    #[error("eye is {distance:.4} m in front of the wall plane; it must be in front (> 0)")]
+    EyeNotInFront {
+        /// Signed distance from the wall plane along its normal.
+        distance: f64,
+    },
+    /// `near` must be > 0 and `far` > `near`, both finite.
+    #[error("invalid clip planes near = {near}, far = {far}")]
+    ClipPlanes {
+        /// Near distance.
+        near: f64,
+        /// Far distance.
+        far: f64,
+    },
+    /// NaN/inf in the corners or the eye position.
+    #[error("non-finite wall corner or eye position")]
+    NonFinite,
+    /// Wall corners are coincident or collinear.
+    #[error("degenerate wall (zero width or height)")]
+    DegenerateWall,
+}
+
+/// Which tracker axis points up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum UpAxis {
+    /// y up (OpenVR, OptiTrack default).
+    #[default]
+    Y,
+    /// z up.
+    Z,
+}
+
+/// Placement of tracker space in board space (see module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackerToBoard {
+    /// Board-space position of the tracker origin.
+    pub origin: DVec3,
+    /// Rotation about board +z, degrees.
+    pub yaw_deg: f64,
+    /// Board units per tracker metre.
+    pub scale: f64,
+    /// Tracker up axis.
+    pub up_axis: UpAxis,
+}
+
+impl Default for TrackerToBoard {
+    fn default() -> Self {
+        Self {
+            origin: DVec3::ZERO,
+            yaw_deg: 0.0,
+            scale: 1.0,
+            up_axis: UpAxis::Y,
+        }
+    }
+}
+
+impl TrackerToBoard {
+    /// The rotation part (axis change, then yaw).
+    pub fn rotation(&self) -> DQuat {
+        let axes = match self.up_axis {
+            UpAxis::Y => DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2),
+            UpAxis::Z => DQuat::IDENTITY,
+        };
+        DQuat::from_rotation_z(self.yaw_deg.to_radians()) * axes
+    }
+
+    /// Tracker → board as a 4×4 affine matrix.
+    pub fn matrix(&self) -> DMat4 {
+        DMat4::from_scale_rotation_translation(
+            DVec3::splat(self.scale),
+            self.rotation(),
+            self.origin,
+        )
+    }
+
+    /// Board → tracker (the inverse of [`TrackerToBoard::matrix`]).
+    pub fn inverse_matrix(&self) -> DMat4 {
+        let inv_rot = self.rotation().conjugate();
+        DMat4::from_scale(DVec3::splat(1.0 / self.scale))
+            * DMat4::from_quat(inv_rot)
+            * DMat4::from_translation(-self.origin)
+    }
+
+    /// Maps a tracker-space point to board space.
+    pub fn point(&self, p: DVec3) -> DVec3 {
+        self.origin + self.scale * (self.rotation() * p)
+    }
+
+    /// Maps a tracker-space orientation to board space.
+    pub fn orientation(&self, q: DQuat) -> DQuat {
+        self.rotation() * q
+    }
+}
+
+/// One projection surface, corners in tracker space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Wall {
+    /// Unique name ("front", "floor", ...).
+    pub name: String,
+    /// Lower-left corner as seen from inside.
+    pub lower_left: DVec3,
+    /// Lower-right corner.
+    pub lower_right: DVec3,
+    /// Upper-left corner.
+    pub upper_left: DVec3,
+    /// Projector resolution `[width, height]`.
+    pub pixels: [u32; 2],
+}
+
+impl Wall {
+    /// The fourth corner.
+    pub fn upper_right(&self) -> DVec3 {
+        self.lower_right + (self.upper_left - self.lower_left)
+    }
+    /// Width in metres.
+    pub fn width(&self) -> f64 {
+        (self.lower_right - self.lower_left).length()
+    }
+    /// Height in metres.
+    pub fn height(&self) -> f64 {
+        (self.upper_left - self.lower_left).length()
+    }
+    /// Unit vector along the lower edge (screen +x).
+    pub fn right(&self) -> DVec3 {
+        (self.lower_right - self.lower_left).normalize_or_zero()
+    }
+    /// Unit vector along the left edge (screen +y).
+    pub fn up(&self) -> DVec3 {
+        (self.upper_left - self.lower_left).normalize_or_zero()
+    }
+    /// Unit normal pointing towards the viewer (`right × up`).
+    pub fn normal(&self) -> DVec3 {
+        self.right().cross(self.up()).normalize_or_zero()
+    }
+    /// Projector aspect ratio (width / height in pixels).
+    pub fn pixel_aspect(&self) -> f64 {
+        f64::from(self.pixels[0]) / f64::from(self.pixels[1].max(1))
+    }
+    /// Off-axis projection for an eye at `eye` (tracker space).
+    pub fn projection(
+        &self,
+        eye: DVec3,
+        near: f64,
+        far: f64,
+    ) -> Result<WallProjection, ProjectionError> {
+        off_axis_projection(
+            self.lower_left,
+            self.lower_right,
+            self.upper_left,
+            eye,
+            near,
+            far,
+        )
+    }
+}
+
+/// Extents of an off-axis frustum on the near plane (view space).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frustum {
+    /// Left extent (x at the near plane).
+    pub left: f64,
+    /// Right extent.
+    pub right: f64,
+    /// Bottom extent (y at the near plane).
+    pub bottom: f64,
+    /// Top extent.
+    pub top: f64,
+    /// Near distance (> 0).
+    pub near: f64,
+    /// Far distance (> near).
+    pub far: f64,
+}
+
+impl Frustum {
+    /// Right-handed perspective matrix with wgpu's [0, 1] depth range (the
+    /// same convention as glam's `perspective_rh` / `directx::frustum`):
+    /// view space looks down -z, near maps to depth 0, far to 1.
+    pub fn matrix(&self) -> DMat4 {
+        let Frustum {
+            left: l,
+            right: r,
+            bottom: b,
+            top: t,
+            near: n,
+            far: f,
+        } = *self;
+        DMat4::from_cols(
+            DVec4::new(2.0 * n / (r - l), 0.0, 0.0, 0.0),
+            DVec4::new(0.0, 2.0 * n / (t - b), 0.0, 0.0),
+            DVec4::new((r + l) / (r - l), (t + b) / (t - b), f / (n - f), -1.0),
+            DVec4::new(0.0, 0.0, n * f / (n - f), 0.0),
+        )
+    }
+}
+
+/// Result of [`off_axis_projection`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallProjection {
+    /// Frustum extents.
+    pub frustum: Frustum,
+    /// World (tracker) → view: rotates the wall's basis onto the axes and
+    /// moves the eye to the origin.
+    pub view: DMat4,
+    /// Off-axis perspective (`frustum.matrix()`).
+    pub projection: DMat4,
+    /// `projection * view`.
+    pub view_projection: DMat4,
+    /// Perpendicular distance from the eye to the wall plane.
+    pub eye_distance: f64,
+}
+
+/// Kooima's generalized perspective projection.
+///
+/// `pa`, `pb`, `pc`: the wall's lower-left, lower-right and upper-left
+/// corners; `pe`: the eye; all in one right-handed frame. Returns a frustum
+/// whose side planes pass through the wall edges, so the wall corners land
+/// exactly on NDC (±1, ±1) for every eye position in front of the wall.
+pub fn off_axis_projection(
+    pa: DVec3,
+    pb: DVec3,
+    pc: DVec3,
+    pe: DVec3,
+    near: f64,
+    far: f64,
+) -> Result<WallProjection, ProjectionError> {
+    if !(pa.is_finite() && pb.is_finite() && pc.is_finite() && pe.is_finite()) {
+        return Err(ProjectionError::NonFinite);
+    }
+    if !(near.is_finite() && far.is_finite() && near > 0.0 && far > near) {
+        return Err(ProjectionError::ClipPlanes { near, far });
+    }
+    // Screen basis: right, up, normal (towards the viewer).
+    let vr = (pb - pa).normalize_or_zero();
+    let vu = (pc - pa).normalize_or_zero();
+    let vn = vr.cross(vu).normalize_or_zero();
+    if vr == DVec3::ZERO || vu == DVec3::ZERO || vn == DVec3::ZERO {
+        return Err(ProjectionError::DegenerateWall);
+    }
+    // Corners relative to the eye.
+    let va = pa - pe;
+    let vb = pb - pe;
+    let vc = pc - pe;
+    let d = -va.dot(vn);
+    if d.is_nan() || d <= 1e-9 {
+        return Err(ProjectionError::EyeNotInFront { distance: d });
+    }
+    let k = near / d;
+    let frustum = Frustum {
+        left: vr.dot(va) * k,
+        right: vr.dot(vb) * k,
+        bottom: vu.dot(va) * k,
+        top: vu.dot(vc) * k,
+        near,
+        far,
+    };
+    // Rows of the rotation are the screen basis: M^T in Kooima's notation.
+    let rot = DMat4::from_cols(
+        DVec4::new(vr.x, vu.x, vn.x, 0.0),
+        DVec4::new(vr.y, vu.y, vn.y, 0.0),
+        DVec4::new(vr.z, vu.z, vn.z, 0.0),
+        DVec4::W,
+    );
+    let view = rot * DMat4::from_translation(-pe);
+    let projection = frustum.matrix();
+    Ok(WallProjection {
+        frustum,
+        view,
+        projection,
+        view_projection: projection * view,
+        eye_distance: d,
+    })
+}
+
+/// Left and right eye positions for a head pose: the eyes sit at
+/// `∓ separation / 2` along the head's local +x axis (the interocular axis).
+/// A non-finite or negative separation is treated as 0 (mono).
+pub fn stereo_eyes(
+    head_position: DVec3,
+    head_orientation: DQuat,
+    separation: f64,
+) -> (DVec3, DVec3) {
+    let sep = if separation.is_finite() && separation > 0.0 {
+        separation
+    } else {
+        0.0
+    };
+    let q = head_orientation.normalize();
+    let q = if q.is_finite() { q } else { DQuat::IDENTITY };
+    let half = q * DVec3::new(0.5 * sep, 0.0, 0.0);
+    (head_position - half, head_position + half)
+}
+
+/// A validated CAVE description.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CaveConfig {
+    /// Interocular distance, metres.
+    pub eye_separation: f64,
+    /// Tracker → board placement.
+    pub tracker: TrackerToBoard,
+    /// Projection surfaces, in file order.
+    pub walls: Vec<Wall>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCave {
+    eye_separation: Option<f64>,
+    tracker: Option<RawTracker>,
+    #[serde(default)]
+    wall: Vec<RawWall>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTracker {
+    origin: Option<[f64; 3]>,
+    yaw_deg: Option<f64>,
+    scale: Option<f64>,
+    up_axis: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawWall {
+    name: String,
+    lower_left: [f64; 3],
+    lower_right: [f64; 3],
+    upper_left: [f64; 3],
+    pixels: [u32; 2],
+}
+
+fn field_err(field: impl Into<String>, message: impl Into<String>) -> CaveConfigError {
+    CaveConfigError::Field {
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
+impl CaveConfig {
+    /// Parses and validates TOML text.
+    pub fn from_toml_str(text: &str) -> Result<Self, CaveConfigError> {
+        let raw: RawCave =
+            toml::from_str(text).map_err(|e| CaveConfigError::Toml(e.to_string()))?;
+
+        let eye_separation = raw.eye_separation.unwrap_or(DEFAULT_EYE_SEPARATION);
+        if !(eye_separation.is_finite() && (0.0..=0.5).contains(&eye_separation)) {
+            return Err(field_err(
+                "eye_separation",
+                format!("{eye_separation} is not a distance in metres between 0 and 0.5"),
+            ));
+        }
+
+        let mut tracker = TrackerToBoard::default();
+        if let Some(t) = raw.tracker {
+            if let Some(o) = t.origin {
+                let o = DVec3::from_array(o);
+                if !o.is_finite() {
+                    return Err(field_err("tracker.origin", "must be finite"));
+                }
+                tracker.origin = o;
+            }
+            if let Some(y) = t.yaw_deg {
+                if !y.is_finite() {
+                    return Err(field_err("tracker.yaw_deg", "must be finite"));
+                }
+                tracker.yaw_deg = y;
+            }
+            if let Some(s) = t.scale {
+                if !(s.is_finite() && s > 0.0) {
+                    return Err(field_err("tracker.scale", format!("{s} must be > 0")));
+                }
+                tracker.scale = s;
+            }
+            if let Some(u) = t.up_axis {
+                tracker.up_axis = match u.as_str() {
+                    "y" | "Y" => UpAxis::Y,
+                    "z" | "Z" => UpAxis::Z,
+                    other => {
+                        return Err(field_err(
+                            "tracker.up_axis",
+                            format!("{other:?} is not \"y\" or \"z\""),
+                        ));
+                    }
+                };
+            }
+        }
+
+        if raw.wall.is_empty() {
+            return Err(field_err("wall", "at least one [[wall]] table is required"));
+        }
+        let mut walls: Vec<Wall> = Vec::with_capacity(raw.wall.len());
+        for (i, w) in raw.wall.into_iter().enumerate() {
+            let label = format!("wall[{i}] ({:?})", w.name);
+            if w.name.trim().is_empty() {
+                return Err(field_err(format!("wall[{i}].name"), "must not be empty"));
+            }
+            if walls.iter().any(|o| o.name == w.name) {
+                return Err(field_err(format!("{label}.name"), "duplicate wall name"));
+            }
+            let corner = |name: &str, v: [f64; 3]| {
+                let p = DVec3::from_array(v);
+                if p.is_finite() {
+                    Ok(p)
+                } else {
+                    Err(field_err(format!("{label}.{name}"), "must be finite"))
+                }
+            };
+            let wall = Wall {
+                lower_left: corner("lower_left", w.lower_left)?,
+                lower_right: corner("lower_right", w.lower_right)?,
+                upper_left: corner("upper_left", w.upper_left)?,
+                pixels: w.pixels,
+                name: w.name,
+            };
+            if wall.width() < 1e-6 {
+                return Err(field_err(
+                    format!("{label}.lower_right"),
+                    "coincides with lower_left (zero width)",
+                ));
+            }
+            if wall.height() < 1e-6 {
+                return Err(field_err(
+                    format!("{label}.upper_left"),
+                    "coincides with lower_left (zero height)",
+                ));
+            }
+            let angle = wall.right().angle_between(wall.up());
+            let dev = (angle - std::f64::consts::FRAC_PI_2).abs();
+            if dev.is_nan() || dev > RECTANGLE_TOLERANCE_RAD {
+                return Err(field_err(
+                    format!("{label}.upper_left"),
+                    format!(
+                        "wall is not a rectangle: edges meet at {:.2}° (must be 90° ± 0.5°)",
+                        angle.to_degrees()
+                    ),
+                ));
+            }
+            if wall.pixels[0] == 0 || wall.pixels[1] == 0 {
+                return Err(field_err(
+                    format!("{label}.pixels"),
+                    "width and height must be > 0",
+                ));
+            }
+            walls.push(wall);
+        }
+        Ok(Self {
+            eye_separation,
+            tracker,
+            walls,
+        })
+    }
+
+    /// Reads, parses and validates a TOML file.
+    pub fn from_path(path: impl AsRef<Path>) -> Result<Self, CaveConfigError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| CaveConfigError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml_str(&text)
+    }
+
+    /// Looks a wall up by name.
+    pub fn wall(&self, name: &str) -> Option<&Wall> {
+        self.walls.iter().find(|w| w.name == name)
+    }
+
+    /// Left and right eyes (tracker space) for a head pose, using
+    /// [`CaveConfig::eye_separation`].
+    pub fn eyes(&self, head_position: DVec3, head_orientation: DQuat) -> (DVec3, DVec3) {
+        stereo_eyes(head_position, head_orientation, self.eye_separation)
+    }
+
+    /// `projection * view * board→tracker`: takes board-space points to clip
+    /// space for `wall` seen from `eye` (tracker space). `near`/`far` are
+    /// tracker-space metres.
+    pub fn view_projection_board(
+        &self,
+        wall: &Wall,
+        eye: DVec3,
+        near: f64,
+        far: f64,
+    ) -> Result<DMat4, ProjectionError> {
+        let p = wall.projection(eye, near, far)?;
+        Ok(p.view_projection * self.tracker.inverse_matrix())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const EXAMPLE: &str = include_str!("../../assets/cave.toml");
+
+    fn example() -> CaveConfig {
+        CaveConfig::from_toml_str(EXAMPLE).expect("example config parses")
+    }
+
+    fn assert_mat_close(a: DMat4, b: DMat4, tol: f64) {
+        let (a, b) = (a.to_cols_array(), b.to_cols_array());
+        for i in 0..16 {
+            assert!(
+                (a[i] - b[i]).abs() < tol,
+                "element {i}: {} vs {}\n{a:?}\n{b:?}",
+                a[i],
+                b[i]
+            );
+        }
+    }
+
+    #[test]
+    fn example_file_parses() {
+        let c = example();
+        assert_eq!(c.eye_separation, 0.064);
+        let names: Vec<&str> = c.walls.iter().map(|w| w.name.as_str()).collect();
+        assert_eq!(names, ["front", "left", "right", "floor"]);
+        // All normals point into the CAVE (towards its centre).
+        let centre = DVec3::new(0.0, 1.25, 0.0);
+        for w in &c.walls {
+            assert!((centre - w.lower_left).dot(w.normal()) > 0.0, "{}", w.name);
+        }
+        let front = c.wall("front").expect("front");
+        assert_eq!((front.width(), front.height()), (3.0, 2.5));
+        assert_eq!(front.upper_right(), DVec3::new(1.5, 2.5, -1.5));
+        assert!((front.pixel_aspect() - 1.2).abs() < 1e-12);
+        assert!(c.wall("ceiling").is_none());
+    }
+
+    #[test]
+    fn centred_eye_gives_glam_perspective() {
+        let c = example();
+        let w = c.wall("front").expect("front");
+        let eye = DVec3::new(0.0, 1.25, 0.0);
+        let (near, far) = (0.05, 100.0);
+        let p = w.projection(eye, near, far).expect("projection");
+        let f = p.frustum;
+        assert!((f.left + f.right).abs() < 1e-12 && (f.bottom + f.top).abs() < 1e-12);
+        assert!((p.eye_distance - 1.5).abs() < 1e-12);
+        let fov_y = 2.0 * (1.25f64 / 1.5).atan();
+        let aspect = 3.0 / 2.5;
+        #[allow(deprecated)]
+        let expected = DMat4::perspective_rh(fov_y, aspect, near, far)
+            * DMat4::look_at_rh(eye, eye - w.normal(), w.up());
+        assert_mat_close(p.view_projection, expected, 1e-9);
+        // The non-deprecated glam camera API agrees too.
+        let expected2 = glam::dcamera::rh::proj::directx::perspective(fov_y, aspect, near, far)
+            * glam::dcamera::rh::view::look_at_mat4(eye, eye - w.normal(), w.up());
+        assert_mat_close(p.view_projection, expected2, 1e-9);
+    }
+
+    #[test]
+    fn frustum_matrix_matches_glam() {
+        let f = Frustum {
+            left: -0.3,
+            right: 0.1,
+            bottom: -0.05,
+            top: 0.2,
+            near: 0.1,
+            far: 50.0,
+        };
+        let g = glam::dcamera::rh::proj::directx::frustum(-0.3, 0.1, -0.05, 0.2, 0.1, 50.0);
+        assert_mat_close(f.matrix(), g, 1e-12);
+    }
+
+    #[test]
+    fn sideways_eye_makes_frustum_asymmetric() {
+        let c = example();
+        let w = c.wall("front").expect("front");
+        let right = w
+            .projection(DVec3::new(0.5, 1.25, 0.0), 0.1, 10.0)
+            .expect("p");
+        let f = right.frustum;
+        // Eye moved right: more of the wall is to its left.
+        assert!(f.left + f.right < -1e-6, "{f:?}");
+        assert!((f.left - (-2.0 * 0.1 / 1.5)).abs() < 1e-12);
+        assert!((f.right - (1.0 * 0.1 / 1.5)).abs() < 1e-12);
+        let up = w
+            .projection(DVec3::new(0.0, 2.0, 0.0), 0.1, 10.0)
+            .expect("p");
+        assert!(up.frustum.bottom + up.frustum.top < -1e-6);
+    }
+
+    fn ndc(m: DMat4, p: DVec3) -> DVec3 {
+        m.project_point3(p)
+    }
+
+    #[test]
+    fn wall_points_map_to_fixed_ndc_for_any_eye() {
+        let c = example();
+        let mut rng = crate::motion::Prng::new(99);
+        for w in &c.walls {
+            let pr = w.lower_right - w.lower_left;
+            let pu = w.upper_left - w.lower_left;
+            for _ in 0..50 {
+                // Random eye inside the CAVE.
+                let eye = DVec3::new(
+                    -1.4 + 2.8 * rng.next_f64(),
+                    0.1 + 2.3 * rng.next_f64(),
+                    -1.4 + 2.8 * rng.next_f64(),
+                );
+                let m = w
+                    .projection(eye, 0.01, 100.0)
+                    .expect("eye inside")
+                    .view_projection;
+                let corners = [
+                    (w.lower_left, -1.0, -1.0),
+                    (w.lower_right, 1.0, -1.0),
+                    (w.upper_left, -1.0, 1.0),
+                    (w.upper_right(), 1.0, 1.0),
+                ];
+                for (p, x, y) in corners {
+                    let n = ndc(m, p);
+                    assert!(
+                        (n.x - x).abs() < 1e-9 && (n.y - y).abs() < 1e-9,
+                        "{} {n:?}",
+                        w.name
+                    );
+                    assert!(n.z > 0.0 && n.z < 1.0);
+                }
+                // An interior wall point maps to its own (u, v) in NDC.
+                let (u, v) = (rng.next_f64(), rng.next_f64());
+                let n = ndc(m, w.lower_left + u * pr + v * pu);
+                assert!((n.x - (2.0 * u - 1.0)).abs() < 1e-9);
+                assert!((n.y - (2.0 * v - 1.0)).abs() < 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn off_wall_points_move_with_the_eye() {
+        // The converse: a point not on the wall plane projects differently for
+        // different eyes, and different wall points never share NDC.
+        let c = example();
+        let w = c.wall("front").expect("front");
+        let a = w
+            .projection(DVec3::new(-0.5, 1.2, 0.0), 0.1, 10.0)
+            .expect("a");
+        let b = w
+            .projection(DVec3::new(0.7, 1.6, 0.5), 0.1, 10.0)
+            .expect("b");
+        let floating = DVec3::new(0.2, 1.0, -1.0);
+        let (na, nb) = (
+            ndc(a.view_projection, floating),
+            ndc(b.view_projection, floating),
+        );
+        assert!((na.truncate() - nb.truncate()).length() > 1e-3);
+        let p1 = ndc(a.view_projection, DVec3::new(0.0, 1.0, -1.5));
+        let p2 = ndc(a.view_projection, DVec3::new(0.1, 1.0, -1.5));
+        assert!((p1.x - p2.x).abs() > 1e-3);
+    }
+
+    #[test]
+    fn near_and_far_map_to_zero_and_one() {
+        let c = example();
+        let w = c.wall("front").expect("front");
+        let eye = DVec3::new(0.3, 1.5, 0.2);
+        let p = w.projection(eye, 0.1, 20.0).expect("p");
+        // Points straight ahead along -normal at near and far distance.
+        let n = ndc(p.view_projection, eye - w.normal() * 0.1);
+        let f = ndc(p.view_projection, eye - w.normal() * 20.0);
+        assert!(n.z.abs() < 1e-12 && (f.z - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn projection_errors() {
+        let c = example();
+        let w = c.wall("front").expect("front");
+        let behind = DVec3::new(0.0, 1.0, -2.0);
+        assert!(matches!(
+            w.projection(behind, 0.1, 10.0),
+            Err(ProjectionError::EyeNotInFront { .. })
+        ));
+        let eye = DVec3::new(0.0, 1.0, 0.0);
+        assert!(matches!(
+            w.projection(eye, 0.0, 10.0),
+            Err(ProjectionError::ClipPlanes { .. })
+        ));
+        assert!(matches!(
+            w.projection(eye, 1.0, 0.5),
+            Err(ProjectionError::ClipPlanes { .. })
+        ));
+        assert!(matches!(
+            w.projection(DVec3::NAN, 0.1, 1.0),
+            Err(ProjectionError::NonFinite)
+        ));
+        assert!(matches!(
+            off_axis_projection(DVec3::ZERO, DVec3::ZERO, DVec3::Y, DVec3::Z, 0.1, 1.0),
+            Err(ProjectionError::DegenerateWall)
+        ));
+    }
+
+    #[test]
+    fn stereo_eyes_follow_head_axis() {
+        let p = DVec3::new(0.0, 1.7, 0.0);
+        let (l, r) = stereo_eyes(p, DQuat::IDENTITY, 0.064);
+        assert!((l - DVec3::new(-0.032, 1.7, 0.0)).length() < 1e-12);
+        assert!((r - DVec3::new(0.032, 1.7, 0.0)).length() < 1e-12);
+        // Head turned 90° left (about +y): its +x now points along -z.
+        let q = DQuat::from_rotation_y(std::f64::consts::FRAC_PI_2);
+        let (l, r) = stereo_eyes(p, q, 0.064);
+        assert!((r - (p + DVec3::new(0.0, 0.0, -0.032))).length() < 1e-12);
+        assert!((l - (p + DVec3::new(0.0, 0.0, 0.032))).length() < 1e-12);
+        // Non-unit orientation is normalised; bad separation means mono.
+        let (l, r) = stereo_eyes(p, DQuat::IDENTITY * 2.0, f64::NAN);
+        assert_eq!((l, r), (p, p));
+        let c = example();
+        let (l, r) = c.eyes(p, DQuat::IDENTITY);
+        assert!(((r - l).length() - 0.064).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tracker_to_board_transform() {
+        let t = TrackerToBoard {
+            origin: DVec3::new(1.0, 2.0, 0.0),
+            yaw_deg: 90.0,
+            scale: 2.0,
+            up_axis: UpAxis::Y,
+        };
+        // Tracker up (+y) becomes board up (+z), scaled.
+        let up = t.point(DVec3::Y) - t.origin;
+        assert!((up - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-12);
+        // Tracker +x, yawed 90° about board z, becomes board +y.
+        let x = t.point(DVec3::X) - t.origin;
+        assert!((x - DVec3::new(0.0, 2.0, 0.0)).length() < 1e-12);
+        let p = DVec3::new(0.3, -0.2, 0.7);
+        assert!((t.matrix().transform_point3(p) - t.point(p)).length() < 1e-12);
+        let back = t.inverse_matrix().transform_point3(t.point(p));
+        assert!((back - p).length() < 1e-12);
+        let z_up = TrackerToBoard {
+            up_axis: UpAxis::Z,
+            ..TrackerToBoard::default()
+        };
+        assert_eq!(z_up.point(p), p);
+        assert!(t.orientation(DQuat::IDENTITY).is_normalized());
+    }
+
+    #[test]
+    fn board_view_projection_equals_tracker_one() {
+        let mut c = example();
+        c.tracker = TrackerToBoard {
+            origin: DVec3::new(1.2, 0.6, 0.0),
+            yaw_deg: 30.0,
+            scale: 0.5,
+            up_axis: UpAxis::Y,
+        };
+        let w = c.wall("left").expect("left").clone();
+        let eye = DVec3::new(0.2, 1.6, 0.1);
+        let m_board = c.view_projection_board(&w, eye, 0.1, 10.0).expect("vp");
+        let m_tracker = w.projection(eye, 0.1, 10.0).expect("vp").view_projection;
+        let p = DVec3::new(-1.0, 1.0, 0.5);
+        let a = m_board.project_point3(c.tracker.point(p));
+        let b = m_tracker.project_point3(p);
+        assert!((a - b).length() < 1e-9);
+    }
+
+    #[test]
+    fn config_errors_name_the_field() {
+        let wall = |extra: &str| {
+            format!(
+                "[[wall]]\nname = \"front\"\nlower_left = [-1.5, 0.0, -1.5]\n\
+                 lower_right = [1.5, 0.0, -1.5]\nupper_left = [-1.5, 2.5, -1.5]\n\
+                 pixels = [1920, 1600]\n{extra}"
+            )
+        };
+        let cases: Vec<(String, &str)> = vec![
+            (
+                "eye_separation = -1\n".to_string() + &wall(""),
+                "eye_separation",
+            ),
+            (
+                "eye_separation = 0.064\n".to_string(),
+                "at least one [[wall]]",
+            ),
+            (
+                "[tracker]\nscale = 0\n".to_string() + &wall(""),
+                "tracker.scale",
+            ),
+            (
+                "[tracker]\nup_axis = \"x\"\n".to_string() + &wall(""),
+                "tracker.up_axis",
+            ),
+            (
+                "[tracker]\nyaw_deg = nan\n".to_string() + &wall(""),
+                "tracker.yaw_deg",
+            ),
+            (
+                "[tracker]\norigin = [inf, 0, 0]\n".to_string() + &wall(""),
+                "tracker.origin",
+            ),
+            (
+                wall("").replace("[1920, 1600]", "[0, 1600]"),
+                "wall[0] (\"front\").pixels",
+            ),
+            (
+                wall("").replace("[-1.5, 2.5, -1.5]", "[-1.0, 2.5, -1.5]"),
+                "wall[0] (\"front\").upper_left: wall is not a rectangle",
+            ),
+            (
+                wall("").replace(
+                    "lower_right = [1.5, 0.0, -1.5]",
+                    "lower_right = [-1.5, 0.0, -1.5]",
+                ),
+                "wall[0] (\"front\").lower_right",
+            ),
+            (
+                wall("").replace("[-1.5, 0.0, -1.5]\nlower", "[nan, 0.0, -1.5]\nlower"),
+                "wall[0] (\"front\").lower_left: must be finite",
+            ),
+            (wall("") + &wall(""), "wall[1] (\"front\").name: duplicate"),
+            (
+                wall("").replace("name = \"front\"", "name = \"\""),
+                "wall[0].name",
+            ),
+            // Type / syntax errors come from toml and quote the key.
+            (
+                wall("").replace("[-1.5, 0.0, -1.5]\nlower", "[-1.5, 0.0]\nlower"),
+                "lower_left",
+            ),
+            (wall("").replace("pixels = [1920, 1600]", ""), "pixels"),
+            (wall("colour = 3\n"), "colour"),
+            (wall("").replace("[1920, 1600]", "[-5, 1600]"), "pixels"),
+        ];
+        for (text, want) in cases {
+            let err = CaveConfig::from_toml_str(&text)
+                .expect_err(&text)
+                .to_string();
+            assert!(
+                err.contains(want),
+                "config:\n{text}\nerror: {err}\nwanted: {want}"
+            );
+        }
+        let err = CaveConfig::from_path("/nonexistent/cave.toml").expect_err("io");
+        assert!(err.to_string().contains("/nonexistent/cave.toml"));
+    }
+
+    #[test]
+    fn defaults_apply() {
+        let text = "[[wall]]\nname = \"w\"\nlower_left = [0,0,0]\nlower_right = [1,0,0]\n\
+                    upper_left = [0,1,0]\npixels = [10, 10]\n";
+        let c = CaveConfig::from_toml_str(text).expect("minimal config");
+        assert_eq!(c.eye_separation, DEFAULT_EYE_SEPARATION);
+        assert_eq!(c.tracker, TrackerToBoard::default());
+    }
+}

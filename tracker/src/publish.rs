@@ -1,0 +1,183 @@
+//! The simulated head tracker: publishes a generated or replayed head track
+//! on an iceoryx2 service, with optional fault injection. `lightcone
+//! tracker ARGS` and `lightcone-tracker-publisher ARGS` both run this.
+//!
+//! ```text
+//! [--service NAME] [--path still|circle|walk|figure8]
+//!     [--csv FILE] [--rate HZ] [--noise METRES] [--seed N] [--first-seq N]
+//!     [--duration S] [--count N] [--nan-every N] [--reorder-every N]
+//!     [--stall START,DURATION] [--dropout START,DURATION]... [--quiet]
+//! ```
+//!
+//! Stop it with Ctrl-C or kill: a killed publisher's shared-memory resources
+//! are reclaimed by the next iceoryx2 node created on the machine.
+
+use crate::motion::{CsvTrack, Faults, MotionConfig, MotionGenerator, Path, PoseSource};
+use crate::transport::quiet_iceoryx_logs;
+use crate::{DEFAULT_SERVICE_NAME, Publisher, unix_now_ns};
+use std::time::{Duration, Instant};
+
+/// What to publish, and for how long.
+pub struct Args {
+    /// The iceoryx2 service name.
+    pub service: String,
+    /// The motion, noise and faults.
+    pub config: MotionConfig,
+    /// Stop after this many seconds.
+    pub duration: Option<f64>,
+    /// Stop after this many samples.
+    pub count: Option<u64>,
+    /// No messages on stderr.
+    pub quiet: bool,
+}
+
+/// The options, for error messages.
+pub const USAGE: &str = "options: [--service NAME] \
+[--path still|circle|walk|figure8] [--csv FILE] [--rate HZ] [--noise METRES] [--seed N] \
+[--first-seq N] [--duration S] [--count N] [--nan-every N] [--reorder-every N] \
+[--stall START,DURATION] [--dropout START,DURATION]... [--quiet]";
+
+fn parse_num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
+    v.parse()
+        .map_err(|_| format!("{flag}: `{v}` is not a valid number"))
+}
+
+fn parse_window(flag: &str, v: &str) -> Result<(f64, f64), String> {
+    let (a, b) = v
+        .split_once(',')
+        .ok_or_else(|| format!("{flag}: expected START,DURATION, got `{v}`"))?;
+    let start: f64 = parse_num(flag, a.trim())?;
+    let dur: f64 = parse_num(flag, b.trim())?;
+    if !(start.is_finite() && dur.is_finite() && dur >= 0.0) {
+        return Err(format!("{flag}: `{v}` must be finite with DURATION >= 0"));
+    }
+    Ok((start, dur))
+}
+
+/// Parses the options (without the program name).
+pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String> {
+    let mut args = Args {
+        service: DEFAULT_SERVICE_NAME.to_owned(),
+        config: MotionConfig {
+            source: PoseSource::Path(Path::by_name("circle").ok_or("no circle path")?),
+            ..MotionConfig::default()
+        },
+        duration: None,
+        count: None,
+        quiet: false,
+    };
+    let mut faults = Faults::default();
+    let mut it = argv.into_iter();
+    while let Some(flag) = it.next() {
+        if flag == "--quiet" {
+            args.quiet = true;
+            continue;
+        }
+        if flag == "--help" || flag == "-h" {
+            return Err(USAGE.to_owned());
+        }
+        let v = it
+            .next()
+            .ok_or_else(|| format!("{flag}: missing value\n{USAGE}"))?;
+        match flag.as_str() {
+            "--service" => args.service = v,
+            "--path" => {
+                let p = Path::by_name(&v).ok_or_else(|| {
+                    format!("--path: unknown path `{v}` (still, circle, walk, figure8)")
+                })?;
+                args.config.source = PoseSource::Path(p);
+            }
+            "--csv" => {
+                let track = CsvTrack::from_path(&v).map_err(|e| format!("--csv: {e}"))?;
+                args.config.source = PoseSource::Replay(track);
+            }
+            "--rate" => {
+                let r: f64 = parse_num(&flag, &v)?;
+                if !(r.is_finite() && r > 0.0 && r <= 100_000.0) {
+                    return Err(format!("--rate: {r} must be in (0, 100000] Hz"));
+                }
+                args.config.rate_hz = r;
+            }
+            "--noise" => {
+                let n: f64 = parse_num(&flag, &v)?;
+                if !(n.is_finite() && n >= 0.0) {
+                    return Err(format!("--noise: {n} must be >= 0"));
+                }
+                args.config.noise_std_m = n;
+            }
+            "--seed" => args.config.seed = parse_num(&flag, &v)?,
+            "--first-seq" => args.config.first_sequence = parse_num(&flag, &v)?,
+            "--duration" => args.duration = Some(parse_num(&flag, &v)?),
+            "--count" => args.count = Some(parse_num(&flag, &v)?),
+            "--nan-every" => faults.nan_every = Some(parse_num(&flag, &v)?),
+            "--reorder-every" => faults.reorder_every = Some(parse_num(&flag, &v)?),
+            "--stall" => faults.stall = Some(parse_window(&flag, &v)?),
+            "--dropout" => faults.dropouts.push(parse_window(&flag, &v)?),
+            _ => return Err(format!("unknown option `{flag}`\n{USAGE}")),
+        }
+    }
+    args.config.faults = faults;
+    Ok(args)
+}
+
+/// Publishes until the duration or count is reached (forever without
+/// either). Returns the number of samples sent.
+pub fn run(args: Args) -> Result<u64, String> {
+    if args.quiet {
+        quiet_iceoryx_logs();
+    }
+    let publisher = Publisher::open(&args.service).map_err(|e| e.to_string())?;
+    let mut generator = MotionGenerator::new(args.config);
+    let period = Duration::from_secs_f64(generator.period_s());
+    if !args.quiet {
+        eprintln!(
+            "lightcone tracker: publishing on {:?} at {:.0} Hz",
+            args.service,
+            1.0 / generator.period_s()
+        );
+    }
+    let start = Instant::now();
+    let mut next = start;
+    let mut sent: u64 = 0;
+    let mut consecutive_errors = 0u32;
+    loop {
+        if let Some(d) = args.duration
+            && start.elapsed().as_secs_f64() >= d
+        {
+            break;
+        }
+        if let Some(c) = args.count
+            && sent >= c
+        {
+            break;
+        }
+        for sample in generator.tick(unix_now_ns()) {
+            match publisher.send(&sample) {
+                Ok(_) => {
+                    sent += 1;
+                    consecutive_errors = 0;
+                }
+                Err(e) => {
+                    consecutive_errors += 1;
+                    eprintln!("lightcone tracker: {e}");
+                    if consecutive_errors > 100 {
+                        return Err(format!("giving up after 100 failed sends: {e}"));
+                    }
+                }
+            }
+        }
+        // Absolute schedule: no drift; if we fell behind by more than one
+        // period, resynchronise instead of bursting.
+        next += period;
+        let now = Instant::now();
+        if next > now {
+            std::thread::sleep(next - now);
+        } else if now - next > period {
+            next = now;
+        }
+    }
+    if !args.quiet {
+        eprintln!("lightcone tracker: sent {sent} samples");
+    }
+    Ok(sent)
+}
