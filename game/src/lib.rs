@@ -1,6 +1,7 @@
 //! The Lightcone game: its command-line tools, the wgpu renderer, and the
 //! interactive front end. The physics and optics live in `lightcone-engine`.
 
+pub mod cave;
 pub mod commands;
 pub mod lesson;
 pub mod play;

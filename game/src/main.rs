@@ -32,6 +32,47 @@ enum Command {
         /// Frames to run before the screenshot.
         #[arg(long, default_value_t = 30)]
         frames: u32,
+        /// Drive the observer from a head tracker on this iceoryx2 service
+        /// (see `lightcone tracker`).
+        #[arg(long)]
+        tracker: Option<String>,
+        /// Render the walls of this CAVE (TOML, e.g. assets/cave.toml), each
+        /// with its off-axis projection from the (tracked) head.
+        #[arg(long)]
+        cave: Option<PathBuf>,
+    },
+    /// The simulated head tracker: publish head motion (a path, or a
+    /// recorded CSV track) with noise and faults on an iceoryx2 service.
+    /// Options: --service NAME --path still|circle|walk|figure8 --csv FILE
+    /// --rate HZ --noise METRES --seed N --first-seq N --duration S
+    /// --count N --nan-every N --reorder-every N --stall START,DURATION
+    /// --dropout START,DURATION --quiet
+    #[command(disable_help_flag = true)]
+    Tracker {
+        /// The publisher's options (see above).
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Render every wall of a CAVE, both eyes, headless to PNG.
+    Cave {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// CAVE description (TOML).
+        #[arg(long, default_value = "assets/cave.toml")]
+        config: PathBuf,
+        /// Directory for `<wall>_<left|right>.png`.
+        #[arg(long)]
+        out_dir: PathBuf,
+        /// Board time, s.
+        #[arg(long, default_value_t = 0.0)]
+        at: f64,
+        /// Head position in tracker space, `x,y,z` metres (default: the
+        /// CAVE's centre, 1.7 m up).
+        #[arg(long)]
+        head: Option<String>,
+        /// Image size as a fraction of each wall's projector resolution.
+        #[arg(long, default_value_t = 0.5)]
+        scale: f64,
     },
     /// Validate scene files and print a short summary of each.
     Check {
@@ -179,7 +220,26 @@ fn main() -> ExitCode {
             scene,
             screenshot,
             frames,
-        }) => commands::play::run(scene.as_deref(), screenshot, frames),
-        None => commands::play::run(None, None, 0),
+            tracker,
+            cave,
+        }) => commands::play::run(
+            scene.as_deref(),
+            commands::play::Extras {
+                screenshot,
+                frames,
+                tracker,
+                cave,
+            },
+        ),
+        Some(Command::Tracker { args }) => commands::tracker::run(args),
+        Some(Command::Cave {
+            scene,
+            config,
+            out_dir,
+            at,
+            head,
+            scale,
+        }) => commands::cave::run(&scene, &config, &out_dir, at, head.as_deref(), scale),
+        None => commands::play::run(None, commands::play::Extras::default()),
     }
 }

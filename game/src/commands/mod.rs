@@ -3,9 +3,11 @@
 pub mod bench;
 pub mod bench_optics;
 pub mod bench_render;
+pub mod cave;
 pub mod check;
 pub mod lesson;
 pub mod observe;
 pub mod play;
 pub mod render;
 pub mod simulate;
+pub mod tracker;

@@ -9,9 +9,35 @@ use crate::lesson::LessonHost;
 use crate::play::app::{self, Options};
 use crate::play::state::GameState;
 
+/// The options of `play` beyond the scene.
+#[derive(Default)]
+pub struct Extras {
+    /// Screenshot after `frames` frames, then quit.
+    pub screenshot: Option<PathBuf>,
+    /// Frames before the screenshot.
+    pub frames: u32,
+    /// iceoryx2 service of a head tracker.
+    pub tracker: Option<String>,
+    /// CAVE description.
+    pub cave: Option<PathBuf>,
+}
+
 /// Loads the scene (the default one when `None`) or the lesson (`.py`) and
 /// runs the game.
-pub fn run(path: Option<&Path>, screenshot: Option<PathBuf>, frames: u32) -> ExitCode {
+pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
+    let Extras {
+        screenshot,
+        frames,
+        tracker,
+        cave,
+    } = extras;
+    let cave = match cave.as_deref().map(crate::cave::load).transpose() {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
     let path = path.unwrap_or(Path::new(crate::DEFAULT_SCENE));
     let (game, lesson) = if path.extension().is_some_and(|e| e == "py") {
         if !path.is_file() {
@@ -48,6 +74,8 @@ pub fn run(path: Option<&Path>, screenshot: Option<PathBuf>, frames: u32) -> Exi
         lesson,
         screenshot,
         frames: frames.max(1),
+        tracker,
+        cave,
     }) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -16,11 +16,14 @@ use winit::window::{Window, WindowId};
 
 use super::lesson_panel::{self, LessonAction};
 use super::state::{GameState, ViewMode};
+use crate::cave::{self, Side, TrackedHead};
 use crate::lesson::LessonHost;
 use crate::render::frame::{self, Camera, FrameVertex, ViewKind};
 use crate::render::gpu::{self, Gpu};
 use crate::render::headless::BACKGROUND;
 use crate::render::pipeline::{Draw, Renderer};
+use lightcone_tracker::cave::CaveConfig;
+use lightcone_tracker::follow::TrackerStatus;
 
 /// How `play` runs.
 pub struct Options {
@@ -28,6 +31,10 @@ pub struct Options {
     pub game: GameState,
     /// The lesson driving it, if one was given.
     pub lesson: Option<LessonHost>,
+    /// iceoryx2 service of a head tracker driving the observer.
+    pub tracker: Option<String>,
+    /// A CAVE whose walls are drawn instead of the desktop views.
+    pub cave: Option<CaveConfig>,
     /// Save a screenshot of frame `frames` to this PNG and quit (for docs
     /// and the Xvfb test).
     pub screenshot: Option<PathBuf>,
@@ -45,8 +52,14 @@ pub fn run(options: Options) -> Result<(), String> {
         lesson,
         screenshot,
         frames,
+        tracker,
+        cave,
     } = options;
+    let map = cave.as_ref().map(|c| c.tracker).unwrap_or_default();
     let mut app = App {
+        head: tracker.map(|service| TrackedHead::new(&service, map)),
+        cave,
+        flight: DVec3::ZERO,
         state: game,
         lesson,
         screenshot,
@@ -74,7 +87,8 @@ struct Gfx {
     surface: wgpu::Surface<'static>,
     gpu: Gpu,
     config: wgpu::SurfaceConfiguration,
-    views: [Renderer; 2],
+    /// One renderer per view drawn (grown on demand: CAVE walls).
+    views: Vec<Renderer>,
     egui: egui::Context,
     egui_state: egui_winit::State,
     egui_renderer: egui_wgpu::Renderer,
@@ -82,6 +96,12 @@ struct Gfx {
 
 struct App {
     state: GameState,
+    /// The tracked head driving the eye, with `--tracker`.
+    head: Option<TrackedHead>,
+    /// The CAVE drawn, with `--cave`.
+    cave: Option<CaveConfig>,
+    /// The player's own flight added to the tracked head (board metres).
+    flight: DVec3,
     lesson: Option<LessonHost>,
     /// Screenshot path and frame count (see [`Options`]).
     screenshot: Option<PathBuf>,
@@ -101,6 +121,53 @@ struct App {
     scene_left: f32,
     scene_right: f32,
     result: Result<(), String>,
+}
+
+/// What the panels show besides the game state.
+struct Hud {
+    /// The tracker's status line.
+    tracker: Option<String>,
+    tracker_colour: egui::Color32,
+    /// Draw the clocks over the desktop views (not over CAVE walls).
+    clocks: bool,
+}
+
+/// How one rectangle of the window is drawn.
+enum Plan {
+    /// A desktop view (seen or truth).
+    Desktop(ViewKind),
+    /// CAVE wall `i`, from the head's midpoint.
+    Wall(usize),
+}
+
+/// The CAVE walls tiled in a grid over `[x0, x0 + w] × [0, h]`, each tile
+/// keeping its wall's aspect ratio.
+fn wall_tiles(cave: &CaveConfig, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], Plan)> {
+    let n = cave.walls.len().max(1);
+    let cols = (n as f32).sqrt().ceil() as usize;
+    let rows = n.div_ceil(cols);
+    let (tw, th) = (w / cols as f32, h / rows as f32);
+    cave.walls
+        .iter()
+        .enumerate()
+        .map(|(i, wall)| {
+            let aspect = (wall.width() / wall.height()) as f32;
+            let (mut rw, mut rh) = (tw - 4.0, th - 4.0);
+            if rw / rh > aspect {
+                rw = rh * aspect;
+            } else {
+                rh = rw / aspect;
+            }
+            let (cx, cy) = (
+                x0 + tw * ((i % cols) as f32 + 0.5),
+                th * ((i / cols) as f32 + 0.5),
+            );
+            (
+                [cx - rw / 2.0, cy - rh / 2.0, rw.max(1.0), rh.max(1.0)],
+                Plan::Wall(i),
+            )
+        })
+        .collect()
 }
 
 /// The rectangles (x, y, w, h in physical px) and view kinds drawn in the
@@ -160,7 +227,7 @@ impl App {
         config.usage |=
             wgpu::TextureUsages::COPY_SRC & surface.get_capabilities(&gpu.handle).usages;
         surface.configure(&gpu.device, &config);
-        let views = [
+        let views = vec![
             Renderer::new(&gpu.device, config.format, config.width, config.height),
             Renderer::new(&gpu.device, config.format, config.width, config.height),
         ];
@@ -209,7 +276,13 @@ impl App {
         }
         if dir != DVec3::ZERO {
             let dir = dir.normalize();
-            self.state.thrust(dir * 0.5 * dt, dir * 1.0 * dt);
+            if self.head.is_some() {
+                // The tracker owns the eye's velocity; the keys walk the
+                // tracked space through the scene at 1 m/s.
+                self.flight += dir * dt;
+            } else {
+                self.state.thrust(dir * 0.5 * dt, dir * 1.0 * dt);
+            }
         }
     }
 
@@ -329,6 +402,10 @@ impl App {
                 lesson.reload_if_edited(&mut self.state);
             }
         }
+        if let Some(head) = &mut self.head {
+            head.poll(now);
+            head.drive(&mut self.state, self.flight);
+        }
         self.frame += 1;
         let shot = self.screenshot.is_some() && self.frame >= self.frames;
         if let Err(e) = self.draw(shot) {
@@ -346,6 +423,7 @@ impl App {
 /// right edges (physical px) of the area left for the views.
 fn panels(
     state: &mut GameState,
+    hud: &Hud,
     lesson: Option<(&LessonHost, &mut Vec<LessonAction>)>,
     ctx: &egui::Context,
     ui: &mut egui::Ui,
@@ -473,6 +551,10 @@ fn panels(
                         ),
                     );
                 }
+                if let Some(line) = &hud.tracker {
+                    ui.separator();
+                    ui.colored_label(hud.tracker_colour, line);
+                }
                 if !s.message.is_empty() {
                     ui.colored_label(egui::Color32::LIGHT_RED, &s.message);
                 }
@@ -480,6 +562,9 @@ fn panels(
                 ui.small("Drag from a puck to aim the cue (pull back, release to strike).");
             });
         left = ui.available_rect_before_wrap().left() * ppp;
+    }
+    if !hud.clocks {
+        return (left, right);
     }
     // Clocks on the pucks: the proper time each shows in the picture.
     let painter = ctx.layer_painter(egui::LayerId::new(
@@ -527,13 +612,28 @@ impl App {
         let raw = gfx.egui_state.take_egui_input(&gfx.window);
         let ctx = gfx.egui.clone();
         let size = (gfx.config.width, gfx.config.height);
+        let hud = Hud {
+            tracker: self.head.as_ref().map(TrackedHead::status_line),
+            tracker_colour: match self.head.as_ref().and_then(TrackedHead::status) {
+                Some(TrackerStatus::Live) => egui::Color32::LIGHT_GREEN,
+                _ => egui::Color32::LIGHT_RED,
+            },
+            clocks: self.cave.is_none(),
+        };
         let state = &mut self.state;
         let mut edges = (self.scene_left, self.scene_right);
         let mut actions = Vec::new();
         let lesson = self.lesson.as_ref();
         let output = ctx.run_ui(raw, |ui| {
             let ctx = ui.ctx().clone();
-            edges = panels(state, lesson.map(|l| (l, &mut actions)), &ctx, ui, size);
+            edges = panels(
+                state,
+                &hud,
+                lesson.map(|l| (l, &mut actions)),
+                &ctx,
+                ui,
+                size,
+            );
         });
         (self.scene_left, self.scene_right) = edges;
         if let Some(lesson) = &mut self.lesson {
@@ -573,18 +673,54 @@ impl App {
         } else {
             w
         };
-        for (k, (rect, kind)) in
-            layout(self.state.view, self.scene_left, right - self.scene_left, h)
+        let plans: Vec<([f32; 4], Plan)> = match &self.cave {
+            Some(c) => wall_tiles(c, self.scene_left, right - self.scene_left, h),
+            None => layout(self.state.view, self.scene_left, right - self.scene_left, h)
                 .into_iter()
-                .enumerate()
-        {
-            frame::build(
-                &self.state.billiard,
-                &self.state.meshes,
-                &eye,
-                kind.effects(self.state.effects),
-                &mut vertices,
-            );
+                .map(|(r, k)| (r, Plan::Desktop(k)))
+                .collect(),
+        };
+        let head = self.head.as_ref().map_or(
+            (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
+            TrackedHead::head,
+        );
+        for (k, (rect, plan)) in plans.into_iter().enumerate() {
+            vertices.clear();
+            let view_proj = match (plan, &self.cave) {
+                (Plan::Wall(i), Some(c)) => {
+                    match cave::wall_frame(
+                        &self.state,
+                        c,
+                        &c.walls[i],
+                        head,
+                        Side::Mono,
+                        self.flight,
+                        &mut vertices,
+                    ) {
+                        Some(m) => m,
+                        None => continue,
+                    }
+                }
+                (Plan::Desktop(kind), _) => {
+                    frame::build(
+                        &self.state.billiard,
+                        &self.state.meshes,
+                        &eye,
+                        kind.effects(self.state.effects),
+                        &mut vertices,
+                    );
+                    camera.view_proj(rect[2] / rect[3])
+                }
+                (Plan::Wall(_), None) => continue,
+            };
+            while gfx.views.len() <= k {
+                gfx.views.push(Renderer::new(
+                    &gfx.gpu.device,
+                    gfx.config.format,
+                    gfx.config.width,
+                    gfx.config.height,
+                ));
+            }
             let mut encoder =
                 gfx.gpu
                     .device
@@ -599,7 +735,7 @@ impl App {
                 &target,
                 Draw {
                     vertices: &vertices,
-                    view_proj: camera.view_proj(rect[2] / rect[3]),
+                    view_proj,
                     clear: (k == 0).then_some(BACKGROUND),
                     viewport: Some(rect),
                 },

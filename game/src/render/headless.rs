@@ -138,12 +138,24 @@ impl Offscreen {
         vertices: &[FrameVertex],
         camera: &Camera,
     ) -> Result<Image, String> {
+        let view_proj = camera.view_proj(self.width as f32 / self.height as f32);
+        self.draw_with(gpu, vertices, view_proj)
+    }
+
+    /// Draws `vertices` (eye-relative, observer's frame) with any
+    /// view-projection matrix, such as a CAVE wall's off-axis one, and reads
+    /// the image back.
+    pub fn draw_with(
+        &mut self,
+        gpu: &Gpu,
+        vertices: &[FrameVertex],
+        view_proj: glam::Mat4,
+    ) -> Result<Image, String> {
         let device = &gpu.device;
         let (width, height, padded) = (self.width, self.height, self.padded);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("headless frame"),
         });
-        let view_proj = camera.view_proj(width as f32 / height as f32);
         self.renderer.render(
             device,
             &gpu.queue,

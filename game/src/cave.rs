@@ -1,0 +1,323 @@
+//! The CAVE: a tracked head is the observer, and every wall of the CAVE gets
+//! its own off-axis projection from that head (Kooima's generalized
+//! perspective, in [`lightcone_tracker::cave`]).
+//!
+//! [`TrackedHead`] drains tracker samples from iceoryx2 into a
+//! [`Follower`] (which rejects NaN, out-of-order and stale samples, holds the
+//! last good pose and One-Euro-filters the velocity) and drives the game's
+//! eye: position from the pose, proper velocity from the filtered velocity,
+//! viewing direction from the orientation. The velocity matters more than it
+//! seems: aberration turns a velocity error δβ into a direction error of
+//! about δβ radians, so unfiltered tracker noise at c = 1.4 m/s shakes the
+//! whole picture (BENCHMARKS.md, "Tracker").
+//!
+//! The walls move with the observer: vertices are built in the observer's
+//! rest frame relative to the eye (as for the desktop camera), and each wall
+//! is placed in that frame by the tracker→board mapping. This is the paper's
+//! approximation too: the physical CAVE is the observer's laboratory.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use glam::{DMat3, DMat4, DQuat, DVec3, Mat4};
+use lightcone_engine::optics::Eye;
+use lightcone_engine::spacetime::{Event, ProperVelocity};
+use lightcone_tracker::cave::{CaveConfig, TrackerToBoard, Wall};
+use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus};
+use lightcone_tracker::{Subscriber, TrackerSample, unix_now_ns};
+
+use crate::play::state::GameState;
+use crate::render::frame::{self, FrameVertex};
+use crate::render::gpu::Gpu;
+use crate::render::headless::{Image, Offscreen};
+
+/// Where a head is when nobody is tracked: standing at the CAVE's centre,
+/// eyes 1.7 m above its floor, facing the front wall (tracker space, y up).
+pub const DEFAULT_HEAD: DVec3 = DVec3::new(0.0, 1.7, 0.0);
+
+/// Near and far clip distances, tracker metres.
+const NEAR: f64 = 0.05;
+const FAR: f64 = 200.0;
+
+/// Largest observer speed the tracker may give, as a fraction of c: a
+/// tracker glitch must not produce a speed ≥ c.
+const MAX_BETA: f64 = 0.99;
+
+/// How many latencies are kept (the newest).
+const LATENCY_WINDOW: usize = 100_000;
+
+/// A tracked head, driving the observer.
+pub struct TrackedHead {
+    service: String,
+    subscriber: Option<Subscriber>,
+    /// Why the subscriber is not open (shown until it opens).
+    open_error: Option<String>,
+    retry_at: Instant,
+    follower: Follower,
+    /// Tracker → board placement.
+    pub map: TrackerToBoard,
+    output: Option<FollowerOutput>,
+    /// Publish → observer-update delays of accepted samples, ns.
+    latencies: Vec<u64>,
+    /// The last velocity had to be capped below c.
+    capped: bool,
+    received: u64,
+}
+
+impl TrackedHead {
+    /// Subscribes to `service`. Never fails: a service that cannot be
+    /// opened is retried every second, and the status says why.
+    pub fn new(service: &str, map: TrackerToBoard) -> Self {
+        lightcone_tracker::transport::quiet_iceoryx_logs();
+        let mut head = Self {
+            service: service.to_owned(),
+            subscriber: None,
+            open_error: None,
+            retry_at: Instant::now(),
+            follower: Follower::new(FollowerConfig::default()),
+            map,
+            output: None,
+            latencies: Vec::new(),
+            capped: false,
+            received: 0,
+        };
+        head.reopen(Instant::now());
+        head
+    }
+
+    fn reopen(&mut self, now: Instant) {
+        match Subscriber::open(&self.service) {
+            Ok(s) => {
+                self.subscriber = Some(s);
+                self.open_error = None;
+            }
+            Err(e) => {
+                self.open_error = Some(e.to_string());
+                self.retry_at = now + Duration::from_secs(1);
+            }
+        }
+    }
+
+    /// Takes every sample that arrived, and brings the follower's view up
+    /// to `now`. Returns the follower's output.
+    pub fn poll(&mut self, now: Instant) -> FollowerOutput {
+        if self.subscriber.is_none() && now >= self.retry_at {
+            self.reopen(now);
+        }
+        let mut batch: Vec<TrackerSample> = Vec::new();
+        if let Some(sub) = &self.subscriber
+            && let Err(e) = sub.drain_into(&mut batch)
+        {
+            self.open_error = Some(e.to_string());
+        }
+        self.received += batch.len() as u64;
+        for s in &batch {
+            self.follower.push(s, now);
+        }
+        let out = self.follower.output(now);
+        self.output = Some(out);
+        out
+    }
+
+    /// The pose to use: the last good one, or `None` before any.
+    pub fn output(&self) -> Option<FollowerOutput> {
+        self.output
+    }
+
+    /// Moves the game's eye to the tracked head (plus `offset`, the
+    /// player's own flight, board metres), with the filtered velocity.
+    /// Holds the last good pose when the tracker is stale, lost or sends
+    /// garbage; does nothing before the first good sample.
+    pub fn drive(&mut self, game: &mut GameState, offset: DVec3) {
+        let Some(out) = self.output else { return };
+        let Some(pose) = out.pose else { return };
+        let position = self.map.point(pose.position) + offset;
+        if !position.is_finite() {
+            return;
+        }
+        let c = game.scene.c;
+        let mut v = self.map.rotation() * out.velocity * self.map.scale;
+        self.capped = false;
+        if !v.is_finite() {
+            v = DVec3::ZERO;
+        }
+        if v.length() >= MAX_BETA * c {
+            v = v.normalize() * MAX_BETA * c;
+            self.capped = true;
+        }
+        let u = ProperVelocity::try_from_velocity(v, c).unwrap_or(ProperVelocity::ZERO);
+        game.eye.position = position;
+        game.eye.u = u;
+        let forward = self.map.rotation() * (pose.orientation * DVec3::NEG_Z);
+        if forward.is_finite() && forward.length() > 0.5 {
+            let f = forward.normalize();
+            game.eye.yaw = f.y.atan2(f.x);
+            game.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
+        }
+        if out.status == TrackerStatus::Live && pose.timestamp_ns > 0 {
+            let now = unix_now_ns();
+            if self.latencies.len() >= LATENCY_WINDOW {
+                self.latencies.drain(..LATENCY_WINDOW / 2);
+            }
+            self.latencies.push(now.saturating_sub(pose.timestamp_ns));
+        }
+    }
+
+    /// The head in tracker space (the default head before any sample).
+    pub fn head(&self) -> (DVec3, DQuat) {
+        self.output
+            .and_then(|o| o.pose)
+            .map_or((DEFAULT_HEAD, DQuat::IDENTITY), |p| {
+                (p.position, p.orientation)
+            })
+    }
+
+    /// One line for the screen: service, health, samples.
+    pub fn status_line(&self) -> String {
+        let health = match (&self.open_error, &self.output) {
+            (Some(e), _) if self.subscriber.is_none() => format!("not connected: {e}"),
+            (_, Some(out)) => out.status_line(),
+            (_, None) => "waiting".to_owned(),
+        };
+        let cap = if self.capped {
+            " (speed capped at 0.99 c)"
+        } else {
+            ""
+        };
+        format!(
+            "tracker {:?}: {health}{cap}; {} samples",
+            self.service, self.received
+        )
+    }
+
+    /// Publish → observer-update delays so far (ns), newest last.
+    pub fn latencies(&self) -> &[u64] {
+        &self.latencies
+    }
+
+    /// The follower's status now.
+    pub fn status(&self) -> Option<TrackerStatus> {
+        self.output.map(|o| o.status)
+    }
+}
+
+/// The matrix that takes eye-relative points (observer's frame, board axes,
+/// board metres) to `wall`'s clip space, for an eye at `eye` (tracker
+/// space). `None` when the eye is on or behind the wall's plane.
+pub fn wall_view_proj(map: &TrackerToBoard, wall: &Wall, eye: DVec3) -> Option<Mat4> {
+    let p = wall.projection(eye, NEAR, FAR).ok()?;
+    if p.eye_distance <= 0.0 {
+        return None;
+    }
+    // Eye-relative board vector → tracker vector: the inverse rotation and
+    // scale, no translation; then back to absolute tracker coordinates.
+    let linear = DMat4::from_mat3(DMat3::from_mat4(map.inverse_matrix()));
+    let m = p.view_projection * DMat4::from_translation(eye) * linear;
+    m.is_finite().then(|| m.as_mat4())
+}
+
+/// Which eye.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// Between the eyes (the desktop preview of the walls).
+    Mono,
+    /// Left eye.
+    Left,
+    /// Right eye.
+    Right,
+}
+
+impl Side {
+    /// `left` or `right`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Mono => "mono",
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+}
+
+/// The observer's eye (event and velocity) for one stereo eye of the head.
+pub fn stereo_eye(
+    cave: &CaveConfig,
+    head: (DVec3, DQuat),
+    side: Side,
+    t: f64,
+    offset: DVec3,
+    u: ProperVelocity,
+) -> (Eye, DVec3) {
+    let (left, right) = cave.eyes(head.0, head.1);
+    let e = match side {
+        Side::Mono => head.0,
+        Side::Left => left,
+        Side::Right => right,
+    };
+    let board = cave.tracker.point(e) + offset;
+    (
+        Eye {
+            event: Event::new(t, board),
+            u,
+        },
+        e,
+    )
+}
+
+/// The vertices and matrix of one wall for one eye; `None` if the eye
+/// cannot see the wall.
+pub fn wall_frame(
+    game: &GameState,
+    cave: &CaveConfig,
+    wall: &Wall,
+    head: (DVec3, DQuat),
+    side: Side,
+    offset: DVec3,
+    vertices: &mut Vec<FrameVertex>,
+) -> Option<Mat4> {
+    let (eye, tracker_eye) = stereo_eye(cave, head, side, game.view_time, offset, game.eye.u);
+    let m = wall_view_proj(&cave.tracker, wall, tracker_eye)?;
+    frame::build(&game.billiard, &game.meshes, &eye, game.effects, vertices);
+    Some(m)
+}
+
+/// Renders every wall for both eyes, headless, at `scale` × the walls'
+/// projector resolution. Returns (wall, eye, image).
+pub fn render_walls(
+    gpu: &Gpu,
+    game: &GameState,
+    cave: &CaveConfig,
+    head: (DVec3, DQuat),
+    scale: f64,
+) -> Result<Vec<(String, Side, Image)>, String> {
+    let mut out = Vec::new();
+    let mut vertices = Vec::new();
+    let offset = DVec3::ZERO;
+    for wall in &cave.walls {
+        let w = ((f64::from(wall.pixels[0]) * scale).round() as u32).clamp(1, 8192);
+        let h = ((f64::from(wall.pixels[1]) * scale).round() as u32).clamp(1, 8192);
+        let mut target = Offscreen::new(gpu, w, h);
+        for side in [Side::Left, Side::Right] {
+            vertices.clear();
+            let m = wall_frame(game, cave, wall, head, side, offset, &mut vertices).ok_or_else(
+                || {
+                    format!(
+                        "the {} eye is not in front of wall {:?}",
+                        side.name(),
+                        wall.name
+                    )
+                },
+            )?;
+            out.push((
+                wall.name.clone(),
+                side,
+                target.draw_with(gpu, &vertices, m)?,
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// Loads a CAVE config, with the file named in any error.
+pub fn load(path: &Path) -> Result<CaveConfig, String> {
+    CaveConfig::from_path(path).map_err(|e| format!("{}: {e}", path.display()))
+}

@@ -1,0 +1,79 @@
+//! `lightcone cave SCENE --config CAVE.toml --out-dir DIR`: every wall of a
+//! CAVE, both eyes, rendered headless to PNG.
+
+use std::path::Path;
+use std::process::ExitCode;
+
+use glam::{DQuat, DVec3};
+use lightcone_engine::scene;
+
+use crate::cave::{self, DEFAULT_HEAD};
+use crate::play::state::GameState;
+
+/// Parses `x,y,z`.
+pub fn parse_head(text: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("--head {text:?}: give x,y,z in tracker metres"))?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(*x, *y, *z)),
+        _ => Err(format!("--head {text:?}: give three finite numbers x,y,z")),
+    }
+}
+
+/// Renders the walls at board time `at` for a head at `head` (tracker space,
+/// facing the front), writing `DIR/<wall>_<left|right>.png`.
+pub fn run(
+    scene_path: &Path,
+    config: &Path,
+    out_dir: &Path,
+    at: f64,
+    head: Option<&str>,
+    scale: f64,
+) -> ExitCode {
+    let fail = |e: String| {
+        eprintln!("{e}");
+        ExitCode::FAILURE
+    };
+    if !(at.is_finite() && at >= 0.0) {
+        return fail(format!("--at {at}: give a board time ≥ 0"));
+    }
+    if !(scale.is_finite() && scale > 0.0 && scale <= 4.0) {
+        return fail(format!("--scale {scale}: give a number in (0, 4]"));
+    }
+    let head = match head.map(parse_head).transpose() {
+        Ok(h) => h.unwrap_or(DEFAULT_HEAD),
+        Err(e) => return fail(e),
+    };
+    let scene = match scene::load(scene_path) {
+        Ok(s) => s,
+        Err(e) => return fail(e.to_string()),
+    };
+    let config = match cave::load(config) {
+        Ok(c) => c,
+        Err(e) => return fail(e),
+    };
+    let mut game = GameState::new(scene);
+    game.step(at);
+    let gpu = match crate::render::gpu::headless() {
+        Ok(g) => g,
+        Err(e) => return fail(e),
+    };
+    if let Err(e) = std::fs::create_dir_all(out_dir) {
+        return fail(format!("{}: {e}", out_dir.display()));
+    }
+    let images = match cave::render_walls(&gpu, &game, &config, (head, DQuat::IDENTITY), scale) {
+        Ok(i) => i,
+        Err(e) => return fail(e),
+    };
+    for (wall, side, image) in images {
+        let path = out_dir.join(format!("{wall}_{}.png", side.name()));
+        if let Err(e) = image.save_png(&path) {
+            return fail(e);
+        }
+        println!("{}", path.display());
+    }
+    ExitCode::SUCCESS
+}
