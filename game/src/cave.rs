@@ -61,6 +61,8 @@ pub struct TrackedHead {
     latencies: Vec<u64>,
     /// The last velocity had to be capped below c.
     capped: bool,
+    /// Timestamp of the sample whose latency was recorded last.
+    last_measured: Option<u64>,
     received: u64,
 }
 
@@ -79,6 +81,7 @@ impl TrackedHead {
             output: None,
             latencies: Vec::new(),
             capped: false,
+            last_measured: None,
             received: 0,
         };
         head.reopen(Instant::now());
@@ -154,7 +157,13 @@ impl TrackedHead {
             game.eye.yaw = f.y.atan2(f.x);
             game.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
         }
-        if out.status == TrackerStatus::Live && pose.timestamp_ns > 0 {
+        // One latency per new sample: the time from its publication to this
+        // update of the observer.
+        if out.status == TrackerStatus::Live
+            && pose.timestamp_ns > 0
+            && self.last_measured != Some(pose.timestamp_ns)
+        {
+            self.last_measured = Some(pose.timestamp_ns);
             let now = unix_now_ns();
             if self.latencies.len() >= LATENCY_WINDOW {
                 self.latencies.drain(..LATENCY_WINDOW / 2);
@@ -193,6 +202,11 @@ impl TrackedHead {
     /// Publish → observer-update delays so far (ns), newest last.
     pub fn latencies(&self) -> &[u64] {
         &self.latencies
+    }
+
+    /// What the follower accepted, rejected and dropped so far.
+    pub fn stats(&self) -> &lightcone_tracker::follow::FollowerStats {
+        self.follower.stats()
     }
 
     /// The follower's status now.
@@ -320,4 +334,56 @@ pub fn render_walls(
 /// Loads a CAVE config, with the file named in any error.
 pub fn load(path: &Path) -> Result<CaveConfig, String> {
     CaveConfig::from_path(path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn example() -> CaveConfig {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/cave.toml");
+        load(&path).unwrap()
+    }
+
+    /// A wall's corners, given to the renderer as eye-relative board
+    /// vectors, land on the corners of clip space from any eye inside the
+    /// CAVE: the walls stay glued to the screens as the head moves.
+    #[test]
+    fn wall_corners_map_to_the_screen_corners_from_any_eye() {
+        let cave = example();
+        let map = cave.tracker;
+        for eye in [
+            DEFAULT_HEAD,
+            DVec3::new(0.7, 1.2, -0.4),
+            DVec3::new(-1.1, 2.1, 1.0),
+        ] {
+            for wall in &cave.walls {
+                let m = wall_view_proj(&map, wall, eye).unwrap();
+                let corners = [
+                    (wall.lower_left, (-1.0, -1.0)),
+                    (wall.lower_right, (1.0, -1.0)),
+                    (wall.upper_left, (-1.0, 1.0)),
+                    (wall.upper_right(), (1.0, 1.0)),
+                ];
+                for (corner, (x, y)) in corners {
+                    let rel = (map.point(corner) - map.point(eye)).as_vec3();
+                    let clip = m * rel.extend(1.0);
+                    let (nx, ny) = (clip.x / clip.w, clip.y / clip.w);
+                    assert!(
+                        (f64::from(nx) - x).abs() < 1e-4 && (f64::from(ny) - y).abs() < 1e-4,
+                        "{} from {eye}: ({nx}, {ny}) for ({x}, {y})",
+                        wall.name
+                    );
+                    assert!(clip.z / clip.w > 0.0 && clip.z / clip.w < 1.0);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_eye_outside_a_wall_sees_nothing_on_it() {
+        let cave = example();
+        let front = cave.wall("front").unwrap();
+        assert!(wall_view_proj(&cave.tracker, front, DVec3::new(0.0, 1.7, -2.0)).is_none());
+    }
 }

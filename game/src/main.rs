@@ -175,6 +175,8 @@ enum BenchWhat {
     Optics,
     /// Headless frames per second, CPU and GPU parts.
     Render,
+    /// Tracker jitter with and without filtering; publish → update latency.
+    Tracker,
 }
 
 fn main() -> ExitCode {
@@ -215,6 +217,7 @@ fn main() -> ExitCode {
             BenchWhat::Physics => commands::bench::run(quick),
             BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),
             BenchWhat::Render => commands::bench_render::run(quick),
+            BenchWhat::Tracker => commands::bench_tracker::run(quick),
         },
         Some(Command::Play {
             scene,

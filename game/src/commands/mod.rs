@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod bench_optics;
 pub mod bench_render;
+pub mod bench_tracker;
 pub mod cave;
 pub mod check;
 pub mod lesson;

@@ -1,0 +1,387 @@
+//! The head tracker end to end: `lightcone tracker` (the publisher, a
+//! second process) and the game's [`TrackedHead`] driving a [`GameState`]'s
+//! observer, through iceoryx2 shared memory. One test per fault: NaN,
+//! out-of-order samples, lost fix, a stall, a dead publisher and its
+//! restart. Plus the CAVE walls rendered headless and under Xvfb.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+use lightcone::cave::TrackedHead;
+use lightcone::play::state::GameState;
+use lightcone_tracker::follow::TrackerStatus;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// A service name no other test (or run) uses.
+fn service(name: &str) -> String {
+    format!(
+        "lightcone/test/{name}/{}/{}",
+        std::process::id(),
+        lightcone_tracker::unix_now_ns()
+    )
+}
+
+/// The publisher process; killed on drop so a failed test leaks nothing.
+struct Publisher(Option<Child>);
+
+impl Publisher {
+    fn spawn(service: &str, extra: &[&str]) -> Self {
+        let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+            .args(["tracker", "--service", service, "--rate", "500", "--quiet"])
+            .args(["--duration", "20"])
+            .args(extra)
+            .stdin(Stdio::null())
+            .spawn()
+            .expect("lightcone tracker starts");
+        Self(Some(child))
+    }
+
+    /// SIGKILL, like a crash.
+    fn kill(&mut self) {
+        if let Some(mut c) = self.0.take() {
+            let _ = c.kill();
+            let _ = c.wait();
+        }
+    }
+}
+
+impl Drop for Publisher {
+    fn drop(&mut self) {
+        self.kill();
+    }
+}
+
+fn game() -> GameState {
+    let scene = lightcone_engine::scene::load(&repo().join("assets/scenes/paper_carom.toml"))
+        .expect("the default scene loads");
+    GameState::new(scene)
+}
+
+/// One frame of the game's tracker handling.
+fn frame(head: &mut TrackedHead, game: &mut GameState) {
+    head.poll(Instant::now());
+    head.drive(game, DVec3::ZERO);
+    assert!(game.eye.position.is_finite(), "eye {:?}", game.eye.position);
+    assert!(game.eye.u.is_finite() && game.eye.u.speed_deficit() > 0.0);
+}
+
+/// Runs frames (every 200 µs) until `cond` holds or `timeout` passes.
+fn until(
+    head: &mut TrackedHead,
+    game: &mut GameState,
+    timeout: Duration,
+    mut cond: impl FnMut(&TrackedHead, &GameState) -> bool,
+) -> bool {
+    let deadline = Instant::now() + timeout;
+    while Instant::now() < deadline {
+        frame(head, game);
+        if cond(head, game) {
+            return true;
+        }
+        std::thread::sleep(Duration::from_micros(200));
+    }
+    false
+}
+
+fn status(head: &TrackedHead) -> Option<TrackerStatus> {
+    head.status()
+}
+
+fn sequence(head: &TrackedHead) -> u64 {
+    head.output().and_then(|o| o.pose).map_or(0, |p| p.sequence)
+}
+
+#[test]
+fn the_tracked_head_drives_the_observer_across_two_processes() {
+    let name = service("drive");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let start = g.eye.position;
+    let _publisher = Publisher::spawn(&name, &["--path", "circle", "--noise", "0.0005"]);
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(20), |h, _| {
+            sequence(h) > 200
+        }),
+        "{}",
+        head.status_line()
+    );
+    assert_eq!(status(&head), Some(TrackerStatus::Live));
+    let pose = head.output().and_then(|o| o.pose).expect("a pose");
+    // The eye is the mapped (filtered) head position.
+    assert!((g.eye.position - head.map.point(pose.position)).length() < 1e-12);
+    assert_ne!(g.eye.position, start);
+    // A walking head: well below c.
+    assert!(g.eye.u.beta().length() < 0.9);
+    let mut l = head.latencies().to_vec();
+    assert!(l.len() > 50, "{} latencies", l.len());
+    l.sort_unstable();
+    let p99 = l[l.len() * 99 / 100];
+    println!(
+        "publish → observer update: p50 {} µs, p99 {} µs over {} samples",
+        l[l.len() / 2] / 1000,
+        p99 / 1000,
+        l.len()
+    );
+    // A sanity bound for a loaded CI machine; the measured figures are in
+    // BENCHMARKS.md.
+    assert!(p99 < 50_000_000, "p99 {p99} ns");
+}
+
+#[test]
+fn nan_samples_are_rejected_and_the_eye_stays_finite() {
+    let name = service("nan");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let _publisher = Publisher::spawn(&name, &["--nan-every", "3"]);
+    // Every frame asserts a finite eye; run until plenty of NaNs went by.
+    assert!(until(
+        &mut head,
+        &mut g,
+        Duration::from_secs(20),
+        |h, _| sequence(h) > 300
+    ));
+    assert!(head.stats().non_finite > 50, "{:?}", head.stats());
+    assert!(head.stats().accepted > 150, "{:?}", head.stats());
+}
+
+#[test]
+fn out_of_order_samples_are_dropped() {
+    let name = service("reorder");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let _publisher = Publisher::spawn(&name, &["--reorder-every", "4"]);
+    let mut last = 0;
+    assert!(until(&mut head, &mut g, Duration::from_secs(20), |h, _| {
+        let s = sequence(h);
+        assert!(s >= last, "the pose went back from sequence {last} to {s}");
+        last = s;
+        s > 300
+    }));
+    assert!(head.stats().out_of_order > 20, "{:?}", head.stats());
+}
+
+#[test]
+fn a_lost_fix_holds_the_last_pose_then_resumes() {
+    let name = service("dropout");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let _publisher = Publisher::spawn(&name, &["--path", "circle", "--dropout", "0.5,0.5"]);
+    let mut held = None;
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(20), |h, g| {
+            matches!(status(h), Some(TrackerStatus::Rejecting { .. }))
+                .then(|| held = Some(g.eye.position));
+            held.is_some()
+        }),
+        "{}",
+        head.status_line()
+    );
+    let held = held.unwrap();
+    // Still rejecting a little later: the eye has not moved.
+    frame(&mut head, &mut g);
+    if matches!(status(&head), Some(TrackerStatus::Rejecting { .. })) {
+        assert_eq!(g.eye.position, held);
+    }
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(20), |h, _| status(h)
+            == Some(TrackerStatus::Live)),
+        "{}",
+        head.status_line()
+    );
+}
+
+#[test]
+fn a_stalled_tracker_goes_stale_holds_the_pose_and_resumes() {
+    let name = service("stall");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let _publisher = Publisher::spawn(&name, &["--path", "circle", "--stall", "0.5,0.8"]);
+    let mut held = None;
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(20), |h, g| {
+            if status(h) == Some(TrackerStatus::Stale) {
+                held = Some(g.eye.position);
+            }
+            held.is_some()
+        }),
+        "{}",
+        head.status_line()
+    );
+    assert!(
+        head.status_line().contains("stale"),
+        "{}",
+        head.status_line()
+    );
+    assert_eq!(g.eye.u.0, DVec3::ZERO, "no velocity while stale");
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(20), |h, _| status(h)
+            == Some(TrackerStatus::Live)),
+        "{}",
+        head.status_line()
+    );
+    assert_ne!(Some(g.eye.position), held);
+}
+
+#[test]
+fn a_dead_tracker_is_lost_and_a_restarted_one_resumes() {
+    let name = service("restart");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let mut first = Publisher::spawn(&name, &["--path", "circle"]);
+    assert!(until(
+        &mut head,
+        &mut g,
+        Duration::from_secs(20),
+        |h, _| sequence(h) > 100
+    ));
+    first.kill();
+    let killed = Instant::now();
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(5), |h, _| status(h)
+            == Some(TrackerStatus::Lost)),
+        "{}",
+        head.status_line()
+    );
+    assert!(killed.elapsed() >= Duration::from_millis(900));
+    let held = g.eye.position;
+    for _ in 0..20 {
+        frame(&mut head, &mut g);
+    }
+    assert_eq!(g.eye.position, held, "the last good pose is held");
+    assert!(
+        head.status_line().contains("LOST"),
+        "{}",
+        head.status_line()
+    );
+    // A new publisher process under the same name, counting from 0 again.
+    let _second = Publisher::spawn(&name, &["--path", "circle"]);
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(20), |h, _| status(h)
+            == Some(TrackerStatus::Live)),
+        "{}",
+        head.status_line()
+    );
+    assert_ne!(g.eye.position, held);
+}
+
+#[test]
+fn no_tracker_at_all_leaves_the_eye_alone() {
+    let name = service("nobody");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let start = g.eye.position;
+    for _ in 0..50 {
+        frame(&mut head, &mut g);
+    }
+    assert_eq!(g.eye.position, start);
+    assert!(
+        head.status_line().contains("waiting"),
+        "{}",
+        head.status_line()
+    );
+}
+
+fn lightcone(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(args)
+        .current_dir(repo())
+        .output()
+        .expect("the lightcone binary runs")
+}
+
+fn cloth(img: &lightcone::render::headless::Image) -> usize {
+    img.rgba
+        .chunks(4)
+        .filter(|p| p[1] > 70 && p[1] > p[0] + 40 && p[1] > p[2] + 25)
+        .count()
+}
+
+#[test]
+fn every_cave_wall_renders_for_both_eyes() {
+    let dir = std::env::temp_dir().join(format!("lightcone-cave-{}", std::process::id()));
+    let out = lightcone(&[
+        "cave",
+        "assets/scenes/paper_carom.toml",
+        "--config",
+        "assets/cave.toml",
+        "--out-dir",
+        dir.to_str().unwrap(),
+        "--at",
+        "1.0",
+        "--scale",
+        "0.2",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let load = |name: &str| lightcone::render::headless::Image::load_png(&dir.join(name)).unwrap();
+    for wall in ["front", "left", "right", "floor"] {
+        for eye in ["left", "right"] {
+            let img = load(&format!("{wall}_{eye}.png"));
+            assert!(img.width > 0 && img.height > 0);
+        }
+    }
+    let (l, r) = (load("front_left.png"), load("front_right.png"));
+    assert_eq!((l.width, l.height), (384, 320));
+    // The table is in front of the viewer, seen through the front wall.
+    assert!(cloth(&l) > 5000, "{} cloth pixels", cloth(&l));
+    // Stereo: the two eyes see different pictures.
+    let differ = l.rgba.iter().zip(&r.rgba).filter(|(a, b)| a != b).count();
+    assert!(differ > 100, "{differ} pixels differ between the eyes");
+    let _ = std::fs::remove_dir_all(&dir);
+
+    let bad = lightcone(&[
+        "cave",
+        "assets/scenes/paper_carom.toml",
+        "--out-dir",
+        "/tmp/x",
+        "--head",
+        "1,nan",
+    ]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--head"));
+    let bad = lightcone(&[
+        "cave",
+        "assets/scenes/paper_carom.toml",
+        "--config",
+        "assets/scenes/paper_carom.toml",
+        "--out-dir",
+        "/tmp/x",
+    ]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("paper_carom.toml"));
+}
+
+#[test]
+fn play_with_a_tracker_and_a_cave_runs_under_xvfb() {
+    let name = service("play");
+    let _publisher = Publisher::spawn(&name, &["--path", "circle"]);
+    let dir = std::env::temp_dir().join(format!("lightcone-cave-play-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = dir.join("cave.png");
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x720x24"])
+        .arg(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["play", "assets/scenes/paper_carom.toml", "--tracker", &name])
+        .args(["--cave", "assets/cave.toml", "--screenshot"])
+        .arg(&shot)
+        .args(["--frames", "30"])
+        .current_dir(repo())
+        .output()
+        .expect("xvfb-run runs (apt-get install xvfb xauth; .ci/run installs them)");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = lightcone::render::headless::Image::load_png(&shot).unwrap();
+    assert!(cloth(&img) > 5000, "{} cloth pixels", cloth(&img));
+    let _ = std::fs::remove_dir_all(&dir);
+}
