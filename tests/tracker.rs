@@ -385,3 +385,26 @@ fn play_with_a_tracker_and_a_cave_runs_under_xvfb() {
     assert!(cloth(&img) > 5000, "{} cloth pixels", cloth(&img));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn bench_tracker_quick_shows_the_filter_cutting_jitter() {
+    let out = lightcone(&["bench", "tracker", "--quick"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("| 1.0 mm"))
+        .unwrap_or_else(|| panic!("no jitter row in\n{text}"));
+    let cells: Vec<f64> = row
+        .split('|')
+        .filter_map(|c| c.trim().parse().ok())
+        .collect();
+    // β, jitter raw, jitter filtered, error raw, error filtered.
+    let (raw, filtered) = (cells[1], cells[2]);
+    assert!(filtered * 5.0 < raw, "raw {raw} px, filtered {filtered} px");
+    assert!(text.contains("| 1000 Hz | 50 µs |"), "{text}");
+}
