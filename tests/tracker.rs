@@ -35,6 +35,7 @@ impl Publisher {
             .args(["tracker", "--service", service, "--rate", "500", "--quiet"])
             .args(["--duration", "20"])
             .args(extra)
+            .current_dir(repo())
             .stdin(Stdio::null())
             .spawn()
             .expect("lightcone tracker starts");
@@ -407,4 +408,37 @@ fn bench_tracker_quick_shows_the_filter_cutting_jitter() {
     let (raw, filtered) = (cells[1], cells[2]);
     assert!(filtered * 5.0 < raw, "raw {raw} px, filtered {filtered} px");
     assert!(text.contains("| 1000 Hz | 50 µs |"), "{text}");
+}
+
+#[test]
+fn a_recorded_track_is_replayed() {
+    let name = service("csv");
+    let mut head = TrackedHead::new(&name, Default::default());
+    let mut g = game();
+    let _publisher = Publisher::spawn(&name, &["--csv", "tests/tracks/walk.csv", "--noise", "0"]);
+    assert!(until(
+        &mut head,
+        &mut g,
+        Duration::from_secs(20),
+        |h, _| sequence(h) > 200
+    ));
+    // Every pose lies on the recorded path: x in [-0.5, 0.5], y = 1.7, z = 0.
+    let pose = head.output().and_then(|o| o.pose).expect("a pose");
+    let p = pose.raw_position;
+    assert!((-0.5..=0.5).contains(&p.x), "{p}");
+    assert!((p.y - 1.7).abs() < 1e-9 && p.z.abs() < 1e-9, "{p}");
+}
+
+#[test]
+fn a_malformed_track_is_refused_with_its_line_and_field() {
+    let out = lightcone(&["tracker", "--csv", "tests/tracks/bad.csv", "--count", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("line 3") && stderr.contains("field `y`"),
+        "{stderr}"
+    );
+    let out = lightcone(&["tracker", "--rate", "-5"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--rate"));
 }
