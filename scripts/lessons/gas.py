@@ -68,7 +68,8 @@ def setup(world):
     world.ks_start = ks_distance(speeds(world), world.theta)
     world.samples = []
     world.next_sample = SETTLE
-    world.next_chart = 0.0
+    world.next_chart = 0.5
+    chart(world, speeds(world))  # the start: every puck in one bar
     world.collisions = 0
     world.worst_energy = 0.0
     world.done = False

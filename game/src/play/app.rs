@@ -578,6 +578,12 @@ fn panels(
             let Some(p) = project(&camera, rect, s.position) else {
                 continue;
             };
+            // Only clocks whose puck is inside its view (not over a panel
+            // or the other half of a split).
+            let inside = |v: f64, lo: f32, len: f32| v >= f64::from(lo) && v <= f64::from(lo + len);
+            if !(inside(p.x, rect[0], rect[2]) && inside(p.y, rect[1], rect[3])) {
+                continue;
+            }
             {
                 let w = state.billiard.worldline(i);
                 let tau = if effects.time_dilation {
