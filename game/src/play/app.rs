@@ -60,6 +60,7 @@ pub fn run(options: Options) -> Result<(), String> {
         head: tracker.map(|service| TrackedHead::new(&service, map)),
         cave,
         flight: DVec3::ZERO,
+        cave_eye: Side::Mono,
         state: game,
         lesson,
         screenshot,
@@ -102,6 +103,8 @@ struct App {
     cave: Option<CaveConfig>,
     /// The player's own flight added to the tracked head (board metres).
     flight: DVec3,
+    /// Which eye the window shows the CAVE walls for (E cycles).
+    cave_eye: Side,
     lesson: Option<LessonHost>,
     /// Screenshot path and frame count (see [`Options`]).
     screenshot: Option<PathBuf>,
@@ -292,6 +295,13 @@ impl App {
             KeyCode::KeyP | KeyCode::Space => s.paused = !s.paused,
             KeyCode::KeyL => s.go_live(),
             KeyCode::KeyX => s.halt(),
+            KeyCode::KeyE => {
+                self.cave_eye = match self.cave_eye {
+                    Side::Mono => Side::Left,
+                    Side::Left => Side::Right,
+                    Side::Right => Side::Mono,
+                }
+            }
             KeyCode::F5 => {
                 if let Some(lesson) = &mut self.lesson {
                     lesson.reload(s);
@@ -619,7 +629,20 @@ impl App {
         let ctx = gfx.egui.clone();
         let size = (gfx.config.width, gfx.config.height);
         let hud = Hud {
-            tracker: self.head.as_ref().map(TrackedHead::status_line),
+            tracker: match (&self.head, &self.cave) {
+                (Some(h), _) => Some(h.status_line()),
+                (None, Some(_)) => {
+                    Some("no tracker: the head stands at the CAVE's centre".to_owned())
+                }
+                (None, None) => None,
+            }
+            .map(|line| match &self.cave {
+                Some(_) => format!(
+                    "{line}\nCAVE walls, {} eye (E switches)",
+                    self.cave_eye.name()
+                ),
+                None => line,
+            }),
             tracker_colour: match self.head.as_ref().and_then(TrackedHead::status) {
                 Some(TrackerStatus::Live) => egui::Color32::LIGHT_GREEN,
                 _ => egui::Color32::LIGHT_RED,
@@ -699,7 +722,7 @@ impl App {
                         c,
                         &c.walls[i],
                         head,
-                        Side::Mono,
+                        self.cave_eye,
                         self.flight,
                         &mut vertices,
                     ) {
