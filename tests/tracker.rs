@@ -66,7 +66,7 @@ fn game() -> GameState {
 /// One frame of the game's tracker handling.
 fn frame(head: &mut TrackedHead, game: &mut GameState) {
     head.poll(Instant::now());
-    head.drive(game, DVec3::ZERO);
+    head.drive(game, DVec3::ZERO, DVec3::ZERO);
     assert!(game.eye.position.is_finite(), "eye {:?}", game.eye.position);
     assert!(game.eye.u.is_finite() && game.eye.u.speed_deficit() > 0.0);
 }
@@ -156,13 +156,18 @@ fn out_of_order_samples_are_dropped() {
     let mut head = TrackedHead::new(&name, Default::default());
     let mut g = game();
     let _publisher = Publisher::spawn(&name, &["--reorder-every", "4"]);
-    let mut last = 0;
+    let (mut last, mut backwards) = (0, 0);
     assert!(until(&mut head, &mut g, Duration::from_secs(20), |h, _| {
         let s = sequence(h);
-        assert!(s >= last, "the pose went back from sequence {last} to {s}");
+        if s < last {
+            backwards += 1;
+        }
         last = s;
         s > 300
     }));
+    // A straggler arriving after more than 100 ms of silence counts as a
+    // restarted publisher (by design); a starved CI machine may cause one.
+    assert!(backwards <= 1, "the pose went back {backwards} times");
     assert!(head.stats().out_of_order > 20, "{:?}", head.stats());
 }
 
@@ -240,15 +245,17 @@ fn a_dead_tracker_is_lost_and_a_restarted_one_resumes() {
         Duration::from_secs(20),
         |h, _| sequence(h) > 100
     ));
-    first.kill();
     let killed = Instant::now();
+    first.kill();
     assert!(
         until(&mut head, &mut g, Duration::from_secs(5), |h, _| status(h)
             == Some(TrackerStatus::Lost)),
         "{}",
         head.status_line()
     );
-    assert!(killed.elapsed() >= Duration::from_millis(900));
+    // Lost comes a second after the last sample, which came at most a poll
+    // before the kill.
+    assert!(killed.elapsed() >= Duration::from_millis(800));
     let held = g.eye.position;
     for _ in 0..20 {
         frame(&mut head, &mut g);
@@ -362,6 +369,7 @@ fn every_cave_wall_renders_for_both_eyes() {
 
 #[test]
 fn play_with_a_tracker_and_a_cave_runs_under_xvfb() {
+    // The only Xvfb test in this binary.
     let name = service("play");
     let _publisher = Publisher::spawn(&name, &["--path", "circle"]);
     let dir = std::env::temp_dir().join(format!("lightcone-cave-play-{}", std::process::id()));
@@ -384,6 +392,20 @@ fn play_with_a_tracker_and_a_cave_runs_under_xvfb() {
     );
     let img = lightcone::render::headless::Image::load_png(&shot).unwrap();
     assert!(cloth(&img) > 5000, "{} cloth pixels", cloth(&img));
+    // The panel's tracker line is green only while the tracker is live.
+    let w = img.width as usize;
+    let green_text = img
+        .rgba
+        .chunks(4)
+        .enumerate()
+        .filter(|(i, p)| {
+            i % w < 330 && p[1] > 200 && p[0] > 100 && p[0] < 180 && p[2] > 100 && p[2] < 180
+        })
+        .count();
+    assert!(
+        green_text > 100,
+        "no live tracker status: {green_text} green pixels"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -23,7 +23,7 @@ use glam::{DMat3, DMat4, DQuat, DVec3, Mat4};
 use lightcone_engine::optics::Eye;
 use lightcone_engine::spacetime::{Event, ProperVelocity};
 use lightcone_tracker::cave::{CaveConfig, TrackerToBoard, Wall};
-use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus};
+use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus, Verdict};
 use lightcone_tracker::{Subscriber, TrackerSample, unix_now_ns};
 
 use crate::play::state::GameState;
@@ -43,6 +43,16 @@ const FAR: f64 = 200.0;
 /// tracker glitch must not produce a speed ≥ c.
 const MAX_BETA: f64 = 0.99;
 
+/// Where the tracker's origin goes without a CAVE file: on the floor
+/// 0.8 m below the cloth, 1.3 m from the middle of the near long side, so a
+/// head at 1.7 m stands where the default observer does.
+pub fn desktop_map(table: glam::DVec2) -> TrackerToBoard {
+    TrackerToBoard {
+        origin: DVec3::new(table.x / 2.0, -1.3, -0.8),
+        ..TrackerToBoard::default()
+    }
+}
+
 /// How many latencies are kept (the newest).
 const LATENCY_WINDOW: usize = 100_000;
 
@@ -61,8 +71,8 @@ pub struct TrackedHead {
     latencies: Vec<u64>,
     /// The last velocity had to be capped below c.
     capped: bool,
-    /// Timestamp of the sample whose latency was recorded last.
-    last_measured: Option<u64>,
+    /// Publication times of the samples accepted since the last update.
+    pending: Vec<u64>,
     received: u64,
 }
 
@@ -81,7 +91,7 @@ impl TrackedHead {
             output: None,
             latencies: Vec::new(),
             capped: false,
-            last_measured: None,
+            pending: Vec::new(),
             received: 0,
         };
         head.reopen(Instant::now());
@@ -115,7 +125,9 @@ impl TrackedHead {
         }
         self.received += batch.len() as u64;
         for s in &batch {
-            self.follower.push(s, now);
+            if self.follower.push(s, now) == Verdict::Accepted {
+                self.pending.push(s.timestamp_ns);
+            }
         }
         let out = self.follower.output(now);
         self.output = Some(out);
@@ -128,48 +140,28 @@ impl TrackedHead {
     }
 
     /// Moves the game's eye to the tracked head (plus `offset`, the
-    /// player's own flight, board metres), with the filtered velocity.
-    /// Holds the last good pose when the tracker is stale, lost or sends
-    /// garbage; does nothing before the first good sample.
-    pub fn drive(&mut self, game: &mut GameState, offset: DVec3) {
+    /// player's own flight, board metres), with the filtered velocity plus
+    /// the flight's `flight_v` (m/s). Holds the last good pose when the
+    /// tracker is stale, lost or sends garbage; does nothing before the
+    /// first good sample.
+    pub fn drive(&mut self, game: &mut GameState, offset: DVec3, flight_v: DVec3) {
         let Some(out) = self.output else { return };
         let Some(pose) = out.pose else { return };
         let position = self.map.point(pose.position) + offset;
         if !position.is_finite() {
             return;
         }
-        let c = game.scene.c;
-        let mut v = self.map.rotation() * out.velocity * self.map.scale;
-        self.capped = false;
-        if !v.is_finite() {
-            v = DVec3::ZERO;
-        }
-        if v.length() >= MAX_BETA * c {
-            v = v.normalize() * MAX_BETA * c;
-            self.capped = true;
-        }
-        let u = ProperVelocity::try_from_velocity(v, c).unwrap_or(ProperVelocity::ZERO);
-        game.eye.position = position;
-        game.eye.u = u;
-        let forward = self.map.rotation() * (pose.orientation * DVec3::NEG_Z);
-        if forward.is_finite() && forward.length() > 0.5 {
-            let f = forward.normalize();
-            game.eye.yaw = f.y.atan2(f.x);
-            game.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
-        }
-        // One latency per new sample: the time from its publication to this
+        let head_v = self.map.rotation() * out.velocity * self.map.scale;
+        self.capped = set_eye(game, position, head_v + flight_v);
+        aim(game, &self.map, pose.orientation);
+        // One latency per accepted sample: from its publication to this
         // update of the observer.
-        if out.status == TrackerStatus::Live
-            && pose.timestamp_ns > 0
-            && self.last_measured != Some(pose.timestamp_ns)
-        {
-            self.last_measured = Some(pose.timestamp_ns);
-            let now = unix_now_ns();
-            if self.latencies.len() >= LATENCY_WINDOW {
-                self.latencies.drain(..LATENCY_WINDOW / 2);
-            }
-            self.latencies.push(now.saturating_sub(pose.timestamp_ns));
+        let now = unix_now_ns();
+        if self.latencies.len() + self.pending.len() > LATENCY_WINDOW {
+            self.latencies.drain(..LATENCY_WINDOW / 2);
         }
+        self.latencies
+            .extend(self.pending.drain(..).map(|t| now.saturating_sub(t)));
     }
 
     /// The head in tracker space (the default head before any sample).
@@ -213,6 +205,58 @@ impl TrackedHead {
     pub fn status(&self) -> Option<TrackerStatus> {
         self.output.map(|o| o.status)
     }
+}
+
+/// Sets the eye at `position` with velocity `v` (board frame), capped at
+/// [`MAX_BETA`] c; returns whether it had to be capped.
+fn set_eye(game: &mut GameState, position: DVec3, v: DVec3) -> bool {
+    let c = game.scene.c;
+    let mut v = if v.is_finite() { v } else { DVec3::ZERO };
+    let capped = v.length() >= MAX_BETA * c;
+    if capped {
+        v = v.normalize() * MAX_BETA * c;
+    }
+    game.eye.position = position;
+    game.eye.u = ProperVelocity::try_from_velocity(v, c).unwrap_or(ProperVelocity::ZERO);
+    capped
+}
+
+/// Points the eye where a head with tracker orientation `q` looks (its
+/// local −z).
+fn aim(game: &mut GameState, map: &TrackerToBoard, q: DQuat) {
+    let forward = map.rotation() * (q * DVec3::NEG_Z);
+    if forward.is_finite() && forward.length() > 0.5 {
+        let f = forward.normalize();
+        game.eye.yaw = f.y.atan2(f.x);
+        game.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
+    }
+}
+
+/// Places the eye at tracker-space head `head` (orientation `q`), carried
+/// by the flight (`offset`, `flight_v`).
+fn place(
+    game: &mut GameState,
+    map: &TrackerToBoard,
+    head: DVec3,
+    q: DQuat,
+    offset: DVec3,
+    flight_v: DVec3,
+) {
+    set_eye(game, map.point(head) + offset, flight_v);
+    aim(game, map, q);
+}
+
+/// A CAVE without a tracker: the head stands at [`DEFAULT_HEAD`], carried
+/// by the flight.
+pub fn place_untracked(game: &mut GameState, cave: &CaveConfig, offset: DVec3, flight_v: DVec3) {
+    place(
+        game,
+        &cave.tracker,
+        DEFAULT_HEAD,
+        DQuat::IDENTITY,
+        offset,
+        flight_v,
+    );
 }
 
 /// The matrix that takes eye-relative points (observer's frame, board axes,

@@ -72,10 +72,21 @@ def on_frame(world, t):
         f"emission times then: left {emitted['left']:.6f} s (hit {t_left:.6f}), "
         f"right {emitted['right']:.6f} s (hit {t_right:.6f})",
     )
+    # When is the right hit seen? Search the optics for the observer time at
+    # which the light reaching the eye from the right puck left it at its hit.
+    lo, hi = seen_left, t
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        right_now = [p for p in world.observe(t=mid)["pucks"] if p["name"] == "right"][0]
+        if right_now["emission"]["t"] < t_right:
+            lo = mid
+        else:
+            hi = mid
     world.check(
-        "the right hit is seen later by the extra light-travel time",
-        seen_right - seen_left > 0.5,
-        f"seen {seen_right - seen_left:.3f} s apart",
+        "the right hit is seen later by the extra light-travel time, Δd / c",
+        abs(hi - seen_right) < 1e-6 and hi - seen_left > 0.5,
+        f"seen by the optics at {hi:.6f} s, t + d / c = {seen_right:.6f} s; "
+        f"{hi - seen_left:.3f} s after the left hit",
     )
     world.say(
         f"On the table: both hits at t = {t_left:.3f} s. Seen from where you "

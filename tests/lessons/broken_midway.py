@@ -8,7 +8,7 @@ import lightcone
 def setup(world):
     scene = lightcone.Scene(title="breaks at the first collision")
     scene.add_puck("a", (0.5, 0.71), beta=(0.8, 0.0))
-    scene.add_puck("b", (0.75, 0.71))
+    scene.add_puck("b", (0.6, 0.71))
     world.start(scene)
     world.check("setup ran", True)
 

@@ -44,7 +44,7 @@ fn directions(game: &mut GameState, position: DVec3, v: DVec3, effects: &Effects
         .collect()
 }
 
-/// Simulates `seconds` of a head moving at `beta` along x with Gaussian
+/// Simulates `seconds` of a head circling the table at `beta` with Gaussian
 /// position noise `sigma` (m), tracked at `rate` Hz and drawn at 60 fps,
 /// and measures the jitter of the pucks' apparent directions, filtered
 /// (`filtered`: the Follower's One-Euro position and velocity) or raw
@@ -59,8 +59,18 @@ pub fn jitter(beta: f64, sigma: f64, rate: f64, seconds: f64, filtered: bool) ->
     game.step(1.0);
     let c = game.scene.c;
     let effects = game.effects;
-    let velocity = DVec3::new(beta * c, 0.0, 0.0);
-    let start = DVec3::new(0.2, -0.9, 0.9);
+    // The observer circles the table's centre at 2 m, 0.9 m above the
+    // cloth: its distance to the pucks stays the same at every speed.
+    let centre = DVec3::new(1.42, 0.71, 0.9);
+    let radius = 2.0;
+    let omega = beta * c / radius;
+    let path = |t: f64| {
+        let a = omega * t;
+        (
+            centre + DVec3::new(a.cos(), a.sin(), 0.0) * radius,
+            DVec3::new(-a.sin(), a.cos(), 0.0) * beta * c,
+        )
+    };
     let mut rng = Prng::new(42);
     let mut follower = Follower::new(FollowerConfig::default());
     let t0 = Instant::now();
@@ -75,7 +85,7 @@ pub fn jitter(beta: f64, sigma: f64, rate: f64, seconds: f64, filtered: bool) ->
         let t = k as f64 / fps;
         // The tracker's samples up to this frame.
         while sample_t <= t {
-            let truth = start + velocity * sample_t;
+            let truth = path(sample_t).0;
             let noise = DVec3::new(rng.gaussian(), rng.gaussian(), rng.gaussian()) * sigma;
             let p = truth + noise;
             seq += 1;
@@ -107,7 +117,8 @@ pub fn jitter(beta: f64, sigma: f64, rate: f64, seconds: f64, filtered: bool) ->
         // The truth at the newest sample's time (what a perfect tracker
         // would give with the same latency).
         let t_last = raw.last().map_or(0.0, |r| r.0);
-        let truth = directions(&mut game, start + velocity * t_last, velocity, &effects);
+        let (true_p, true_v) = path(t_last);
+        let truth = directions(&mut game, true_p, true_v, &effects);
         let seen = directions(&mut game, p, v, &effects);
         let err: Vec<DVec3> = seen.iter().zip(&truth).map(|(s, t)| *s - *t).collect();
         for e in &err {
@@ -160,7 +171,7 @@ pub fn latency(rate: f64, seconds: f64, poll: Duration) -> Result<(f64, f64, f64
     let start = Instant::now();
     while start.elapsed().as_secs_f64() < seconds + 0.5 {
         head.poll(Instant::now());
-        head.drive(&mut game, DVec3::ZERO);
+        head.drive(&mut game, DVec3::ZERO, DVec3::ZERO);
         std::thread::sleep(poll);
     }
     let _ = child.kill();
@@ -223,7 +234,7 @@ pub fn run(quick: bool) -> ExitCode {
             Ok((p50, p99, max, n)) => println!(
                 "| {rate:.0} Hz | {} | {n} | {p50:.0} | {p99:.0} | {max:.0} |",
                 if poll_us == 0 {
-                    "yield".to_owned()
+                    "busy spin".to_owned()
                 } else {
                     format!("{poll_us} µs")
                 }

@@ -55,11 +55,14 @@ pub fn run(options: Options) -> Result<(), String> {
         tracker,
         cave,
     } = options;
-    let map = cave.as_ref().map(|c| c.tracker).unwrap_or_default();
+    let map = cave
+        .as_ref()
+        .map_or_else(|| cave::desktop_map(game.scene.table.size), |c| c.tracker);
     let mut app = App {
         head: tracker.map(|service| TrackedHead::new(&service, map)),
         cave,
         flight: DVec3::ZERO,
+        flight_v: DVec3::ZERO,
         cave_eye: Side::Mono,
         state: game,
         lesson,
@@ -103,6 +106,8 @@ struct App {
     cave: Option<CaveConfig>,
     /// The player's own flight added to the tracked head (board metres).
     flight: DVec3,
+    /// Its velocity this frame, m/s.
+    flight_v: DVec3,
     /// Which eye the window shows the CAVE walls for (E cycles).
     cave_eye: Side,
     lesson: Option<LessonHost>,
@@ -133,6 +138,8 @@ struct Hud {
     tracker_colour: egui::Color32,
     /// Draw the clocks over the desktop views (not over CAVE walls).
     clocks: bool,
+    /// A lesson runs (it owns c).
+    lesson: bool,
 }
 
 /// How one rectangle of the window is drawn.
@@ -143,19 +150,30 @@ enum Plan {
     Wall(usize),
 }
 
+/// `rect` cut to the `w × h` surface (wgpu refuses viewports outside it);
+/// `None` when nothing is left.
+fn clamp_rect(rect: [f32; 4], w: f32, h: f32) -> Option<[f32; 4]> {
+    let (x0, y0) = (rect[0].max(0.0), rect[1].max(0.0));
+    let (x1, y1) = ((rect[0] + rect[2]).min(w), (rect[1] + rect[3]).min(h));
+    (x1 - x0 >= 1.0 && y1 - y0 >= 1.0).then_some([x0, y0, x1 - x0, y1 - y0])
+}
+
 /// The CAVE walls tiled in a grid over `[x0, x0 + w] × [0, h]`, each tile
 /// keeping its wall's aspect ratio.
 fn wall_tiles(cave: &CaveConfig, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], Plan)> {
     let n = cave.walls.len().max(1);
     let cols = (n as f32).sqrt().ceil() as usize;
     let rows = n.div_ceil(cols);
-    let (tw, th) = (w / cols as f32, h / rows as f32);
+    let (tw, th) = (
+        w.max(cols as f32) / cols as f32,
+        h.max(rows as f32) / rows as f32,
+    );
     cave.walls
         .iter()
         .enumerate()
         .map(|(i, wall)| {
             let aspect = (wall.width() / wall.height()) as f32;
-            let (mut rw, mut rh) = (tw - 4.0, th - 4.0);
+            let (mut rw, mut rh) = ((tw - 4.0).max(1.0), (th - 4.0).max(1.0));
             if rw / rh > aspect {
                 rw = rh * aspect;
             } else {
@@ -277,15 +295,16 @@ impl App {
                 dir += d;
             }
         }
-        if dir != DVec3::ZERO {
-            let dir = dir.normalize();
-            if self.head.is_some() {
-                // The tracker owns the eye's velocity; the keys walk the
-                // tracked space through the scene at 1 m/s.
-                self.flight += dir * dt;
-            } else {
-                self.state.thrust(dir * 0.5 * dt, dir * 1.0 * dt);
-            }
+        let dir = dir.normalize_or_zero();
+        if self.head.is_some() || self.cave.is_some() {
+            // With a tracked head or a CAVE, the keys carry the tracked
+            // space through the scene at 1 m/s (while time runs): a velocity
+            // the observer has, added to the head's own.
+            let running = !(self.state.paused || self.state.replaying());
+            self.flight_v = if running { dir } else { DVec3::ZERO };
+            self.flight += dir * dt;
+        } else if dir != DVec3::ZERO {
+            self.state.thrust(dir * 0.5 * dt, dir * 1.0 * dt);
         }
     }
 
@@ -412,9 +431,17 @@ impl App {
                 lesson.reload_if_edited(&mut self.state);
             }
         }
-        if let Some(head) = &mut self.head {
-            head.poll(now);
-            head.drive(&mut self.state, self.flight);
+        match (&mut self.head, &self.cave) {
+            (Some(head), _) => {
+                head.poll(now);
+                head.drive(&mut self.state, self.flight, self.flight_v);
+            }
+            (None, Some(c)) => {
+                // No tracker: the head stands at the CAVE's centre, carried
+                // by the flight.
+                cave::place_untracked(&mut self.state, c, self.flight, self.flight_v);
+            }
+            (None, None) => {}
         }
         self.frame += 1;
         let shot = self.screenshot.is_some() && self.frame >= self.frames;
@@ -485,8 +512,11 @@ fn panels(
                 }
                 ui.separator();
                 let mut c = s.scene.c;
+                // A lesson sets c itself (restarting under it would break
+                // its bookkeeping).
                 if ui
-                    .add(
+                    .add_enabled(
+                        !hud.lesson,
                         egui::Slider::new(&mut c, 0.2..=20.0)
                             .logarithmic(true)
                             .text("c (m/s)"),
@@ -648,6 +678,7 @@ impl App {
                 _ => egui::Color32::LIGHT_RED,
             },
             clocks: self.cave.is_none(),
+            lesson: self.lesson.is_some(),
         };
         let state = &mut self.state;
         let mut edges = (self.scene_left, self.scene_right);
@@ -702,6 +733,7 @@ impl App {
         } else {
             w
         };
+        let mut cleared = false;
         let plans: Vec<([f32; 4], Plan)> = match &self.cave {
             Some(c) => wall_tiles(c, self.scene_left, right - self.scene_left, h),
             None => layout(self.state.view, self.scene_left, right - self.scene_left, h)
@@ -742,6 +774,9 @@ impl App {
                 }
                 (Plan::Wall(_), None) => continue,
             };
+            let Some(rect) = clamp_rect(rect, w, h) else {
+                continue;
+            };
             while gfx.views.len() <= k {
                 gfx.views.push(Renderer::new(
                     &gfx.gpu.device,
@@ -765,11 +800,12 @@ impl App {
                 Draw {
                     vertices: &vertices,
                     view_proj,
-                    clear: (k == 0).then_some(BACKGROUND),
+                    clear: (!cleared).then_some(BACKGROUND),
                     viewport: Some(rect),
                 },
             );
             gfx.gpu.queue.submit([encoder.finish()]);
+            cleared = true;
         }
         let screen = egui_wgpu::ScreenDescriptor {
             size_in_pixels: [gfx.config.width, gfx.config.height],

@@ -342,8 +342,15 @@ impl World {
                 choices.len() - 1
             )));
         }
+        // A question asked over an unanswered one inherits its promise to
+        // resume.
+        let open = self
+            .ui
+            .question
+            .as_ref()
+            .is_some_and(|q| q.chosen.is_none() && q.resume);
         let g = self.game_mut()?;
-        let resume = !g.paused;
+        let resume = !g.paused || open;
         g.paused = true;
         self.ui.question = Some(Question {
             text: question.to_owned(),
