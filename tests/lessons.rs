@@ -202,3 +202,22 @@ fn a_broken_lesson_shows_its_traceback_in_the_game_and_does_not_crash() {
         );
     }
 }
+
+#[test]
+fn an_endless_hook_is_stopped_with_a_timeout() {
+    let start = std::time::Instant::now();
+    let out = lightcone(&[
+        "lesson",
+        "tests/lessons/endless.py",
+        "--hook-limit",
+        "1",
+        "--json",
+    ]);
+    assert!(!out.status.success());
+    let outcome: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let error = outcome["error"].as_str().expect("an error");
+    assert!(error.contains("in on_frame"), "{error}");
+    assert!(error.contains("TimeoutError"), "{error}");
+    assert!(error.contains("endless.py\", line 13"), "{error}");
+    assert!(start.elapsed().as_secs_f64() < 30.0);
+}

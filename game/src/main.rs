@@ -142,6 +142,9 @@ enum Command {
         /// Frames per real second to step (the lesson's time_scale applies).
         #[arg(long, default_value_t = 30.0)]
         fps: f64,
+        /// Stop a hook that runs longer than this (s) with TimeoutError.
+        #[arg(long, default_value_t = 10.0)]
+        hook_limit: f64,
         /// Print the outcome as one JSON object (schema in the README).
         #[arg(long)]
         json: bool,
@@ -211,8 +214,9 @@ fn main() -> ExitCode {
             lesson,
             until,
             fps,
+            hook_limit,
             json,
-        }) => commands::lesson::run(&lesson, until, fps, json),
+        }) => commands::lesson::run(&lesson, until, fps, hook_limit, json),
         Some(Command::Bench { what, quick, csv }) => match what {
             BenchWhat::Physics => commands::bench::run(quick),
             BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),

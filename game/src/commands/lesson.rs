@@ -7,12 +7,17 @@ use crate::lesson::headless;
 
 /// Runs the lesson; prints each claim (or the JSON outcome with `json`).
 /// Fails when the lesson raised or a claim did not hold.
-pub fn run(path: &Path, until: f64, fps: f64, json: bool) -> ExitCode {
+pub fn run(path: &Path, until: f64, fps: f64, hook_limit: f64, json: bool) -> ExitCode {
     if !path.is_file() {
         eprintln!("{}: no such lesson file", path.display());
         return ExitCode::FAILURE;
     }
-    let outcome = match headless::run(path, until, fps) {
+    if !(hook_limit.is_finite() && hook_limit > 0.0 && hook_limit <= 86_400.0) {
+        eprintln!("--hook-limit {hook_limit}: give seconds in (0, 86400]");
+        return ExitCode::FAILURE;
+    }
+    let limit = std::time::Duration::from_secs_f64(hook_limit);
+    let outcome = match headless::run(path, until, fps, limit) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("{e}");

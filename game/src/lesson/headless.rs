@@ -48,15 +48,21 @@ impl Outcome {
 }
 
 /// Runs the lesson at `path` until it calls `finish`, fails, or board time
-/// passes `until`, stepping `1 / fps` real seconds a frame.
-pub fn run(path: &Path, until: f64, fps: f64) -> Result<Outcome, String> {
+/// passes `until`, stepping `1 / fps` real seconds a frame; a hook running
+/// longer than `hook_limit` is stopped with TimeoutError.
+pub fn run(
+    path: &Path,
+    until: f64,
+    fps: f64,
+    hook_limit: std::time::Duration,
+) -> Result<Outcome, String> {
     if !(until.is_finite() && until >= 0.0) {
         return Err(format!("--until {until}: give a board time ≥ 0"));
     }
     if !(fps.is_finite() && fps > 0.0) {
         return Err(format!("--fps {fps}: give a positive frame rate"));
     }
-    let (mut host, mut game) = LessonHost::load(path, || {
+    let (mut host, mut game) = LessonHost::load_with_limit(path, hook_limit, || {
         GameState::new(
             lightcone_engine::scene::Scene::empty(glam::DVec2::new(1.0, 1.0), None)
                 .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene")),

@@ -20,6 +20,9 @@
 //! reload — of the edited file, without restarting — starts again.
 
 pub mod headless;
+mod watchdog;
+
+pub use watchdog::HOOK_LIMIT;
 
 use std::ffi::CString;
 use std::path::{Path, PathBuf};
@@ -110,6 +113,8 @@ pub struct LessonHost {
     pub error: Option<String>,
     /// How many times the lesson has been (re)loaded.
     pub loads: u32,
+    /// Longest a hook may run before it is stopped ([`HOOK_LIMIT`]).
+    pub limit: std::time::Duration,
 }
 
 /// Builds a placeholder game for the host to hold while the real one is lent.
@@ -127,6 +132,15 @@ impl LessonHost {
     /// start.
     pub fn load(
         path: &Path,
+        fallback: impl FnOnce() -> GameState,
+    ) -> Result<(Self, GameState), String> {
+        Self::load_with_limit(path, HOOK_LIMIT, fallback)
+    }
+
+    /// [`Self::load`] with a hook time limit other than [`HOOK_LIMIT`].
+    pub fn load_with_limit(
+        path: &Path,
+        limit: std::time::Duration,
         fallback: impl FnOnce() -> GameState,
     ) -> Result<(Self, GameState), String> {
         let dir = path
@@ -147,6 +161,7 @@ impl LessonHost {
             modified: None,
             error: None,
             loads: 0,
+            limit,
         };
         let game = host.start().unwrap_or_else(fallback);
         Ok((host, game))
@@ -185,6 +200,7 @@ impl LessonHost {
             if !sys_path.contains(&dir)? {
                 sys_path.call_method1("insert", (0, &dir))?;
             }
+            let _running = watchdog::Running::start(self.limit);
             let module = PyModule::from_code(py, &code, &file, &name)?;
             if !module.hasattr("setup")? {
                 return Err(pyo3::exceptions::PyAttributeError::new_err(format!(
@@ -275,9 +291,11 @@ impl LessonHost {
             return;
         };
         let lent = std::mem::replace(game, spare);
+        let limit = self.limit;
         let result = Python::attach(|py| {
             let world = self.world.bind(py);
             world.borrow_mut().game = Some(lent);
+            let _running = watchdog::Running::start(limit);
             let result = match &self.module {
                 Some(m) => {
                     let m = m.bind(py);
