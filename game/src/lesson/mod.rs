@@ -66,12 +66,60 @@ fn init_python() -> Result<(), String> {
              pkg.__package__ = 'lightcone'\n\
              pkg.__file__ = '<lightcone game>/lightcone/__init__.py'\n\
              sys.modules['lightcone'] = pkg\n\
-             exec(compile({PACKAGE_INIT:?}, pkg.__file__, 'exec'), pkg.__dict__)\n"
+             exec(compile({PACKAGE_INIT:?}, pkg.__file__, 'exec'), pkg.__dict__)\n\
+             class _Printed:\n\
+             \x20   def __init__(self, out):\n\
+             \x20       self.out, self.lines = out, []\n\
+             \x20   def write(self, s):\n\
+             \x20       if self.out is not None:\n\
+             \x20           self.out.write(s)\n\
+             \x20       self.lines.append(s)\n\
+             \x20       return len(s)\n\
+             \x20   def flush(self):\n\
+             \x20       if self.out is not None:\n\
+             \x20           self.out.flush()\n\
+             sys.stdout = _Printed(sys.stdout)\n"
         ))
         .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
         py.run(&code, None, None)
     })
     .map_err(|e| format!("cannot start the embedded Python: {e}"))
+}
+
+/// What lessons printed since the last call, as lines (the embedded
+/// `sys.stdout` keeps a copy for the lesson panel).
+fn drain_printed(py: Python<'_>) -> Vec<String> {
+    let taken = py.import("sys").and_then(|sys| {
+        let out = sys.getattr("stdout")?;
+        if !out.hasattr("lines")? {
+            return Ok(Vec::new());
+        }
+        let parts: Vec<String> = out.getattr("lines")?.extract()?;
+        out.setattr("lines", pyo3::types::PyList::empty(py))?;
+        Ok::<_, PyErr>(parts)
+    });
+    taken
+        .unwrap_or_default()
+        .concat()
+        .lines()
+        .map(str::to_owned)
+        .collect()
+}
+
+/// How many printed lines the panel keeps.
+const PRINTED_LINES: usize = 40;
+
+/// Keeps the newest printed lines on the world's screen.
+fn keep_printed(world: &Bound<'_, World>, lines: Vec<String>) {
+    if lines.is_empty() {
+        return;
+    }
+    let mut w = world.borrow_mut();
+    w.ui.printed.extend(lines);
+    let n = w.ui.printed.len();
+    if n > PRINTED_LINES {
+        w.ui.printed.drain(..n - PRINTED_LINES);
+    }
 }
 
 /// The traceback of `err` as Python prints it.
@@ -212,7 +260,9 @@ impl LessonHost {
             let dir = self.world.borrow(py).dir.clone();
             self.world = Py::new(py, World::new(dir))?;
             let world = self.world.bind(py);
-            module.call_method1("setup", (world,))?;
+            let setup = module.call_method1("setup", (world,));
+            keep_printed(world, drain_printed(py));
+            setup?;
             let game = world.borrow_mut().game.take();
             if game.is_none() {
                 return Err(pyo3::exceptions::PyRuntimeError::new_err(format!(
@@ -306,6 +356,7 @@ impl LessonHost {
                 }
                 None => Ok(()),
             };
+            keep_printed(world, drain_printed(py));
             let back = world.borrow_mut().game.take();
             let generation = world.borrow().generation;
             (
@@ -479,7 +530,8 @@ mod tests {
         let extra = "    world.ask('which?', ['a', 'b'], answer=1)\n\
                      def on_answer(world, question, choice):\n\
                      \x20   world.say(question + ' ' + choice)\n\
-                     \x20   world.check('answered', choice == 'b')\n";
+                     \x20   world.check('answered', choice == 'b')\n\
+                     \x20   print('chose', choice)\n";
         write(&path, &lesson("ask", extra), 0);
         let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
         assert!(host.error.is_none(), "{:?}", host.error);
@@ -494,6 +546,8 @@ mod tests {
         assert_eq!(ui.text, "which? b");
         assert_eq!(ui.question.and_then(|q| q.chosen), Some(1));
         assert!(ui.claims[0].ok);
+        // What the lesson printed is kept for the panel.
+        assert_eq!(ui.printed.last().map(String::as_str), Some("chose b"));
         host.answer(&mut game, 0); // already answered: ignored
         assert_eq!(host.ui().question.and_then(|q| q.chosen), Some(1));
     }

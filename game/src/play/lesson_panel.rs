@@ -102,6 +102,15 @@ fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<LessonAction
             }
         }
     }
+    if !lesson.printed.is_empty() {
+        ui.separator();
+        ui.collapsing("printed", |ui| {
+            let start = lesson.printed.len().saturating_sub(12);
+            for line in &lesson.printed[start..] {
+                ui.label(RichText::new(line).monospace().small());
+            }
+        });
+    }
     if let Some(msg) = &lesson.finished {
         ui.separator();
         ui.colored_label(Color32::LIGHT_GREEN, format!("Lesson complete. {msg}"));

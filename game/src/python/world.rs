@@ -72,6 +72,8 @@ pub struct LessonUi {
     pub bars: Vec<Bars>,
     /// Set by `finish`: the closing message.
     pub finished: Option<String>,
+    /// The newest lines the lesson printed.
+    pub printed: Vec<String>,
 }
 
 /// The running game as a lesson sees it. Hooks receive it: `setup(world)`,
