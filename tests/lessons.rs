@@ -220,4 +220,16 @@ fn an_endless_hook_is_stopped_with_a_timeout() {
     assert!(error.contains("TimeoutError"), "{error}");
     assert!(error.contains("endless.py\", line 13"), "{error}");
     assert!(start.elapsed().as_secs_f64() < 30.0);
+    let out = lightcone(&[
+        "lesson",
+        "tests/lessons/endless_setup.py",
+        "--hook-limit",
+        "1",
+    ]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("TimeoutError") && stderr.contains("in setup"),
+        "{stderr}"
+    );
 }

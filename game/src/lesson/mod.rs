@@ -248,7 +248,8 @@ impl LessonHost {
             if !sys_path.contains(&dir)? {
                 sys_path.call_method1("insert", (0, &dir))?;
             }
-            let _running = watchdog::Running::start(self.limit);
+            // The module's own code and setup are timed like a hook.
+            let running = watchdog::Running::start(self.limit);
             let module = PyModule::from_code(py, &code, &file, &name)?;
             if !module.hasattr("setup")? {
                 return Err(pyo3::exceptions::PyAttributeError::new_err(format!(
@@ -261,6 +262,7 @@ impl LessonHost {
             self.world = Py::new(py, World::new(dir))?;
             let world = self.world.bind(py);
             let setup = module.call_method1("setup", (world,));
+            drop(running);
             keep_printed(world, drain_printed(py));
             setup?;
             let game = world.borrow_mut().game.take();
@@ -345,16 +347,19 @@ impl LessonHost {
         let result = Python::attach(|py| {
             let world = self.world.bind(py);
             world.borrow_mut().game = Some(lent);
-            let _running = watchdog::Running::start(limit);
-            let result = match &self.module {
-                Some(m) => {
-                    let m = m.bind(py);
-                    match m.getattr(hook) {
-                        Ok(f) => args(py, world).and_then(|a| f.call1(a).map(|_| ())),
-                        Err(_) => Ok(()),
+            let result = {
+                // Only the hook itself is timed.
+                let _running = watchdog::Running::start(limit);
+                match &self.module {
+                    Some(m) => {
+                        let m = m.bind(py);
+                        match m.getattr(hook) {
+                            Ok(f) => args(py, world).and_then(|a| f.call1(a).map(|_| ())),
+                            Err(_) => Ok(()),
+                        }
                     }
+                    None => Ok(()),
                 }
-                None => Ok(()),
             };
             keep_printed(world, drain_printed(py));
             let back = world.borrow_mut().game.take();

@@ -1,0 +1,6 @@
+"""A deliberately broken lesson: setup never returns."""
+
+
+def setup(world):
+    while True:
+        pass
