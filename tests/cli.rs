@@ -1,19 +1,8 @@
 //! End-to-end tests that drive the `lightcone` binary.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn lightcone(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lightcone"))
-        .args(args)
-        .current_dir(repo())
-        .output()
-        .expect("the lightcone binary runs")
-}
+use common::{cloth_pixels, lightcone, play_under_xvfb, repo};
 
 fn shipped_scenes() -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(repo().join("assets/scenes"))
@@ -334,27 +323,10 @@ fn play_runs_under_xvfb_and_shows_the_table() {
     let dir = std::env::temp_dir().join(format!("lightcone-play-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let shot = dir.join("play.png");
-    let out = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x720x24"])
-        .arg(env!("CARGO_BIN_EXE_lightcone"))
-        .args(["play", "assets/scenes/paper_carom.toml", "--screenshot"])
-        .arg(&shot)
-        .args(["--frames", "20"])
-        .current_dir(repo())
-        .output()
-        .expect("xvfb-run runs (apt-get install xvfb xauth; .ci/run installs them)");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let img = lightcone::render::headless::Image::load_png(&shot).unwrap();
+    let (out, img) = play_under_xvfb(&["play", "assets/scenes/paper_carom.toml"], &shot, 20);
+    let img = img.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&out.stderr)));
     assert_eq!((img.width, img.height), (1280, 720));
-    let cloth = img
-        .rgba
-        .chunks(4)
-        .filter(|p| p[1] > 70 && p[1] > p[0] + 40 && p[1] > p[2] + 25)
-        .count();
+    let cloth = cloth_pixels(&img);
     assert!(cloth > 1280 * 720 / 10, "only {cloth} cloth-green pixels");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -3,20 +3,13 @@
 //! every physics claim it checks must hold. Broken lessons must fail with
 //! their traceback, in the terminal and on screen, without a crash.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
+use std::path::Path;
+use std::process::Output;
 
-fn lightcone(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lightcone"))
-        .args(args)
-        .current_dir(repo())
-        .output()
-        .expect("the lightcone binary runs")
-}
+use common::{cloth_pixels, lightcone, play_under_xvfb, repo};
+use lightcone::render::headless::Image;
 
 fn lessons() -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(repo().join("scripts/lessons"))
@@ -122,34 +115,16 @@ fn lesson_rejects_bad_arguments_and_missing_files() {
 }
 
 /// Runs `play LESSON --screenshot` under Xvfb; returns the screenshot.
-fn play_screenshot(
-    lesson: &str,
-    name: &str,
-    frames: u32,
-) -> (Output, lightcone::render::headless::Image) {
+fn play_screenshot(lesson: &str, name: &str, frames: u32) -> (Output, Image) {
     let dir = std::env::temp_dir().join(format!("lightcone-lesson-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let shot = dir.join(format!("{name}.png"));
-    let out = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x720x24"])
-        .arg(env!("CARGO_BIN_EXE_lightcone"))
-        .args(["play", lesson, "--screenshot"])
-        .arg(&shot)
-        .args(["--frames", &frames.to_string()])
-        .current_dir(repo())
-        .output()
-        .expect("xvfb-run runs (apt-get install xvfb xauth; .ci/run installs them)");
-    assert!(
-        out.status.success(),
-        "{lesson}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let img = lightcone::render::headless::Image::load_png(&shot).unwrap();
+    let (out, img) = play_under_xvfb(&["play", lesson], &dir.join(format!("{name}.png")), frames);
+    let img = img.unwrap_or_else(|| panic!("{lesson}: {}", String::from_utf8_lossy(&out.stderr)));
     (out, img)
 }
 
 /// Pixels of the traceback's pink in the right-hand third of the window.
-fn traceback_pixels(img: &lightcone::render::headless::Image) -> usize {
+fn traceback_pixels(img: &Image) -> usize {
     let w = img.width as usize;
     img.rgba
         .chunks(4)
@@ -191,11 +166,7 @@ fn a_broken_lesson_shows_its_traceback_in_the_game_and_does_not_crash() {
             "{lesson}: only {pink} traceback pixels on screen"
         );
         // The table is still drawn.
-        let cloth = img
-            .rgba
-            .chunks(4)
-            .filter(|p| p[1] > 70 && p[1] > p[0] + 40 && p[1] > p[2] + 25)
-            .count();
+        let cloth = cloth_pixels(&img);
         assert!(
             cloth > 1280 * 720 / 20,
             "{lesson}: only {cloth} cloth pixels"

@@ -2,7 +2,9 @@
 //! (Mesa's lavapipe on CI), checked against the pinhole model, against
 //! physics, and against golden images.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::repo;
 
 use glam::{DVec2, DVec3};
 use lightcone::render::frame::{self, SceneMeshes, ViewKind};
@@ -11,10 +13,6 @@ use lightcone::render::headless::{self, Image};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{self, Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
 use lightcone_engine::spacetime::ProperVelocity;
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
 
 /// One red puck, seen from `eye` looking at `look_at`.
 fn one_puck(

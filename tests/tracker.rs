@@ -4,18 +4,16 @@
 //! out-of-order samples, lost fix, a stall, a dead publisher and its
 //! restart. Plus the CAVE walls rendered headless and under Xvfb.
 
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+mod common;
+
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+use common::{cloth_pixels as cloth, lightcone, play_under_xvfb, repo};
 use glam::DVec3;
 use lightcone::cave::TrackedHead;
 use lightcone::play::state::GameState;
 use lightcone_tracker::follow::TrackerStatus;
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
 
 /// A service name no other test (or run) uses.
 fn service(name: &str) -> String {
@@ -294,21 +292,6 @@ fn no_tracker_at_all_leaves_the_eye_alone() {
     );
 }
 
-fn lightcone(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lightcone"))
-        .args(args)
-        .current_dir(repo())
-        .output()
-        .expect("the lightcone binary runs")
-}
-
-fn cloth(img: &lightcone::render::headless::Image) -> usize {
-    img.rgba
-        .chunks(4)
-        .filter(|p| p[1] > 70 && p[1] > p[0] + 40 && p[1] > p[2] + 25)
-        .count()
-}
-
 #[test]
 fn every_cave_wall_renders_for_both_eyes() {
     let dir = std::env::temp_dir().join(format!("lightcone-cave-{}", std::process::id()));
@@ -369,28 +352,24 @@ fn every_cave_wall_renders_for_both_eyes() {
 
 #[test]
 fn play_with_a_tracker_and_a_cave_runs_under_xvfb() {
-    // The only Xvfb test in this binary.
     let name = service("play");
     let _publisher = Publisher::spawn(&name, &["--path", "circle"]);
     let dir = std::env::temp_dir().join(format!("lightcone-cave-play-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let shot = dir.join("cave.png");
-    let out = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x720x24"])
-        .arg(env!("CARGO_BIN_EXE_lightcone"))
-        .args(["play", "assets/scenes/paper_carom.toml", "--tracker", &name])
-        .args(["--cave", "assets/cave.toml", "--screenshot"])
-        .arg(&shot)
-        .args(["--frames", "30"])
-        .current_dir(repo())
-        .output()
-        .expect("xvfb-run runs (apt-get install xvfb xauth; .ci/run installs them)");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let (out, img) = play_under_xvfb(
+        &[
+            "play",
+            "assets/scenes/paper_carom.toml",
+            "--tracker",
+            &name,
+            "--cave",
+            "assets/cave.toml",
+        ],
+        &shot,
+        30,
     );
-    let img = lightcone::render::headless::Image::load_png(&shot).unwrap();
+    let img = img.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&out.stderr)));
     assert!(cloth(&img) > 5000, "{} cloth pixels", cloth(&img));
     // The panel's tracker line is green only while the tracker is live.
     let w = img.width as usize;

@@ -209,7 +209,7 @@ impl TrackedHead {
 
 /// Sets the eye at `position` with velocity `v` (board frame), capped at
 /// [`MAX_BETA`] c; returns whether it had to be capped.
-fn set_eye(game: &mut GameState, position: DVec3, v: DVec3) -> bool {
+pub fn set_eye(game: &mut GameState, position: DVec3, v: DVec3) -> bool {
     let c = game.scene.c;
     let mut v = if v.is_finite() { v } else { DVec3::ZERO };
     let capped = v.length() >= MAX_BETA * c;

@@ -7,7 +7,6 @@ use std::time::{Duration, Instant};
 
 use glam::{DQuat, DVec3};
 use lightcone_engine::scene::{self, Effects};
-use lightcone_engine::spacetime::ProperVelocity;
 use lightcone_tracker::follow::{Follower, FollowerConfig};
 use lightcone_tracker::motion::Prng;
 use lightcone_tracker::{TrackerSample, latency_stats};
@@ -29,15 +28,8 @@ pub struct Jitter {
 /// Apparent directions (unit vectors, observer's frame) of the pucks'
 /// centres for an eye at `position` with velocity `v` (board frame).
 fn directions(game: &mut GameState, position: DVec3, v: DVec3, effects: &Effects) -> Vec<DVec3> {
-    let c = game.scene.c;
-    let cap = 0.99 * c;
-    let v = if v.length() >= cap {
-        v.normalize() * cap
-    } else {
-        v
-    };
-    game.eye.position = position;
-    game.eye.u = ProperVelocity::try_from_velocity(v, c).unwrap_or(ProperVelocity::ZERO);
+    // The game's own way of setting a tracked eye (capped below c).
+    crate::cave::set_eye(game, position, v);
     game.apparent_centres(effects)
         .iter()
         .map(|(_, s)| s.position.normalize_or_zero())

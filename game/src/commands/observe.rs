@@ -11,6 +11,36 @@ use lightcone_engine::report::ObserveReport;
 use lightcone_engine::scene::{self, Effect, Effects};
 use lightcone_engine::world::PUCK_SEGMENTS;
 
+/// What observer `index` of `scene` sees at board time `t`: the report
+/// `lightcone observe` prints (and the Python `observe` returns).
+pub fn report(
+    scene: &scene::Scene,
+    billiard: &Billiard,
+    index: usize,
+    t: f64,
+    effects: Effects,
+    vertices: bool,
+) -> ObserveReport {
+    let spec = &scene.observers[index];
+    let (eye, _) = crate::render::frame::eye_of(scene, index, t);
+    let shapes: Vec<_> = scene
+        .pucks
+        .iter()
+        .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
+        .collect();
+    let heights: Vec<f64> = scene.pucks.iter().map(|p| p.height).collect();
+    let view = observe(
+        billiard,
+        &shapes,
+        &heights,
+        eye,
+        effects,
+        Method::Exact,
+        vertices,
+    );
+    ObserveReport::new(billiard, &view, &spec.name, t / spec.u.gamma(), vertices)
+}
+
 /// Parses `--effects`: `scene` (as the scene says), `all`, `none`, or a
 /// comma-separated list of effect keys to turn on (the others off).
 pub fn parse_effects(spec: &str, scene: Effects) -> Result<Effects, String> {
@@ -91,25 +121,7 @@ pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) 
     };
     let mut billiard = Billiard::from_scene(&scene);
     billiard.advance_to(at);
-    let spec = &scene.observers[index];
-    let (eye, _) = crate::render::frame::eye_of(&scene, index, at);
-    let shapes: Vec<_> = scene
-        .pucks
-        .iter()
-        .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
-        .collect();
-    let heights: Vec<f64> = scene.pucks.iter().map(|p| p.height).collect();
-    let view = observe(
-        &billiard,
-        &shapes,
-        &heights,
-        eye,
-        effects,
-        Method::Exact,
-        vertices,
-    );
-    let proper_time = at / spec.u.gamma();
-    let report = ObserveReport::new(&billiard, &view, &spec.name, proper_time, vertices);
+    let report = report(&scene, &billiard, index, at, effects, vertices);
     match serde_json::to_string(&report) {
         Ok(s) => {
             println!("{s}");

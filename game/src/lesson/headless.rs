@@ -8,7 +8,6 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::LessonHost;
-use crate::play::state::GameState;
 
 /// A claim as the run reports it.
 #[derive(Clone, Debug, Serialize)]
@@ -62,12 +61,8 @@ pub fn run(
     if !(fps.is_finite() && fps > 0.0) {
         return Err(format!("--fps {fps}: give a positive frame rate"));
     }
-    let (mut host, mut game) = LessonHost::load_with_limit(path, hook_limit, || {
-        GameState::new(
-            lightcone_engine::scene::Scene::empty(glam::DVec2::new(1.0, 1.0), None)
-                .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene")),
-        )
-    })?;
+    // Headless, a lesson that fails before starting a game needs no table.
+    let (mut host, mut game) = LessonHost::load_with_limit(path, hook_limit, super::placeholder)?;
     let mut frames = 0u64;
     let mut answers = Vec::new();
     // Enough frames for `until` at any time scale the lesson sets, with a

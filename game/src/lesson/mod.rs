@@ -166,7 +166,7 @@ pub struct LessonHost {
 }
 
 /// Builds a placeholder game for the host to hold while the real one is lent.
-fn placeholder() -> GameState {
+pub(crate) fn placeholder() -> GameState {
     let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
         .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
     GameState::new(scene)
@@ -318,11 +318,6 @@ impl LessonHost {
         } else {
             false
         }
-    }
-
-    /// What the lesson shows (text, question, claims, charts).
-    pub fn ui(&self) -> LessonUi {
-        Python::attach(|py| self.world.borrow(py).ui.clone())
     }
 
     /// Whether hooks run (the lesson loaded and has not failed).
@@ -547,14 +542,19 @@ mod tests {
         assert!(game.paused);
         host.answer(&mut game, 1);
         assert!(!game.paused, "answering resumes");
-        let ui = host.ui();
+        let ui = host.with_ui(LessonUi::clone);
         assert_eq!(ui.text, "which? b");
         assert_eq!(ui.question.and_then(|q| q.chosen), Some(1));
         assert!(ui.claims[0].ok);
         // What the lesson printed is kept for the panel.
         assert_eq!(ui.printed.last().map(String::as_str), Some("chose b"));
         host.answer(&mut game, 0); // already answered: ignored
-        assert_eq!(host.ui().question.and_then(|q| q.chosen), Some(1));
+        assert_eq!(
+            host.with_ui(LessonUi::clone)
+                .question
+                .and_then(|q| q.chosen),
+            Some(1)
+        );
     }
 
     #[test]
@@ -591,7 +591,7 @@ mod tests {
         }
         assert!(host.error.is_none(), "{:?}", host.error);
         assert!(
-            host.ui()
+            host.with_ui(LessonUi::clone)
                 .claims
                 .iter()
                 .any(|c| c.claim == "cushion" && c.ok)

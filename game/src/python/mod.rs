@@ -14,12 +14,9 @@ mod world;
 use std::path::Path;
 
 use glam::DVec3;
-use lightcone_engine::optics::mesh;
-use lightcone_engine::optics::view::{Method, observe};
 use lightcone_engine::physics::Billiard;
-use lightcone_engine::report::{CollisionLine, ObserveReport, StateLine};
+use lightcone_engine::report::{CollisionLine, StateLine};
 use lightcone_engine::scene::{Effect, Effects, Scene as SceneModel};
-use lightcone_engine::world::PUCK_SEGMENTS;
 use pyo3::exceptions::{PyKeyError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -168,24 +165,7 @@ fn observation<'py>(
     effects: Effects,
 ) -> PyResult<Bound<'py, PyAny>> {
     let index = observer_index(scene, observer)?;
-    let spec = &scene.observers[index];
-    let (eye, _) = crate::render::frame::eye_of(scene, index, t);
-    let shapes: Vec<_> = scene
-        .pucks
-        .iter()
-        .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
-        .collect();
-    let heights: Vec<f64> = scene.pucks.iter().map(|p| p.height).collect();
-    let view = observe(
-        billiard,
-        &shapes,
-        &heights,
-        eye,
-        effects,
-        Method::Exact,
-        vertices,
-    );
-    let report = ObserveReport::new(billiard, &view, &spec.name, t / spec.u.gamma(), vertices);
+    let report = crate::commands::observe::report(scene, billiard, index, t, effects, vertices);
     to_python(py, &report)
 }
 
@@ -201,7 +181,7 @@ fn render_png(
     size: (u32, u32),
     view: &str,
 ) -> PyResult<()> {
-    use crate::render::frame::{self, SceneMeshes, ViewKind};
+    use crate::render::frame::ViewKind;
     let kind = match view {
         "seen" => ViewKind::Seen,
         "truth" => ViewKind::Truth,
@@ -219,17 +199,10 @@ fn render_png(
     let index = observer_index(scene, observer)?;
     py.detach(|| {
         let gpu = crate::render::gpu::headless()?;
-        let meshes = SceneMeshes::new(scene);
-        let (eye, camera) = frame::eye_of(scene, index, t);
-        let mut vertices = Vec::new();
-        frame::build(
-            billiard,
-            &meshes,
-            &eye,
-            kind.effects(scene.effects),
-            &mut vertices,
-        );
-        crate::render::headless::draw(&gpu, &vertices, &camera, size.0, size.1)?.save_png(path)
+        crate::render::headless::render_billiard(
+            &gpu, scene, billiard, t, index, kind, size.0, size.1,
+        )?
+        .save_png(path)
     })
     .map_err(PyRuntimeError::new_err)
 }

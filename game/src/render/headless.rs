@@ -258,11 +258,27 @@ pub fn render_scene(
 ) -> Result<Image, String> {
     let mut billiard = Billiard::from_scene(scene);
     billiard.advance_to(t);
+    render_billiard(gpu, scene, &billiard, t, observer, kind, width, height)
+}
+
+/// Renders what observer `observer` sees at board time `t` of a billiard
+/// already run (at least) that far.
+#[allow(clippy::too_many_arguments)]
+pub fn render_billiard(
+    gpu: &Gpu,
+    scene: &Scene,
+    billiard: &Billiard,
+    t: f64,
+    observer: usize,
+    kind: ViewKind,
+    width: u32,
+    height: u32,
+) -> Result<Image, String> {
     let meshes = SceneMeshes::new(scene);
     let (eye, camera) = frame::eye_of(scene, observer, t);
     let mut vertices = Vec::new();
     frame::build(
-        &billiard,
+        billiard,
         &meshes,
         &eye,
         kind.effects(scene.effects),
