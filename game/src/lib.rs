@@ -3,8 +3,10 @@
 
 pub mod cave;
 pub mod commands;
+pub mod interrupt;
 pub mod lesson;
 pub mod play;
+pub mod progress;
 pub mod python;
 pub mod render;
 

@@ -187,6 +187,7 @@ fn main() -> ExitCode {
     match cli.command {
         Some(Command::Check { scenes }) => commands::check::run(&scenes),
         Some(Command::Simulate { scene, until, out }) => {
+            lightcone::interrupt::install();
             commands::simulate::run(&scene, until, out.as_ref())
         }
         Some(Command::Observe {

@@ -20,7 +20,6 @@
 
 use glam::DVec3;
 
-use crate::physics::predict::puck_puck::light_catch_up;
 use crate::spacetime::{Event, ProperVelocity};
 use crate::worldline::{Segment, Worldline};
 
@@ -176,6 +175,24 @@ pub fn simultaneous(worldline: &Worldline, offset: DVec3, contracted: bool, t: f
         event: Event::new(t, s.position_at(t) + r),
         u: s.u,
         segment: k,
+    }
+}
+
+/// Stable positive root `τ` of `(c² − v²) τ² − 2 (d·v) τ − |d|² = 0`: the
+/// time light from the origin takes to reach a point that starts at `d` and
+/// moves with velocity `v` (`|v| < c`).
+pub fn light_catch_up(d: DVec3, v: DVec3, c: f64, gamma: f64) -> f64 {
+    let a = (c / gamma) * (c / gamma); // c² − v², exact via γ
+    let dv = d.dot(v);
+    let dd = d.length_squared();
+    if dd == 0.0 {
+        return 0.0;
+    }
+    let root = (dv * dv + a * dd).sqrt();
+    if dv <= 0.0 {
+        dd / (root - dv)
+    } else {
+        (dv + root) / a
     }
 }
 

@@ -1,12 +1,16 @@
 //! The event loop: run freely to the earliest predicted event, resolve it,
 //! re-predict what it changed (the paper's §3.3.2.1 "anticipation").
-
-use std::collections::HashMap;
+//!
+//! Pucks are held internally in the order of their names, so the outcome
+//! (ties between simultaneous events included) does not depend on the order
+//! in which a scene lists them; every public index is the caller's own.
 
 use glam::{DVec2, DVec3};
 
 use super::broadphase::BroadPhase;
 use super::calendar::{Calendar, Entry, Slot};
+use super::overlap;
+use super::predict::puck_puck::PairContact;
 use super::predict::{Cushion, puck_cushion, puck_puck};
 use super::resolve::{self, Body};
 use crate::scene::Scene;
@@ -57,8 +61,8 @@ pub struct PuckOutcome {
     pub mass_before: f64,
     /// Rest mass after (larger after an inelastic puck–puck collision), kg.
     pub mass_after: f64,
-    /// True while the velocity change has not yet happened (light from the
-    /// contact has not reached the centre): the values are the scheduled ones.
+    /// True while the velocity change has not yet happened (its board time
+    /// is still ahead): the values are the scheduled ones.
     pub pending: bool,
 }
 
@@ -82,6 +86,10 @@ pub struct Collision {
     pub contact: DVec3,
     /// One outcome per puck involved (two for puck–puck, one for a cushion).
     pub pucks: Vec<PuckOutcome>,
+    /// The most the two pucks may overlap in the board frame because of
+    /// this contact, m (0 for a cushion): what rigid bodies cannot avoid in
+    /// relativity, see [`overlap_bound`](crate::physics::overlap::bound).
+    pub overlap_bound: f64,
 }
 
 /// Counters of what the event loop did.
@@ -105,9 +113,12 @@ pub struct Stats {
     /// contact (none is expected: pending changes land first, see
     /// `early_kicks`).
     pub overlapping_kicks: u64,
-    /// Velocity changes that landed before light reached the centre,
+    /// Velocity changes that landed before their scheduled board time,
     /// because the puck met something else first.
     pub early_kicks: u64,
+    /// Collision records and worldline segments dropped because they were
+    /// older than the history horizon.
+    pub forgotten_collisions: u64,
 }
 
 impl Stats {
@@ -117,9 +128,10 @@ impl Stats {
     }
 }
 
-/// A velocity change on its way: light from a contact travelling to a
-/// puck's centre. It is an impulse: if the puck changed meanwhile, the
-/// momentum and mass it carries are added to the puck's new state.
+/// A velocity change still ahead: the second kick of a puck–puck contact,
+/// at the event on the puck's centre simultaneous with the contact in the
+/// pair frame. It is an impulse: if the puck changed meanwhile, the
+/// 4-momentum it carries is added to the puck's new state.
 #[derive(Clone, Copy, Debug)]
 struct Kick {
     puck: u32,
@@ -128,26 +140,41 @@ struct Kick {
     before: Body,
     after: Body,
     version_at_contact: u32,
-    record: Option<usize>,
+    /// Global index of the collision record to complete, if recorded.
+    record: Option<u64>,
     slot: usize,
     generation: u32,
+    /// Which contact it belongs to (a running count of pair contacts).
+    contact: u64,
 }
 
 #[derive(Clone, Debug)]
 struct Puck {
     name: String,
+    /// Index in the caller's order.
+    external: u32,
     radius: f64,
     mass: f64,
     worldline: Worldline,
     version: u32,
     pending: Vec<usize>,
+    /// The last kick that landed: (contact count, version it left).
+    kicked_by: Option<(u64, u32)>,
+    /// A pair that has collided and that nothing else has touched since:
+    /// (partner, own version, partner's version). Their motion is the
+    /// collision's outcome, which separates, so they are not predicted
+    /// again until one of them changes.
+    settled: Option<(u32, u32, u32)>,
+    /// Board time of this puck's last pair contact and how many came in
+    /// quick succession (Zeno detection, O(1) per puck).
+    quick: (f64, u32),
 }
 
-/// Consecutive contacts of one pair closer together than this (in units of
+/// Consecutive contacts of one puck closer together than this (in units of
 /// the time light takes to cross the table) count towards a Zeno sequence.
 const ZENO_GAP: f64 = 1e-9;
-/// A pair that meets this many times in such quick succession is merged
-/// (its next collision is perfectly inelastic).
+/// A puck that meets others this many times in such quick succession ends
+/// the sequence: its next collision is perfectly inelastic.
 const ZENO_COUNT: u32 = 64;
 
 /// The relativistic billiard's physics: pucks, their worldlines, and the
@@ -157,20 +184,26 @@ pub struct Billiard {
     table: DVec2,
     restitution: f64,
     cushion_restitution: f64,
+    /// In name order; `internal[i]` is the caller's puck `i`.
     pucks: Vec<Puck>,
+    internal: Vec<u32>,
     time: f64,
     calendar: Calendar,
     kicks: Vec<Option<Kick>>,
     free_kicks: Vec<usize>,
     kick_generation: u32,
+    contacts_made: u64,
     broad: BroadPhase,
     window_end: f64,
+    /// Kept collision records; `collisions[0]` has global index
+    /// `collisions_dropped`.
     collisions: Vec<Collision>,
+    collisions_dropped: u64,
     record: bool,
-    keep_history: bool,
+    history: Option<f64>,
+    forgotten_before: Option<f64>,
     warnings: Vec<String>,
     stats: Stats,
-    zeno: HashMap<(u32, u32), (f64, u32)>,
     scratch: Vec<(u32, u32)>,
 }
 
@@ -194,36 +227,51 @@ impl Billiard {
             pucks.iter().map(|p| p.radius).sum::<f64>() / pucks.len() as f64
         };
         let n = pucks.len();
-        let pucks = pucks
+        let mut pucks: Vec<Puck> = pucks
             .into_iter()
-            .map(|p| Puck {
+            .enumerate()
+            .map(|(k, p)| Puck {
                 worldline: Worldline::new(Event::new(0.0, p.position.extend(0.0)), p.u, c),
                 name: p.name,
+                external: k as u32,
                 radius: p.radius,
                 mass: p.mass,
                 version: 0,
                 pending: Vec::new(),
+                kicked_by: None,
+                settled: None,
+                quick: (f64::NEG_INFINITY, 0),
             })
             .collect();
+        // Canonical order: by name, then (for equal names) by the caller's
+        // order. Every tie between simultaneous events is broken in it.
+        pucks.sort_by(|a, b| a.name.cmp(&b.name).then(a.external.cmp(&b.external)));
+        let mut internal = vec![0u32; n];
+        for (i, p) in pucks.iter().enumerate() {
+            internal[p.external as usize] = i as u32;
+        }
         let mut billiard = Self {
             c,
             table,
             restitution,
             cushion_restitution,
             pucks,
+            internal,
             time: 0.0,
             calendar: Calendar::default(),
             kicks: Vec::new(),
             free_kicks: Vec::new(),
             kick_generation: 0,
+            contacts_made: 0,
             broad: BroadPhase::new(n, mean_radius),
             window_end: 0.0,
             collisions: Vec::new(),
+            collisions_dropped: 0,
             record: true,
-            keep_history: true,
+            history: None,
+            forgotten_before: None,
             warnings: Vec::new(),
             stats: Stats::default(),
-            zeno: HashMap::new(),
             scratch: Vec::new(),
         };
         billiard.start_window(0.0);
@@ -248,11 +296,28 @@ impl Billiard {
         self.record = on;
     }
 
-    /// Whether worldlines keep their whole history (on by default). Off,
-    /// each keeps only its current segment: for long headless runs that
-    /// need no replay and no light-delayed view of the past.
+    /// Whether worldlines keep their whole history (on by default). Off is
+    /// `set_history(Some(0.0))`: each keeps only its current segment.
     pub fn set_keep_history(&mut self, on: bool) {
-        self.keep_history = on;
+        self.set_history(if on { None } else { Some(0.0) });
+    }
+
+    /// How far back, in seconds of board time, the worldlines and the
+    /// collision records reach (`None`, the default: the whole run). With a
+    /// horizon `h`, worldline segments that ended before `time − h` are
+    /// forgotten as the pucks change, and collision records whose contact is
+    /// before `time − h` are dropped at the start of the next
+    /// [`Self::step_until`] or [`Self::advance_to`] (so what one call
+    /// produced can always be read after it). Memory then stays O(N) plus
+    /// what happens within `h`. Queries before the horizon extrapolate the
+    /// oldest kept segment: [`Self::forgotten_before`] says from when.
+    pub fn set_history(&mut self, horizon: Option<f64>) {
+        self.history = horizon.map(|h| if h.is_nan() { 0.0 } else { h.max(0.0) });
+    }
+
+    /// The history horizon, s (`None`: everything is kept).
+    pub fn history(&self) -> Option<f64> {
+        self.history
     }
 }
 
@@ -284,48 +349,83 @@ impl Billiard {
         self.pucks.is_empty()
     }
 
+    fn puck(&self, i: usize) -> &Puck {
+        &self.pucks[self.internal[i] as usize]
+    }
+
     /// Puck `i`'s name.
     pub fn name(&self, i: usize) -> &str {
-        &self.pucks[i].name
+        &self.puck(i).name
     }
 
     /// Index of the puck called `name`.
     pub fn index_of(&self, name: &str) -> Option<usize> {
-        self.pucks.iter().position(|p| p.name == name)
+        let k = self.pucks.partition_point(|p| p.name.as_str() < name);
+        self.pucks
+            .get(k)
+            .filter(|p| p.name == name)
+            .map(|p| p.external as usize)
     }
 
     /// Puck `i`'s rest radius, m.
     pub fn radius(&self, i: usize) -> f64 {
-        self.pucks[i].radius
+        self.puck(i).radius
     }
 
     /// Puck `i`'s current rest mass, kg (grows in inelastic collisions).
     pub fn mass(&self, i: usize) -> f64 {
-        self.pucks[i].mass
+        self.puck(i).mass
     }
 
-    /// Puck `i`'s worldline (its centre), complete up to [`Self::time`].
+    /// Puck `i`'s worldline (its centre), complete up to [`Self::time`]
+    /// (and back to [`Self::forgotten_before`], if history is bounded).
     pub fn worldline(&self, i: usize) -> &Worldline {
-        &self.pucks[i].worldline
+        &self.puck(i).worldline
     }
 
-    /// Every collision so far whose contact is at or before [`Self::time`],
-    /// in the order resolved (contact time order). A puck–puck collision's
-    /// outcomes stay `pending` until light from the contact reaches each
-    /// centre.
+    /// The kept collision records, in the order resolved (contact time
+    /// order). A puck–puck collision's second velocity change stays
+    /// `pending` until its board time. With a history horizon the oldest
+    /// records are dropped: the first one kept has global index
+    /// [`Self::collisions_forgotten`].
     pub fn collisions(&self) -> &[Collision] {
         &self.collisions
     }
 
-    /// Messages about degraded behaviour (Zeno sequences merged, …).
+    /// How many collision records have been dropped (the global index of
+    /// `collisions()[0]`).
+    pub fn collisions_forgotten(&self) -> u64 {
+        self.collisions_dropped
+    }
+
+    /// How many collisions have been recorded in all (kept or dropped).
+    pub fn collision_count(&self) -> u64 {
+        self.collisions_dropped + self.collisions.len() as u64
+    }
+
+    /// The kept records from global index `from` on (those before it and
+    /// any dropped ones are skipped).
+    pub fn collisions_from(&self, from: u64) -> &[Collision] {
+        let k = from.saturating_sub(self.collisions_dropped) as usize;
+        &self.collisions[k.min(self.collisions.len())..]
+    }
+
+    /// Board time before which history has been forgotten (worldline
+    /// segments and collision records), if any has.
+    pub fn forgotten_before(&self) -> Option<f64> {
+        self.forgotten_before
+    }
+
+    /// Messages about degraded behaviour (a Zeno sequence ended, …): each
+    /// kind is said once; [`Self::stats`] counts every occurrence.
     pub fn warnings(&self) -> &[String] {
         &self.warnings
     }
 
     /// Total 4-momentum of the pucks at [`Self::time`], including what is
-    /// in transit: a puck–puck collision's transfer that light has not yet
-    /// carried to a centre. Exactly conserved by puck–puck collisions;
-    /// cushions change it (they are external).
+    /// in transit: the part of a puck–puck collision's transfer whose
+    /// second kick is still ahead. Exactly conserved by puck–puck
+    /// collisions; cushions change it (they are external).
     pub fn total_momentum(&self) -> crate::spacetime::FourMomentum {
         let bodies = self.pucks.iter().fold(Default::default(), |sum, p| {
             sum + crate::spacetime::FourMomentum::of_body(p.mass, p.worldline.last().u)
@@ -348,17 +448,33 @@ impl Billiard {
     /// freely to `t`). Going backwards does nothing: the past is kept in the
     /// worldlines, for replay.
     pub fn advance_to(&mut self, t: f64) {
+        while !self.step_until(t, usize::MAX) {}
+    }
+
+    /// Processes at most `max_events` calendar entries at or before board
+    /// time `t`. Returns `true` when every event up to `t` is done (the
+    /// billiard's time is then `t`), `false` if it stopped early (call
+    /// again): a long run in bounded steps, so a caller can stream the
+    /// records, show progress or stop.
+    pub fn step_until(&mut self, t: f64, max_events: usize) -> bool {
+        self.trim_records();
         if t.is_nan() || t <= self.time {
-            return;
+            return true;
         }
+        let mut done = 0usize;
         while let Some(entry) = self.calendar.peek().copied() {
             if entry.t > t {
                 break;
             }
+            if done >= max_events {
+                return false;
+            }
             self.calendar.pop();
             self.handle(entry);
+            done += 1;
         }
         self.time = t;
+        true
     }
 
     /// Adds a momentum impulse to puck `i` at board time `t` (≥ the current
@@ -374,6 +490,7 @@ impl Billiard {
         if !du.is_finite() || !t.is_finite() {
             return Err(crate::worldline::WorldlineError::NotFinite);
         }
+        let i = self.internal[i] as usize;
         let t = t.max(self.time);
         self.advance_to(t);
         self.flush_pending(i);
@@ -381,7 +498,9 @@ impl Billiard {
         let u = ProperVelocity(puck.worldline.last().u.0 + du);
         puck.worldline
             .push(t.max(puck.worldline.last().start.t), u)?;
-        self.changed(i);
+        self.bump(i);
+        // The look-ahead window was sized for the old speeds.
+        self.start_window(self.time);
         Ok(())
     }
 
@@ -409,13 +528,8 @@ impl Billiard {
                 let (ia, ib) = (a as usize, b as usize);
                 if self.pucks[ia].version != entry.versions[0]
                     || self.pucks[ib].version != entry.versions[1]
+                    || self.pending_with(ia, ib)
                 {
-                    self.stats.stale += 1;
-                    return;
-                }
-                if self.pending_with(ia, ib) {
-                    // A duplicate of a contact already resolved (the pair left
-                    // and re-entered the broad phase): light is still on its way.
                     self.stats.stale += 1;
                     return;
                 }
@@ -431,11 +545,11 @@ impl Billiard {
         }
     }
 
-    /// A puck about to meet something while light from an earlier contact
-    /// is still crossing it takes that news now: its pending velocity
-    /// changes land at the current time, so every collision starts from
-    /// the puck's complete state and 4-momentum stays exactly conserved.
-    /// Returns whether anything landed (the puck then has new predictions).
+    /// A puck about to meet something while the second kick of an earlier
+    /// contact is still ahead of it takes that kick now, so every collision
+    /// starts from the puck's complete state and 4-momentum stays exactly
+    /// conserved. Returns whether anything landed (the puck then has new
+    /// predictions).
     fn flush_pending(&mut self, i: usize) -> bool {
         if self.pucks[i].pending.is_empty() {
             return false;
@@ -446,7 +560,7 @@ impl Billiard {
                 self.kicks[x].map_or(0.0, |k| k.t),
                 self.kicks[y].map_or(0.0, |k| k.t),
             );
-            kx.total_cmp(&ky)
+            kx.total_cmp(&ky).then(x.cmp(&y))
         });
         self.pucks[i].pending = ids.clone();
         for id in ids {
@@ -470,7 +584,7 @@ impl Billiard {
             let position = puck.worldline.position_at(t_kink);
             let contact = position + puck_cushion::support_offset(puck.radius, before, cushion);
             let outcome = PuckOutcome {
-                puck: i,
+                puck: puck.external as usize,
                 t: t_kink,
                 position,
                 u_before: before,
@@ -484,39 +598,66 @@ impl Billiard {
                 t: t_kink,
                 contact,
                 pucks: vec![outcome],
+                overlap_bound: 0.0,
             });
         }
-        self.changed(i);
+        self.bump(i);
     }
 
     fn pair_contact(&mut self, a: usize, b: usize, predicted_at: f64) {
-        let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, predicted_at)
-        else {
+        let Some(hit) = self.contact_of(a, b, predicted_at) else {
             return;
         };
-        self.time = self.time.max(hit.contact.t);
         self.stats.pair_contacts += 1;
+        self.contacts_made += 1;
+        let contact_id = self.contacts_made;
         let body = |p: &Puck| Body {
             mass: p.mass,
             u: p.worldline.last().u,
         };
         let before = [body(&self.pucks[a]), body(&self.pucks[b])];
         let restitution = self.zeno_restitution(a, b, hit.contact.t);
-        let after = resolve::puck_puck(
-            before[0],
-            before[1],
-            hit.normal,
-            hit.pair_frame,
-            restitution,
-        );
+        let after = if hit.on_board {
+            resolve::puck_puck_board(before[0], before[1], hit.normal, restitution)
+        } else {
+            resolve::puck_puck(
+                before[0],
+                before[1],
+                hit.normal,
+                hit.pair_frame,
+                restitution,
+            )
+        };
+        // Kick times: never before now (a contact found already
+        // overlapping is resolved at once).
+        let times = [hit.kicks[0].t.max(self.time), hit.kicks[1].t.max(self.time)];
+        let overlap_bound = {
+            let first = if times[0] <= times[1] { 0 } else { 1 };
+            let second = 1 - first;
+            let closing = after[first].u.velocity(self.c) - before[second].u.velocity(self.c);
+            let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
+            let early = overlap::depth(
+                self.pucks[a].worldline.last(),
+                ra,
+                self.pucks[b].worldline.last(),
+                rb,
+                times[first],
+            );
+            overlap::bound(
+                [ra, rb],
+                hit.gamma_pair,
+                (times[second] - times[first]) * closing.length(),
+                early,
+            )
+        };
 
         let record = self.record.then(|| {
             let pucks = [a, b]
                 .iter()
                 .enumerate()
                 .map(|(k, &i)| PuckOutcome {
-                    puck: i,
-                    t: hit.kicks[k].t,
+                    puck: self.pucks[i].external as usize,
+                    t: times[k],
                     position: hit.kicks[k].position,
                     u_before: before[k].u,
                     u_after: after[k].u,
@@ -527,30 +668,27 @@ impl Billiard {
                 .collect();
             self.collisions.push(Collision {
                 kind: CollisionKind::PuckPuck,
-                t: hit.contact.t,
+                t: hit.contact.t.max(self.time),
                 contact: hit.contact.position,
                 pucks,
+                overlap_bound,
             });
-            self.collisions.len() - 1
+            self.collision_count() - 1
         });
+        let mut ids = [0usize; 2];
         for (k, (&i, &j)) in [a, b].iter().zip([b, a].iter()).enumerate() {
+            self.kick_generation = self.kick_generation.wrapping_add(1);
             let kick = Kick {
                 puck: i as u32,
                 partner: j as u32,
-                t: hit.kicks[k].t.max(self.time),
+                t: times[k],
                 before: before[k],
                 after: after[k],
                 version_at_contact: self.pucks[i].version,
                 record,
                 slot: k,
-                generation: 0,
-            };
-            let kick = Kick {
-                generation: {
-                    self.kick_generation = self.kick_generation.wrapping_add(1);
-                    self.kick_generation
-                },
-                ..kick
+                generation: self.kick_generation,
+                contact: contact_id,
             };
             let id = match self.free_kicks.pop() {
                 Some(id) => {
@@ -563,12 +701,23 @@ impl Billiard {
                 }
             };
             self.pucks[i].pending.push(id);
-            self.calendar.push(Entry {
-                t: kick.t,
-                slot: Slot::Kick(id),
-                versions: [kick.generation, 0],
-                predicted_at: kick.t,
-            });
+            ids[k] = id;
+        }
+        // The kicks that are due land now, earliest first; a later one is
+        // put on the calendar.
+        let order = if times[0] <= times[1] { [0, 1] } else { [1, 0] };
+        for k in order {
+            let id = ids[k];
+            if times[k] <= self.time {
+                self.land_kick(id);
+            } else {
+                self.calendar.push(Entry {
+                    t: times[k],
+                    slot: Slot::Kick(id),
+                    versions: [self.kicks[id].map_or(0, |kick| kick.generation), 0],
+                    predicted_at: times[k],
+                });
+            }
         }
     }
 
@@ -587,12 +736,10 @@ impl Billiard {
         let next = if puck.version == kick.version_at_contact {
             kick.after
         } else {
-            // The puck was struck again before light from this contact had
-            // crossed it: add this contact's 4-momentum transfer to its
-            // present 4-momentum. Energy and momentum stay exactly
-            // conserved; the difference from a rigid body's outcome shows
-            // as a change of rest mass (internal energy of a body that, in
-            // relativity, cannot be rigid).
+            // The puck was changed again before this kick's board time: add
+            // this contact's 4-momentum transfer to its present 4-momentum.
+            // Energy and momentum stay exactly conserved; the difference
+            // from a rigid body's outcome shows as a change of rest mass.
             self.stats.overlapping_kicks += 1;
             let p = now.momentum() + (kick.after.momentum() - kick.before.momentum());
             let mass = p.invariant_mass();
@@ -602,8 +749,6 @@ impl Billiard {
                     u: ProperVelocity(p.momentum / mass),
                 }
             } else {
-                // Not a timelike 4-momentum any more: keep the mass, add
-                // the 3-momentum.
                 Body {
                     mass: now.mass,
                     u: ProperVelocity(p.momentum / now.mass),
@@ -617,12 +762,14 @@ impl Billiard {
         }
         puck.mass = next.mass;
         self.stats.kicks += 1;
-        if let Some(r) = kick.record {
-            let position = puck.worldline.position_at(t);
-            self.collisions[r].pucks[kick.slot] = PuckOutcome {
-                puck: i,
+        if let Some(r) = kick.record
+            && let Some(k) = r.checked_sub(self.collisions_dropped)
+            && let Some(record) = self.collisions.get_mut(k as usize)
+        {
+            record.pucks[kick.slot] = PuckOutcome {
+                puck: puck.external as usize,
                 t,
-                position,
+                position: puck.worldline.position_at(t),
                 u_before: now.u,
                 u_after: next.u,
                 mass_before: now.mass,
@@ -630,36 +777,50 @@ impl Billiard {
                 pending: false,
             };
         }
-        self.changed(i);
+        // The version this change leaves; if the partner has taken its own
+        // kick of this contact and nothing else since, the pair is settled.
+        let version = self.pucks[i].version.wrapping_add(1);
+        self.pucks[i].kicked_by = Some((kick.contact, version));
+        let j = kick.partner as usize;
+        let partner_done = !self.pucks[j]
+            .pending
+            .iter()
+            .any(|&k| self.kicks[k].is_some_and(|other| other.contact == kick.contact));
+        if partner_done && self.pucks[j].kicked_by == Some((kick.contact, self.pucks[j].version)) {
+            self.pucks[i].settled = Some((j as u32, version, self.pucks[j].version));
+            self.pucks[j].settled = Some((i as u32, self.pucks[j].version, version));
+        }
+        self.bump(i);
     }
 
-    /// Restitution for this contact of the pair: the scene's, unless the pair
-    /// is in a Zeno sequence (inelastic collapse), which is then ended by
-    /// one perfectly inelastic collision, and a warning says so.
+    /// Restitution for this contact: the scene's, unless one of the pucks
+    /// is in a Zeno sequence (inelastic collapse: contacts closer and closer
+    /// in time), which is then ended by one perfectly inelastic collision.
+    /// The first time, a warning says so.
     fn zeno_restitution(&mut self, a: usize, b: usize, t: f64) -> f64 {
         let gap = ZENO_GAP * self.table.length() / self.c;
-        let entry = self
-            .zeno
-            .entry((a as u32, b as u32))
-            .or_insert((f64::NEG_INFINITY, 0));
-        if t - entry.0 < gap {
-            entry.1 += 1;
-        } else {
-            entry.1 = 0;
+        let mut streak = 0;
+        for i in [a, b] {
+            let quick = &mut self.pucks[i].quick;
+            quick.1 = if t - quick.0 < gap { quick.1 + 1 } else { 0 };
+            quick.0 = t;
+            streak = streak.max(quick.1);
         }
-        entry.0 = t;
-        if entry.1 >= ZENO_COUNT {
-            entry.1 = 0;
-            self.stats.zeno_merges += 1;
+        if streak < ZENO_COUNT {
+            return self.restitution;
+        }
+        self.pucks[a].quick.1 = 0;
+        self.pucks[b].quick.1 = 0;
+        self.stats.zeno_merges += 1;
+        if self.stats.zeno_merges == 1 {
             self.warnings.push(format!(
-                "t = {t} s: pucks \"{}\" and \"{}\" met {ZENO_COUNT} times within {gap:.3e} s \
-                 (inelastic collapse); this collision is made perfectly inelastic so they move together",
+                "t = {t} s: pucks \"{}\" and \"{}\" met others {ZENO_COUNT} times within {gap:.3e} s \
+                 (inelastic collapse); such a collision is made perfectly inelastic so they move \
+                 together (said once; every one is counted)",
                 self.pucks[a].name, self.pucks[b].name
             ));
-            0.0
-        } else {
-            self.restitution
         }
+        0.0
     }
 }
 
@@ -673,13 +834,92 @@ impl Billiard {
         }
     }
 
+    /// The next contact of pucks `a` and `b` from board time `now` on.
+    ///
+    /// Normally the closed-form prediction ([`puck_puck::predict`]), in the
+    /// pair frame. But the board slice is not the pair frame's, and a kick
+    /// (from a cushion or a third puck) changes a puck's contraction at once
+    /// and begins a new segment whose backward extension the pair-frame
+    /// solve cannot tell from the real past. So the board picture decides
+    /// where the pair-frame one is silent:
+    ///
+    /// * pucks overlapping on the board and closing (the penetration depth
+    ///   grows) are pushed apart at once: a contact at `now`, normal along
+    ///   the penetration direction, both kicks at `now` (the board is the
+    ///   frame in which that overlap is defined); if they are opening, the
+    ///   depth shrinks to nothing with no event (it is concave in time);
+    /// * pucks apart on the board for which the pair frame finds no contact
+    ///   ahead, but whose board shapes will meet (a concave gap function
+    ///   crossing zero, [`overlap::first_touch`]), meet then, the same way.
+    fn contact_of(&self, a: usize, b: usize, now: f64) -> Option<PairContact> {
+        let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
+        let (sa, sb) = (pa.worldline.last(), pb.worldline.last());
+        let on_board = |t: f64, m: DVec3, depth: f64| PairContact {
+            contact: Event::new(
+                t,
+                sa.position_at(t) + m * (pa.radius * sa.contract(m).length() - 0.5 * depth),
+            ),
+            kicks: [
+                Event::new(t, sa.position_at(t)),
+                Event::new(t, sb.position_at(t)),
+            ],
+            normal: m,
+            pair_frame: ProperVelocity::ZERO,
+            gamma_pair: sa.gamma().max(sb.gamma()),
+            on_board: true,
+        };
+        let v_rel = sb.velocity() - sa.velocity();
+        // A closing speed below this is rounding (relative to the speeds).
+        let still = 1e-12 * (sa.velocity().length() + sb.velocity().length());
+        if let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now) {
+            return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
+        }
+        if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now) {
+            return Some(hit);
+        }
+        // Apart now, and the pair frame sees nothing ahead: will the board
+        // shapes meet? Only while the centres are within reach.
+        let reach = pa.radius + pb.radius;
+        let d0 = sb.position_at(now) - sa.position_at(now);
+        let vv = v_rel.length_squared();
+        if vv == 0.0 {
+            return None;
+        }
+        // |d0 + v τ|² = reach²: the later root is when the centres leave reach.
+        let (p, q) = (d0.dot(v_rel), d0.length_squared() - reach * reach);
+        let disc = p * p - vv * q;
+        if disc < 0.0 {
+            return None;
+        }
+        let leave = (-p + disc.sqrt()) / vv;
+        if leave <= 0.0 {
+            return None;
+        }
+        let end = (now + leave).min(self.window_end);
+        // A separating axis along which they do not close: never.
+        let (g, m) = overlap::gap(sa, pa.radius, sb, pb.radius, d0);
+        if g <= 0.0 && m.dot(v_rel) >= 0.0 {
+            return None;
+        }
+        let t = overlap::first_touch(sa, pa.radius, sb, pb.radius, now, end)?.max(now);
+        let (_, normal) = overlap::gap(sa, pa.radius, sb, pb.radius, d0 + v_rel * (t - now));
+        Some(on_board(t, normal, 0.0))
+    }
+
     /// Puck `i`'s worldline changed: it gets a new version (its old
-    /// predictions go stale), a new swept AABB, and new predictions.
-    fn changed(&mut self, i: usize) {
+    /// predictions go stale), its history is trimmed to the horizon, and it
+    /// gets a new swept AABB and new predictions.
+    fn bump(&mut self, i: usize) {
         let puck = &mut self.pucks[i];
         puck.version = puck.version.wrapping_add(1);
-        if !self.keep_history {
-            puck.worldline.forget_history();
+        if let Some(h) = self.history {
+            let cutoff = self.time - h;
+            if puck.worldline.segments().len() > 1 && puck.worldline.segments()[1].start.t <= cutoff
+            {
+                puck.worldline.forget_before(cutoff);
+                self.forgotten_before =
+                    Some(self.forgotten_before.map_or(cutoff, |f| f.max(cutoff)));
+            }
         }
         self.predict_cushions(i);
         let (mins, maxs) = self.swept(i, self.time, self.window_end);
@@ -691,6 +931,28 @@ impl Billiard {
             self.predict_pair(i.min(j), i.max(j));
         }
         self.compact();
+    }
+
+    /// Drops the finished collision records older than the history horizon:
+    /// those whose every velocity change is before `time − h`, from the
+    /// front (records are in the order their first kick was processed; a
+    /// record still pending and all after it stay).
+    fn trim_records(&mut self) {
+        let Some(h) = self.history else {
+            return;
+        };
+        let cutoff = self.time - h;
+        let k = self
+            .collisions
+            .iter()
+            .position(|c| c.pucks.iter().any(|p| p.pending || p.t > cutoff))
+            .unwrap_or(self.collisions.len());
+        if k > 0 {
+            self.collisions.drain(..k);
+            self.collisions_dropped += k as u64;
+            self.stats.forgotten_collisions += k as u64;
+            self.forgotten_before = Some(self.forgotten_before.map_or(cutoff, |f| f.max(cutoff)));
+        }
     }
 
     fn predict_cushions(&mut self, i: usize) {
@@ -727,18 +989,29 @@ impl Billiard {
 
     fn predict_pair(&mut self, a: usize, b: usize) {
         if self.pending_with(a, b) {
-            return; // light from their last contact is still on its way
+            return; // the second kick of their last contact is still ahead
+        }
+        let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
+        if pa.settled == Some((b as u32, pa.version, pb.version)) {
+            return; // they collided and nothing has touched them since
         }
         self.stats.predictions += 1;
-        if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, self.time)
-            && hit.contact.t <= self.window_end
-        {
-            self.calendar.push(Entry {
-                t: hit.contact.t,
-                slot: Slot::Pair(a as u32, b as u32),
-                versions: [self.pucks[a].version, self.pucks[b].version],
-                predicted_at: self.time,
-            });
+        if let Some(hit) = self.contact_of(a, b, self.time) {
+            // Processed at the earliest of the two kicks (the contact lies
+            // between them in board time).
+            let t = hit.kicks[0]
+                .t
+                .min(hit.kicks[1].t)
+                .min(hit.contact.t)
+                .max(self.time);
+            if t <= self.window_end {
+                self.calendar.push(Entry {
+                    t,
+                    slot: Slot::Pair(a as u32, b as u32),
+                    versions: [self.pucks[a].version, self.pucks[b].version],
+                    predicted_at: self.time,
+                });
+            }
         }
     }
 
@@ -748,10 +1021,32 @@ impl Billiard {
     fn swept(&self, i: usize, t0: f64, t1: f64) -> (DVec2, DVec2) {
         let puck = &self.pucks[i];
         let s = puck.worldline.last();
-        let (p0, p1) = (s.position_at(t0).truncate(), s.position_at(t1).truncate());
         let r = DVec2::splat(puck.radius);
         let lo = DVec2::ZERO - r;
         let hi = self.table + r;
+        let p0 = s.position_at(t0).truncate();
+        let p1 = if t1.is_finite() {
+            s.position_at(t1).truncate()
+        } else {
+            // An endless window: a moving puck can be anywhere ahead.
+            let v = s.velocity().truncate();
+            DVec2::new(
+                if v.x > 0.0 {
+                    hi.x
+                } else if v.x < 0.0 {
+                    lo.x
+                } else {
+                    p0.x
+                },
+                if v.y > 0.0 {
+                    hi.y
+                } else if v.y < 0.0 {
+                    lo.y
+                } else {
+                    p0.y
+                },
+            )
+        };
         (
             (p0.min(p1) - r).clamp(lo, hi),
             (p0.max(p1) + r).clamp(lo, hi),
@@ -783,19 +1078,22 @@ impl Billiard {
                 }
             }
         }
-        self.calendar.push(Entry {
-            t: self.window_end,
-            slot: Slot::Horizon,
-            versions: [0, 0],
-            predicted_at: t,
-        });
+        if self.window_end.is_finite() {
+            self.calendar.push(Entry {
+                t: self.window_end,
+                slot: Slot::Horizon,
+                versions: [0, 0],
+                predicted_at: t,
+            });
+        }
     }
 
     /// Length of a look-ahead window: the time a typical (RMS-speed) puck
     /// takes to move one radius. Swept AABBs then stay small, and windows
     /// are not too many; measured best among 0.25 to 8 radii (BENCHMARKS.md).
+    /// With nothing moving, the window is endless: an idle table costs
+    /// nothing however long it is watched, whatever `c` is.
     fn horizon(&self) -> f64 {
-        let crossing = self.table.length() / self.c;
         let n = self.pucks.len().max(1) as f64;
         let mean_sq: f64 = self
             .pucks
@@ -805,9 +1103,9 @@ impl Billiard {
             / n;
         let mean_radius = self.pucks.iter().map(|p| p.radius).sum::<f64>() / n;
         if mean_sq > 0.0 {
-            (1.0 * mean_radius / mean_sq.sqrt()).clamp(1e-9 * crossing, 10.0 * crossing)
+            (mean_radius / mean_sq.sqrt()).max(1e-9 * self.table.length() / self.c)
         } else {
-            10.0 * crossing
+            f64::INFINITY
         }
     }
 

@@ -12,8 +12,11 @@
 //! A puck–puck contact is found in the frame where the two pucks move with
 //! equal and opposite speeds (for equal masses this is the paper's
 //! centre-of-momentum frame, Eq. 3), where their contracted shapes are
-//! congruent; each puck's velocity then changes at an event at its own
-//! centre, when light from the contact reaches it. A cushion is infinitely
+//! congruent; both pucks' velocities change at the events on their centres'
+//! worldlines simultaneous with the contact in that frame (not when light
+//! from the contact reaches each centre, the paper's Appendix convention,
+//! which lets pucks pass through each other at high γ; see [`overlap`] for
+//! what the chosen convention still allows). A cushion is infinitely
 //! massive and at rest on the board; the puck's velocity changes at the
 //! board-frame instant of contact.
 
@@ -22,6 +25,7 @@ mod broadphase;
 mod calendar;
 pub mod fixed_step;
 pub mod gas;
+pub mod overlap;
 pub mod predict;
 pub mod resolve;
 pub mod systems;

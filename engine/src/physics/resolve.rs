@@ -135,6 +135,56 @@ pub fn puck_puck(
     ]
 }
 
+/// Outcome of a contact found on the board (two pucks that overlap on the
+/// board and are closing there, see `Billiard`): the impulse is along the
+/// board-frame unit direction `normal` (from `a` towards `b`).
+///
+/// Worked in the frame that moves along `normal` with the pair's velocity
+/// component along it (`β = (P·n) / E`), where the pair's momentum along
+/// `normal` is zero. A boost along `normal` keeps the order of the two
+/// velocities' components along it (`v′ₙ = (vₙ − β)/(1 − β vₙ)` depends on
+/// `vₙ` alone), so "closing along `normal`" means the same there and on the
+/// board. There the normal momenta `±p` become `∓e p` with the energies
+/// unchanged (the lost kinetic energy stays as rest mass, as in
+/// [`puck_puck`]); 4-momentum is conserved exactly, and an elastic pair
+/// leaves opening along `normal` on the board. Not closing: unchanged.
+pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Body; 2] {
+    // In closed form on the board: an impulse `J n` to `a` (`−J n` to `b`)
+    // carries energy `J k`, `k = (P·n)/E`, the frame's β along `n`. The
+    // elastic root is `J = 2 E (E_a p_b·n − E_b p_a·n) / (E² − (P·n)²)`,
+    // with `E² − (P·n)² = M² + |P⊥|²` formed without cancellation (`M` the
+    // pair's invariant mass, exact); restitution `e` takes `(1 + e)/2` of
+    // it, and each rest mass grows by `J_e (J − J_e)(1 − k²)` in squares.
+    let (pa, pb) = (a.momentum(), b.momentum());
+    let total = pa + pb;
+    let along = total.momentum.dot(normal);
+    let across = (total.momentum - normal * along).length_squared();
+    let invariant = FourMomentum::pair_invariant_mass(a.mass, a.u, b.mass, b.u);
+    let denom = invariant * invariant + across;
+    // E_a p_b·n − E_b p_a·n = E_a E_b (β_b − β_a)·n: closing when negative.
+    let closing = pa.energy * pb.energy * (b.u.beta() - a.u.beta()).dot(normal);
+    if closing.is_nan() || closing >= 0.0 || denom <= 0.0 {
+        return [a, b];
+    }
+    let j = 2.0 * total.energy * closing / denom;
+    let e = restitution.clamp(0.0, 1.0);
+    let j_e = 0.5 * (1.0 + e) * j;
+    let one_minus_k2 = denom / (total.energy * total.energy);
+    let grow = j_e * (j - j_e) * one_minus_k2; // ≥ 0
+    let out = |body: Body, p: FourMomentum, impulse: f64| {
+        let mass = if e >= 1.0 {
+            body.mass
+        } else {
+            (body.mass * body.mass + grow).sqrt()
+        };
+        Body {
+            mass,
+            u: ProperVelocity((p.momentum + normal * impulse) / mass),
+        }
+    };
+    [out(a, pa, j_e), out(b, pb, -j_e)]
+}
+
 /// Outcome of a puck meeting a cushion whose outward unit normal (from the
 /// table into the cushion) is `outward`, board frame.
 pub fn puck_cushion(u: ProperVelocity, outward: DVec3, restitution: f64) -> ProperVelocity {
@@ -240,6 +290,29 @@ mod tests {
         assert!(little.0.x.abs() < 1e-15 && little.0.y > 0.0);
         // Moving away: untouched.
         assert_eq!(puck_cushion(out, DVec3::X, 1.0), out);
+    }
+
+    #[test]
+    fn a_board_contact_conserves_and_opens_along_its_normal() {
+        let (a, b) = (body(0.2, 0.8, 0.3), body(0.5, -0.4, 0.1));
+        let n = DVec3::new(0.6, -0.8, 0.0);
+        let v = |x: Body| x.u.beta();
+        assert!(v(b).dot(n) < v(a).dot(n)); // closing along n
+        for e in [1.0, 0.5, 0.0] {
+            let out = puck_puck_board(a, b, n, e);
+            conserved([a, b], out);
+            let opening = (v(out[1]) - v(out[0])).dot(n);
+            if e > 0.0 {
+                assert!(opening > 0.0, "{e}: {opening}");
+            } else {
+                assert!(opening.abs() < 1e-12, "{opening}");
+            }
+            if e == 1.0 {
+                assert_eq!((out[0].mass, out[1].mass), (a.mass, b.mass));
+            }
+        }
+        // Opening already: unchanged.
+        assert_eq!(puck_puck_board(a, b, -n, 1.0), [a, b]);
     }
 
     #[test]

@@ -12,8 +12,8 @@ pub fn advance(
     mut physics: ResMut<Physics>,
     mut frame: ResMut<FrameCollisions>,
 ) {
-    let before = physics.0.collisions().len();
+    let before = physics.0.collision_count();
     physics.0.advance_to(clock.t);
     frame.0.clear();
-    frame.0.extend_from_slice(&physics.0.collisions()[before..]);
+    frame.0.extend_from_slice(physics.0.collisions_from(before));
 }

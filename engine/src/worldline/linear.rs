@@ -232,6 +232,16 @@ impl Worldline {
         }
     }
 
+    /// Forgets the segments that ended at or before board time `t` (a
+    /// bounded history): the segment in force at `t` becomes the first, and
+    /// queries before it extrapolate it backwards.
+    pub fn forget_before(&mut self, t: f64) {
+        let keep_from = self.segment_index_at(t);
+        if keep_from > 0 {
+            self.segments.drain(..keep_from);
+        }
+    }
+
     /// Forgets every kink after board time `t` (for "what if" replays from a
     /// past moment). The segment in force at `t` is kept.
     pub fn truncate_after(&mut self, t: f64) {

@@ -1,5 +1,11 @@
 //! `lightcone simulate SCENE --until T [--out FILE]`: run the physics
 //! headless and write every collision, then the final state, as JSON lines.
+//!
+//! The lines are streamed: the billiard runs in bounded steps, every
+//! finished collision is written (and the output flushed) after each step,
+//! and the billiard keeps no history (`set_history(Some(0))`), so memory
+//! stays O(N) however long the run. A run stopped by Ctrl-C writes what it
+//! has and a final state line at the time reached, then exits 130.
 
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -9,12 +15,15 @@ use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::{CollisionLine, StateLine};
 use lightcone_engine::scene;
 
+/// Calendar entries processed between two flushes (and progress updates).
+const STEP_EVENTS: usize = 1 << 14;
+
 /// Runs `scene` to board time `until` and writes the JSON lines to `out`
-/// (stdout when `None`). Warnings (e.g. a Zeno sequence merged) go to stderr.
+/// (stdout when `None`). Warnings (e.g. a Zeno sequence ended) go to stderr.
 pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
     if !until.is_finite() || until < 0.0 {
         eprintln!("--until {until}: give a finite board time ≥ 0 in seconds");
-        return ExitCode::FAILURE;
+        return ExitCode::from(2);
     }
     let scene = match scene::load(scene_path) {
         Ok(s) => s,
@@ -24,22 +33,41 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
         }
     };
     let mut billiard = Billiard::from_scene(&scene);
-    billiard.advance_to(until);
-    for w in billiard.warnings() {
-        eprintln!("{}: warning: {w}", scene_path.display());
-    }
+    billiard.set_history(Some(0.0));
     let result = match out {
         Some(path) => match std::fs::File::create(path) {
-            Ok(f) => write_lines(&billiard, until, BufWriter::new(f)),
+            Ok(f) => stream(&mut billiard, until, BufWriter::new(f)),
             Err(e) => {
                 eprintln!("{}: cannot create: {e}", path.display());
                 return ExitCode::FAILURE;
             }
         },
-        None => write_lines(&billiard, until, BufWriter::new(std::io::stdout().lock())),
+        None => stream(
+            &mut billiard,
+            until,
+            BufWriter::new(std::io::stdout().lock()),
+        ),
     };
+    for w in billiard.warnings() {
+        eprintln!("{}: warning: {w}", scene_path.display());
+    }
+    let merges = billiard.stats().zeno_merges;
+    if merges > 1 {
+        eprintln!(
+            "{}: warning: {merges} inelastic collapses ended in all",
+            scene_path.display()
+        );
+    }
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Finish::Done) => ExitCode::SUCCESS,
+        Ok(Finish::Interrupted(t)) => {
+            eprintln!(
+                "interrupted at board time {t} s: the collisions up to then and the state then were written"
+            );
+            ExitCode::from(130)
+        }
+        // The reader went away (`| head`): not an error of ours.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("cannot write the output: {e}");
             ExitCode::FAILURE
@@ -47,12 +75,59 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
     }
 }
 
-fn write_lines(billiard: &Billiard, until: f64, mut w: impl Write) -> std::io::Result<()> {
-    for c in billiard.collisions() {
-        serde_json::to_writer(&mut w, &CollisionLine::new(billiard, c))?;
-        w.write_all(b"\n")?;
+/// How a streamed run ended.
+enum Finish {
+    /// At `--until`.
+    Done,
+    /// Stopped by Ctrl-C at this board time.
+    Interrupted(f64),
+}
+
+/// Runs to `until`, writing each finished collision as soon as it is known
+/// and in contact-time order, then the state line.
+fn stream(billiard: &mut Billiard, until: f64, mut w: impl Write) -> std::io::Result<Finish> {
+    let progress = crate::progress::bar(until, "board s");
+    let mut next = 0u64; // global index of the next record to write
+    let mut finish = Finish::Done;
+    loop {
+        let done = billiard.step_until(until, STEP_EVENTS);
+        next = write_finished(billiard, next, &mut w, done)?;
+        w.flush()?;
+        progress.set_position_f64(billiard.time());
+        if done {
+            break;
+        }
+        if crate::interrupt::interrupted() {
+            finish = Finish::Interrupted(billiard.time());
+            // Whatever is still pending is written as scheduled.
+            write_finished(billiard, next, &mut w, true)?;
+            break;
+        }
     }
-    serde_json::to_writer(&mut w, &StateLine::new(billiard, until))?;
+    progress.finish();
+    let t = billiard.time().min(until);
+    serde_json::to_writer(&mut w, &StateLine::new(billiard, t))?;
     w.write_all(b"\n")?;
-    w.flush()
+    w.flush()?;
+    Ok(finish)
+}
+
+/// Writes the records from global index `next` on that are finished (all
+/// kicks landed), stopping at the first one still pending unless `all`.
+/// Returns the index of the next record to write.
+fn write_finished(
+    billiard: &Billiard,
+    mut next: u64,
+    w: &mut impl Write,
+    all: bool,
+) -> std::io::Result<u64> {
+    for c in billiard.collisions_from(next) {
+        if !all && c.pucks.iter().any(|p| p.pending) {
+            break;
+        }
+        serde_json::to_writer(&mut *w, &CollisionLine::new(billiard, c))?;
+        w.write_all(b"\n")?;
+        next += 1;
+    }
+    Ok(next)
 }

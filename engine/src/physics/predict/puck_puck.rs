@@ -17,10 +17,19 @@
 //!
 //! The contact point divides the line of centres in the ratio `R₁ : R₂`
 //! (the two ellipses are similar); the contact normal is the gradient of the
-//! summed ellipse there. Following the paper's solid-body convention, each
-//! puck's velocity changes at an event at its own centre, when the light
-//! from the contact event reaches it: a root of
-//! `(c² − v'²) τ² − 2 (d·v') τ − d² = 0`, taken in its stable form.
+//! summed ellipse there.
+//!
+//! **When the velocities change.** Each puck's velocity changes at the
+//! event on its centre's worldline that is *simultaneous with the contact in
+//! the pair frame*: both kicks happen at the contact's pair-frame time, at
+//! the two centres. In the pair frame the bodies are then exactly touching
+//! and both change at once, so neither moves into the other after the
+//! contact. (The paper's Appendix instead waits for light from the contact
+//! to reach each centre; at high γ that delay, about γR/2c, lets the rigid
+//! shapes pass through each other, and the pair is found "colliding" again
+//! and again. See the README, "Collision convention".) In the board frame
+//! the two kicks are `γ_f (v_f·Δx′)/c²` apart in time (`Δx′` the centres'
+//! separation in the pair frame); the contact lies between them.
 
 use glam::DVec3;
 
@@ -42,32 +51,21 @@ pub struct PairContact {
     /// The contact event, board frame.
     pub contact: Event,
     /// For each puck, the event at its centre where its velocity changes:
-    /// light from the contact reaches it there. Both lie on the future
-    /// light cone of `contact`, so both are later in every frame.
+    /// simultaneous with the contact in the pair frame. In the board frame
+    /// the contact's time lies between the two kicks' times.
     pub kicks: [Event; 2],
+    /// Each puck's Lorentz factor in the pair frame before the contact
+    /// (the two are equal there).
+    pub gamma_pair: f64,
+    /// A contact found on the board rather than in the pair frame (see
+    /// `Billiard`): `normal` is then a board-frame direction and both kicks
+    /// are at the contact's board time.
+    pub on_board: bool,
     /// Unit contact normal from the first puck towards the second, in the
     /// pair frame (spatial).
     pub normal: DVec3,
     /// Proper velocity of the pair frame relative to the board.
     pub pair_frame: ProperVelocity,
-}
-
-/// Stable positive root `τ` of `(c² − v²) τ² − 2 (d·v) τ − |d|² = 0`: the
-/// time light from the origin takes to reach a point that starts at `d` and
-/// moves with velocity `v` (`|v| < c`).
-pub fn light_catch_up(d: DVec3, v: DVec3, c: f64, gamma: f64) -> f64 {
-    let a = (c / gamma) * (c / gamma); // c² − v², exact via γ
-    let dv = d.dot(v);
-    let dd = d.length_squared();
-    if dd == 0.0 {
-        return 0.0;
-    }
-    let root = (dv * dv + a * dd).sqrt();
-    if dv <= 0.0 {
-        dd / (root - dv)
-    } else {
-        (dv + root) / a
-    }
 }
 
 /// The next contact of two pucks, whose contact event lies at board time
@@ -165,19 +163,17 @@ pub fn predict(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
     let xc = contact_point(t_contact);
     let centre_a = n * (v * t_contact);
     let centre_b = centre_a + r_contact;
-    let va = n * v;
-    let vb = -n * v;
-    let tau_a = light_catch_up(centre_a - xc, va, c, gamma);
-    let tau_b = light_catch_up(centre_b - xc, vb, c, gamma);
     let mut contact = to_board(t_contact, xc);
     contact.t = contact.t.max(now);
-    let kick_a = to_board(t_contact + tau_a, centre_a + va * tau_a);
-    let kick_b = to_board(t_contact + tau_b, centre_b + vb * tau_b);
+    let kick_a = to_board(t_contact, centre_a);
+    let kick_b = to_board(t_contact, centre_b);
     Some(PairContact {
         contact,
         kicks: [kick_a, kick_b],
         normal,
         pair_frame,
+        gamma_pair: gamma,
+        on_board: false,
     })
 }
 
@@ -218,18 +214,34 @@ mod tests {
             // Positions carry the rounding of c·t (t ≈ 6600 s at β = 1e-4).
             assert!((hit.contact.position.x - (1.5 - R)).abs() < 1e-12 * (C * t).max(1.0));
             assert!((hit.normal - DVec3::X).length() < 1e-12);
-            // B at rest learns of it after R / c; A, closing at c + v, after
-            // (R/γ) / (c + v).
+            // The kicks are simultaneous with the contact in the pair frame,
+            // which moves at β_f = u / (γ + 1) (the half rapidity); there the
+            // centres are R/γ_f either side of the contact, so on the board
+            // A's kick comes β_f R / c before the contact and B's as long after.
+            let beta_f = u.0.x / (gamma + 1.0);
+            let dt = beta_f * R / C;
             assert!(
-                (hit.kicks[1].t - (t + R / C)).abs() < 1e-12 * t.max(1.0),
+                (hit.kicks[1].t - (t + dt)).abs() < 1e-12 * t.max(1.0),
                 "{beta}: {} vs {}",
                 hit.kicks[1].t,
-                t + R / C
+                t + dt
             );
             assert!(
-                (hit.kicks[0].t - (t + R / gamma / (C * (1.0 + beta)))).abs() < 1e-12 * t.max(1.0),
+                (hit.kicks[0].t - (t - dt)).abs() < 1e-12 * t.max(1.0),
                 "{beta}"
             );
+            // B has not moved; A's centre is on its worldline, 2R from B's.
+            assert!(
+                (hit.kicks[1].position - DVec3::new(1.5, 0.7, 0.0)).length()
+                    < 1e-12 * (C * t).max(1.0)
+            );
+            let xa = 0.5 + beta * C * hit.kicks[0].t;
+            assert!((hit.kicks[0].position.x - xa).abs() < 1e-12 * (C * t).max(1.0));
+            assert!(
+                (hit.kicks[1].position.x - hit.kicks[0].position.x - 2.0 * R).abs()
+                    < 1e-12 * (C * t).max(1.0)
+            );
+            assert!((hit.gamma_pair - ((gamma + 1.0) / 2.0).sqrt()).abs() < 1e-12 * gamma);
         }
     }
 
@@ -303,7 +315,9 @@ mod tests {
         let t = (1.0 - R - R / u.gamma()) / v;
         // Tolerance: a few ε γ_f² |d| / c, with the pair frame's γ_f ≈ 707.
         assert!((hit.contact.t - t).abs() < 1e-9, "{} vs {t}", hit.contact.t);
-        assert!((hit.kicks[1].t - (t + R / C)).abs() < 1e-9);
+        let dt = u.0.x / (u.gamma() + 1.0) * R / C;
+        assert!((hit.kicks[1].t - (t + dt)).abs() < 1e-9);
+        assert!((hit.kicks[0].t - (t - dt)).abs() < 1e-9);
     }
 
     #[test]
