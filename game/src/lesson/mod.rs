@@ -259,7 +259,11 @@ impl LessonHost {
                 pyo3::exceptions::PySyntaxError::new_err("the lesson contains a NUL byte")
             })?;
             let file = CString::new(self.path.display().to_string()).unwrap_or_default();
-            let name = CString::new(format!("lightcone_lesson_{}", self.loads)).unwrap_or_default();
+            // A name no other load used: `from_code` would run the code in an
+            // existing module of the same name (another host's lesson).
+            static LOADED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+            let n = LOADED.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            let name = CString::new(format!("lightcone_lesson_{n}")).unwrap_or_default();
             // The lesson's own directory comes first on sys.path, so it can
             // import helpers beside it.
             let dir = self.world.borrow(py).dir.display().to_string();
@@ -611,6 +615,11 @@ mod tests {
             times.push(start.elapsed().as_secs_f64() * 1e6);
         }
         assert!(host.error.is_none(), "{:?}", host.error);
+        let calls: usize = Python::attach(|py| {
+            let n = host.world.bind(py).getattr("n").unwrap();
+            n.extract().unwrap()
+        });
+        assert_eq!(calls, times.len(), "on_frame ran once a frame");
         times.sort_by(f64::total_cmp);
         let at = |q: f64| times[((times.len() - 1) as f64 * q) as usize];
         println!(
