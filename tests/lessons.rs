@@ -193,11 +193,19 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
     // (lesson, exit status, what the error says)
     let cases: &[(&str, i32, &[&str])] = &[
         ("swallow_exception", 3, &["TimeoutError", "in on_frame"]),
-        ("swallow_base_exception", 3, &["TimeoutError", "in on_frame"]),
+        (
+            "swallow_base_exception",
+            3,
+            &["TimeoutError", "in on_frame"],
+        ),
         ("sleeps", 3, &["TimeoutError", "time.sleep(60)"]),
         ("waits_for_input", 3, &["TimeoutError", "input("]),
         ("reads_a_socket", 3, &["TimeoutError", "worker.join()"]),
-        ("long_builtin", 3, &["more than 1 s", "could not be interrupted"]),
+        (
+            "long_builtin",
+            3,
+            &["more than 1 s", "could not be interrupted"],
+        ),
         ("exits", 1, &["SystemExit", "cannot end the game"]),
         ("forks", 1, &["PermissionError", "may not start processes"]),
         ("crashes", 4, &["SIGSEGV", "in on_frame"]),
@@ -205,7 +213,8 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
     ];
     let limit = 1.0;
     // What starting a lesson costs, to subtract from the timings.
-    let (_, status, baseline, stderr) = lesson_outcome("scripts/lessons/cushion.py", &["--until", "0.1"]);
+    let (_, status, baseline, stderr) =
+        lesson_outcome("scripts/lessons/cushion.py", &["--until", "0.1"]);
     assert_eq!(status, Some(0), "{stderr}");
     // Two at a time: each waits out its limit.
     for pair in cases.chunks(2) {
@@ -220,7 +229,9 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
             .collect();
         for ((name, status, says), run) in pair.iter().zip(runs) {
             let (outcome, code, seconds, stderr) = run.join().unwrap();
-            let error = outcome["error"].as_str().unwrap_or_else(|| panic!("{name}: no error\n{stderr}"));
+            let error = outcome["error"]
+                .as_str()
+                .unwrap_or_else(|| panic!("{name}: no error\n{stderr}"));
             for s in *says {
                 assert!(error.contains(s), "{name}: {s:?} not in\n{error}");
             }
@@ -231,7 +242,10 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
             );
             // The state before the misbehaviour is kept: one frame ran.
             assert!(outcome["t"].as_f64().unwrap() > 0.0, "{name}: {outcome}");
-            println!("{name}: stopped in {:.2} s with status {status}", seconds - baseline);
+            println!(
+                "{name}: stopped in {:.2} s with status {status}",
+                seconds - baseline
+            );
         }
     }
 }
@@ -252,8 +266,18 @@ fn lesson_takes_several_files() {
         .collect();
     assert_eq!(outcomes.len(), 3);
     assert!(outcomes[0]["error"].is_null() && outcomes[2]["error"].is_null());
-    assert!(outcomes[1]["error"].as_str().unwrap().contains("this lesson is broken"));
-    assert!(outcomes[2]["file"].as_str().unwrap().ends_with("contraction.py"));
+    assert!(
+        outcomes[1]["error"]
+            .as_str()
+            .unwrap()
+            .contains("this lesson is broken")
+    );
+    assert!(
+        outcomes[2]["file"]
+            .as_str()
+            .unwrap()
+            .ends_with("contraction.py")
+    );
 }
 
 #[test]

@@ -177,8 +177,9 @@ def test_any_sequence_where_a_vector_goes_and_errors_name_the_argument():
     s.add_puck("fast", [3.0, 1.0], velocity=[-1.0, 0.0])  # m/s, as in scene files
     with pytest.raises(TypeError, match="position"):
         s.add_puck("bad", "xy")
-    with pytest.raises(TypeError, match="beta.*got 3"):
+    with pytest.raises(TypeError, match="got 3") as e:
         s.add_puck("bad", (2.0, 1.5), beta=(0.1, 0.0, 0.0))
+    assert "beta" in str(e.value)
     with pytest.raises(lightcone.SceneError, match="at most one"):
         s.add_puck("bad", (2.0, 1.5), beta=(0.1, 0.0), velocity=(0.1, 0.0))
     sim = lightcone.Simulation(s)

@@ -257,9 +257,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         };
         (
             Stop::Died,
-            format!(
-                "{place}: the lesson's process {how}; the lesson stopped there"
-            ),
+            format!("{place}: the lesson's process {how}; the lesson stopped there"),
         )
     };
     eprintln!("lesson {} stopped:\n{error}", path.display());

@@ -183,7 +183,10 @@ fn interrupt() {
         // SAFETY: the thread id was taken by pthread_self on the hook's
         // thread, which is the process's main thread and outlives us.
         unsafe {
-            libc::pthread_kill(THREAD.load(Ordering::SeqCst) as libc::pthread_t, libc::SIGUSR2);
+            libc::pthread_kill(
+                THREAD.load(Ordering::SeqCst) as libc::pthread_t,
+                libc::SIGUSR2,
+            );
         }
     }
 }

@@ -64,3 +64,19 @@ impl Vector<3> {
         (self.0[0], self.0[1], self.0[2])
     }
 }
+
+/// An optional vector argument called `name`: None, or `N` numbers; the
+/// error names the argument as pyo3 does for required ones.
+pub fn optional<const N: usize>(
+    name: &str,
+    value: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<Vector<N>>> {
+    match value {
+        None => Ok(None),
+        Some(v) if v.is_none() => Ok(None),
+        Some(v) => v
+            .extract::<Vector<N>>()
+            .map(Some)
+            .map_err(|e| PyTypeError::new_err(format!("argument '{name}': {}", e.value(v.py())))),
+    }
+}

@@ -86,9 +86,6 @@ impl Frame {
     }
 
     fn __repr__(&self) -> String {
-        format!(
-            "Frame({}×{} px, t = {} s)",
-            self.width, self.height, self.t
-        )
+        format!("Frame({}×{} px, t = {} s)", self.width, self.height, self.t)
     }
 }

@@ -14,7 +14,6 @@ mod scene;
 mod simulation;
 mod world;
 
-
 use glam::DVec3;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::{CollisionLine, StateLine};

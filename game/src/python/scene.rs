@@ -6,9 +6,9 @@ use lightcone_engine::spacetime::ProperVelocity;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::convert::Vector;
-use super::errors::{SceneError, scene_error};
+use super::convert::{Vector, optional};
 use super::effect;
+use super::errors::{SceneError, scene_error};
 
 /// `name` for a puck or observer (`kind`), refused when empty or padded
 /// with spaces (" a " would sit beside "a" and confuse every look-up).
@@ -73,15 +73,18 @@ impl Scene {
         &mut self,
         name: &str,
         position: Vector<2>,
-        beta: Option<Vector<2>>,
-        u: Option<Vector<2>>,
+        beta: Option<&Bound<'_, PyAny>>,
+        u: Option<&Bound<'_, PyAny>>,
         radius: f64,
         height: f64,
         mass: f64,
         color: Option<&str>,
-        velocity: Option<Vector<2>>,
+        velocity: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let name = checked_name("puck", name)?;
+        let beta = optional::<2>("beta", beta)?;
+        let u = optional::<2>("u", u)?;
+        let velocity = optional::<2>("velocity", velocity)?;
         let position = position.pair();
         let speed =
             |e: lightcone_engine::spacetime::SpeedError| scene_error(format!("puck {name:?}: {e}"));
@@ -136,10 +139,12 @@ impl Scene {
         &mut self,
         name: &str,
         position: Vector<3>,
-        look_at: Option<Vector<3>>,
-        beta: Option<Vector<3>>,
+        look_at: Option<&Bound<'_, PyAny>>,
+        beta: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let name = checked_name("observer", name)?;
+        let look_at = optional::<3>("look_at", look_at)?;
+        let beta = optional::<3>("beta", beta)?;
         let size = self.inner.table.size;
         let look_at = look_at.map_or(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0), |v| {
             DVec3::from(v.triple())
