@@ -192,7 +192,11 @@ fn lesson_outcome(lesson: &str, args: &[&str]) -> (serde_json::Value, Option<i32
 fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
     // (lesson, exit status, what the error says)
     let cases: &[(&str, i32, &[&str])] = &[
-        ("swallow_exception", 3, &["TimeoutError", "in on_frame"]),
+        (
+            "swallow_exception",
+            3,
+            &["TimeoutError", "except Exception"],
+        ),
         (
             "swallow_base_exception",
             3,

@@ -17,7 +17,10 @@
 //!
 //! A hook that raises does not take the game down: its traceback is shown,
 //! the hooks stop, the game keeps the state it had (time pauses), and a
-//! reload — of the edited file, without restarting — starts again.
+//! reload — of the edited file, without restarting — starts again. A hook
+//! that runs past its time limit is stopped whatever it does
+//! ([`watchdog`]); `lightcone lesson` runs each lesson in a child process
+//! ([`supervise`]). After `world.finish()` no hook runs again.
 
 pub mod headless;
 pub mod supervise;
@@ -75,6 +78,7 @@ fn init_python() -> Result<(), String> {
         bootstrap.call_method1("install", (PACKAGE_INIT, PACKAGE_RECORDS))?;
         let stop = pyo3::wrap_pyfunction!(watchdog::hook_stop, py)?;
         bootstrap.call_method1("guard", (stop,))?;
+        watchdog::guard();
         Ok(())
     })
     .map_err(|e| format!("cannot start the embedded Python: {e}"))

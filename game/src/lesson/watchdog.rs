@@ -125,12 +125,105 @@ fn set_timeout_error() {
 }
 
 /// Arms the trace function on the current thread (GIL held, on the hook's
-/// thread).
+/// thread). `PyEval_SetTrace` runs the audit hooks, and a Python one (a
+/// lesson's own) can fail it: then the next interrupt tries again.
 fn arm() {
-    if !TRACING.swap(true, Ordering::SeqCst) {
-        // SAFETY: GIL held; `trace` is 'static and ignores its object.
-        unsafe { ffi::PyEval_SetTrace(Some(trace), std::ptr::null_mut()) }
+    if TRACING.load(Ordering::SeqCst) {
+        return;
     }
+    // SAFETY: GIL held; `trace` is 'static and ignores its object, which
+    // is `True` only to tell that this trace is the one installed.
+    let installed = unsafe {
+        ffi::PyEval_SetTrace(Some(trace), ffi::Py_True());
+        let gettrace = ffi::PySys_GetObject(c"gettrace".as_ptr());
+        let current = if gettrace.is_null() {
+            std::ptr::null_mut()
+        } else {
+            ffi::PyObject_CallNoArgs(gettrace)
+        };
+        let ours = current == ffi::Py_True();
+        if current.is_null() {
+            ffi::PyErr_Clear();
+        } else {
+            ffi::Py_DecRef(current);
+        }
+        ours
+    };
+    TRACING.store(installed, Ordering::SeqCst);
+}
+
+/// Audit events a lesson may not cause: starting processes (a fork of the
+/// game copies its window and GPU state; a fork bomb takes the machine).
+const NO_PROCESSES: [&std::ffi::CStr; 7] = [
+    c"os.fork",
+    c"os.forkpty",
+    c"os.system",
+    c"os.exec",
+    c"os.spawn",
+    c"os.posix_spawn",
+    c"subprocess.Popen",
+];
+
+unsafe extern "C" {
+    fn PySys_AddAuditHook(
+        hook: Option<
+            unsafe extern "C" fn(*const std::ffi::c_char, *mut ffi::PyObject, *mut c_void) -> c_int,
+        >,
+        data: *mut c_void,
+    ) -> c_int;
+}
+
+/// The audit hook: refuses to start processes or to signal the game's own
+/// process. In C, not Python: a Python hook would run Python code (and the
+/// watchdog's pending interrupts) inside `PyEval_SetTrace`.
+unsafe extern "C" fn audit(
+    event: *const std::ffi::c_char,
+    args: *mut ffi::PyObject,
+    _data: *mut c_void,
+) -> c_int {
+    // SAFETY: the interpreter passes a NUL-terminated event name and, for
+    // os.kill, a tuple (pid, signal); the GIL is held.
+    unsafe {
+        let event = std::ffi::CStr::from_ptr(event);
+        let refuse = |message: String| {
+            let text = std::ffi::CString::new(message).unwrap_or_default();
+            ffi::PyErr_SetString(ffi::PyExc_PermissionError, text.as_ptr());
+            -1
+        };
+        if NO_PROCESSES.contains(&event) {
+            return refuse(format!(
+                "a lesson may not start processes ({})",
+                event.to_string_lossy()
+            ));
+        }
+        if event == c"os.kill" && !args.is_null() {
+            let pid = ffi::PyTuple_GetItem(args, 0);
+            if pid.is_null() {
+                ffi::PyErr_Clear();
+                return 0;
+            }
+            let pid = ffi::PyLong_AsLong(pid);
+            if pid == -1 && !ffi::PyErr_Occurred().is_null() {
+                ffi::PyErr_Clear();
+                return 0;
+            }
+            if pid == 0 || pid == -1 || pid == libc::getpid() as std::ffi::c_long {
+                return refuse("a lesson may not signal the game's own process".to_owned());
+            }
+        }
+        0
+    }
+}
+
+/// Installs the audit hook (once; GIL held).
+pub fn guard() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // SAFETY: `audit` is 'static and takes no data.
+        unsafe {
+            PySys_AddAuditHook(Some(audit), std::ptr::null_mut());
+        }
+    });
 }
 
 /// Runs on the interpreter's main thread at the next bytecode boundary.
@@ -144,12 +237,13 @@ extern "C" fn pending(_: *mut c_void) -> c_int {
     -1
 }
 
-/// The `SIGUSR2` handler's body (given to `guard` in `bootstrap.py`, which
-/// installs the handler): raises `TimeoutError` if the
+/// The `SIGUSR2` handler (given to `guard` in `bootstrap.py`, which
+/// installs it; a Rust function, so the student's traceback shows no frame
+/// of ours): raises `TimeoutError` if the
 /// running hook is over its limit, and arms the trace.
 #[pyfunction]
-#[pyo3(name = "_hook_stop")]
-pub fn hook_stop() -> PyResult<()> {
+#[pyo3(name = "_hook_stop", signature = (*_signal))]
+pub fn hook_stop(_signal: &Bound<'_, pyo3::types::PyTuple>) -> PyResult<()> {
     if overdue() {
         arm();
         return Err(pyo3::exceptions::PyTimeoutError::new_err(message()));
