@@ -200,7 +200,7 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
         (
             "swallow_base_exception",
             3,
-            &["TimeoutError", "in on_frame"],
+            &["TimeoutError", "except BaseException"],
         ),
         ("sleeps", 3, &["TimeoutError", "time.sleep(60)"]),
         ("waits_for_input", 3, &["TimeoutError", "input("]),
