@@ -8,7 +8,7 @@ mod common;
 use std::path::Path;
 use std::process::Output;
 
-use common::{cloth_pixels, lightcone, play_under_xvfb, repo};
+use common::{cloth_pixels, lightcone, play_under_xvfb, play_under_xvfb_with, repo};
 use lightcone::render::headless::Image;
 
 fn lessons() -> Vec<String> {
@@ -174,6 +174,116 @@ fn a_broken_lesson_shows_its_traceback_in_the_game_and_does_not_crash() {
     }
 }
 
+/// Runs `lightcone lesson LESSON --json ARGS`: its outcome, exit status
+/// and wall-clock seconds.
+fn lesson_outcome(lesson: &str, args: &[&str]) -> (serde_json::Value, Option<i32>, f64, String) {
+    let start = std::time::Instant::now();
+    let mut all = vec!["lesson", lesson, "--json"];
+    all.extend_from_slice(args);
+    let out = lightcone(&all);
+    let seconds = start.elapsed().as_secs_f64();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    let outcome = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{lesson}: not JSON ({e}):\n{stderr}"));
+    (outcome, out.status.code(), seconds, stderr)
+}
+
+#[test]
+fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
+    // (lesson, exit status, what the error says)
+    let cases: &[(&str, i32, &[&str])] = &[
+        (
+            "swallow_exception",
+            3,
+            &["TimeoutError", "except Exception"],
+        ),
+        (
+            "swallow_base_exception",
+            3,
+            &["TimeoutError", "except BaseException"],
+        ),
+        ("sleeps", 3, &["TimeoutError", "time.sleep(60)"]),
+        ("waits_for_input", 3, &["TimeoutError", "input("]),
+        ("reads_a_socket", 3, &["TimeoutError", "worker.join()"]),
+        (
+            "long_builtin",
+            3,
+            &["more than 1 s", "could not be interrupted"],
+        ),
+        ("exits", 1, &["SystemExit", "cannot end the game"]),
+        ("forks", 1, &["PermissionError", "may not start processes"]),
+        ("crashes", 4, &["SIGSEGV", "in on_frame"]),
+        ("memory_bomb", 1, &["MemoryError", "in on_frame"]),
+    ];
+    let limit = 1.0;
+    // What starting a lesson costs, to subtract from the timings.
+    let (_, status, baseline, stderr) =
+        lesson_outcome("scripts/lessons/cushion.py", &["--until", "0.1"]);
+    assert_eq!(status, Some(0), "{stderr}");
+    // Two at a time: each waits out its limit.
+    for pair in cases.chunks(2) {
+        let runs: Vec<_> = pair
+            .iter()
+            .map(|(name, _, _)| {
+                let path = format!("tests/lessons/{name}.py");
+                std::thread::spawn(move || {
+                    lesson_outcome(&path, &["--hook-limit", "1", "--memory-limit", "384"])
+                })
+            })
+            .collect();
+        for ((name, status, says), run) in pair.iter().zip(runs) {
+            let (outcome, code, seconds, stderr) = run.join().unwrap();
+            let error = outcome["error"]
+                .as_str()
+                .unwrap_or_else(|| panic!("{name}: no error\n{stderr}"));
+            for s in *says {
+                assert!(error.contains(s), "{name}: {s:?} not in\n{error}");
+            }
+            assert_eq!(code, Some(*status), "{name}: {error}");
+            assert!(
+                seconds - baseline < limit + 1.0,
+                "{name}: stopped after {seconds:.2} s (starting takes {baseline:.2} s)"
+            );
+            // The state before the misbehaviour is kept: one frame ran.
+            assert!(outcome["t"].as_f64().unwrap() > 0.0, "{name}: {outcome}");
+            println!(
+                "{name}: stopped in {:.2} s with status {status}",
+                seconds - baseline
+            );
+        }
+    }
+}
+
+#[test]
+fn lesson_takes_several_files() {
+    let out = lightcone(&[
+        "lesson",
+        "scripts/lessons/cushion.py",
+        "tests/lessons/broken_setup.py",
+        "scripts/lessons/contraction.py",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let outcomes: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON outcome a line"))
+        .collect();
+    assert_eq!(outcomes.len(), 3);
+    assert!(outcomes[0]["error"].is_null() && outcomes[2]["error"].is_null());
+    assert!(
+        outcomes[1]["error"]
+            .as_str()
+            .unwrap()
+            .contains("this lesson is broken")
+    );
+    assert!(
+        outcomes[2]["file"]
+            .as_str()
+            .unwrap()
+            .ends_with("contraction.py")
+    );
+}
+
 #[test]
 fn an_endless_hook_is_stopped_with_a_timeout() {
     let start = std::time::Instant::now();
@@ -203,4 +313,36 @@ fn an_endless_hook_is_stopped_with_a_timeout() {
         stderr.contains("TimeoutError") && stderr.contains("in setup"),
         "{stderr}"
     );
+}
+
+#[test]
+fn in_the_window_a_hook_that_swallows_its_stop_is_stopped_and_the_game_goes_on() {
+    let dir = std::env::temp_dir().join(format!("lightcone-lesson-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let limit = [("LIGHTCONE_HOOK_LIMIT", "1")];
+    let (out, img) = play_under_xvfb_with(
+        &["play", "tests/lessons/swallow_base_exception.py"],
+        &dir.join("swallow.png"),
+        30,
+        &limit,
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let img = img.unwrap_or_else(|| panic!("the game did not survive:\n{stderr}"));
+    assert!(stderr.contains("TimeoutError"), "{stderr}");
+    assert!(traceback_pixels(&img) > 200, "no traceback on screen");
+    assert!(cloth_pixels(&img) > 1280 * 720 / 20, "no table on screen");
+
+    // One C call that never returns to Python: the game ends with status 3
+    // and the reason, instead of hanging.
+    let start = std::time::Instant::now();
+    let (out, _) = play_under_xvfb_with(
+        &["play", "tests/lessons/long_builtin.py"],
+        &dir.join("builtin.png"),
+        30,
+        &limit,
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stderr}");
+    assert!(stderr.contains("could not be interrupted"), "{stderr}");
+    assert!(start.elapsed().as_secs_f64() < 20.0);
 }

@@ -134,8 +134,9 @@ enum Command {
     /// the lesson's answer, and its claims checked. Fails if the lesson
     /// raises or a claim does not hold.
     Lesson {
-        /// Lesson file (`.py`).
-        lesson: PathBuf,
+        /// Lesson files (`.py`), each run in turn.
+        #[arg(required = true)]
+        lessons: Vec<PathBuf>,
         /// Stop at this board time (s) if the lesson has not finished.
         #[arg(long, default_value_t = 600.0)]
         until: f64,
@@ -145,6 +146,13 @@ enum Command {
         /// Stop a hook that runs longer than this (s) with TimeoutError.
         #[arg(long, default_value_t = 10.0)]
         hook_limit: f64,
+        /// Address-space limit of each lesson's process, MiB.
+        #[arg(long, default_value_t = lightcone::lesson::supervise::MEMORY_LIMIT_MB)]
+        memory_limit: u64,
+        /// Internal: run the lesson in this process and report to the
+        /// parent `lightcone lesson` (see lesson::supervise).
+        #[arg(long, hide = true)]
+        child: bool,
         /// Print the outcome as one JSON object (schema in the README).
         #[arg(long)]
         json: bool,
@@ -212,12 +220,24 @@ fn main() -> ExitCode {
             commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
         }
         Some(Command::Lesson {
-            lesson,
+            lessons,
             until,
             fps,
             hook_limit,
+            memory_limit,
+            child,
             json,
-        }) => commands::lesson::run(&lesson, until, fps, hook_limit, json),
+        }) => commands::lesson::run(
+            &lessons,
+            commands::lesson::Options {
+                until,
+                fps,
+                hook_limit,
+                memory_limit,
+                child,
+                json,
+            },
+        ),
         Some(Command::Bench { what, quick, csv }) => match what {
             BenchWhat::Physics => commands::bench::run(quick),
             BenchWhat::Optics => commands::bench_optics::run(quick, csv.as_ref()),

@@ -28,8 +28,19 @@ static XVFB: Mutex<()> = Mutex::new(());
 /// Runs `lightcone ARGS --screenshot SHOT --frames FRAMES` under Xvfb
 /// (1280×720) and loads the screenshot (`None` if the game failed).
 pub fn play_under_xvfb(args: &[&str], shot: &Path, frames: u32) -> (Output, Option<Image>) {
+    play_under_xvfb_with(args, shot, frames, &[])
+}
+
+/// [`play_under_xvfb`] with environment variables `env` set.
+pub fn play_under_xvfb_with(
+    args: &[&str],
+    shot: &Path,
+    frames: u32,
+    env: &[(&str, &str)],
+) -> (Output, Option<Image>) {
     let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
     let out = Command::new("xvfb-run")
+        .envs(env.iter().copied())
         .args(["-a", "-s", "-screen 0 1280x720x24"])
         .arg(env!("CARGO_BIN_EXE_lightcone"))
         .args(args)

@@ -119,3 +119,149 @@ def test_world_is_only_made_by_the_game():
     assert "World" in lightcone.__all__
     with pytest.raises(TypeError):
         lightcone.World()
+
+
+def test_threads_wait_for_run_until_instead_of_raising():
+    """A call from another thread while run_until runs waits for a
+    consistent state; it never raises "Already borrowed"."""
+    import threading
+
+    sim = lightcone.Simulation(scene("ten_pucks.toml"))
+    errors = []
+    seen = []
+
+    def run():
+        try:
+            sim.run_until(6.0)
+        except Exception as e:  # pragma: no cover - the failure reported below
+            errors.append(e)
+
+    worker = threading.Thread(target=run)
+    worker.start()
+    while worker.is_alive():
+        state = sim.state()
+        seen.append(state["t"])
+        assert len(state["pucks"]) == 10
+        sim.collisions()
+        sim.velocity(state["pucks"][0]["name"])
+    worker.join()
+    assert not errors, errors
+    assert sim.time == pytest.approx(6.0)
+    # Board time only moves forward, as the other thread saw it.
+    assert seen == sorted(seen)
+
+
+def test_ctrl_c_stops_a_long_run_promptly():
+    import _thread
+    import threading
+    import time
+
+    sim = lightcone.Simulation(scene("paper_carom.toml"))
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        sim.run_until(1e308)
+    assert time.monotonic() - start < 2.0
+    # The state is consistent and the simulation goes on.
+    t = sim.time
+    assert 0.0 < t < 1e308
+    sim.run_until(t + 0.1)
+    assert sim.time == pytest.approx(t + 0.1)
+
+
+def test_any_sequence_where_a_vector_goes_and_errors_name_the_argument():
+    s = lightcone.Scene(size=[4.0, 2.0], c=2.0)
+    s.add_puck("tuple", (1.0, 0.5), beta=(0.5, 0.0))
+    s.add_puck("list", [1.0, 1.0], beta=[0.0, 0.5])
+    s.add_puck("fast", [3.0, 1.0], velocity=[-1.0, 0.0])  # m/s, as in scene files
+    with pytest.raises(TypeError, match="position"):
+        s.add_puck("bad", "xy")
+    with pytest.raises(TypeError, match="got 3") as e:
+        s.add_puck("bad", (2.0, 1.5), beta=(0.1, 0.0, 0.0))
+    assert "beta" in str(e.value)
+    with pytest.raises(lightcone.SceneError, match="at most one"):
+        s.add_puck("bad", (2.0, 1.5), beta=(0.1, 0.0), velocity=(0.1, 0.0))
+    sim = lightcone.Simulation(s)
+    state = sim.state()
+    fast = state["pucks"][2]
+    assert fast["beta"][0] == pytest.approx(-0.5, rel=1e-12)  # v / c
+    sim.impulse("list", [0.0, 0.1])
+    with pytest.raises(TypeError, match="du"):
+        sim.impulse("list", 0.1)
+
+
+def test_numpy_arrays_are_vectors():
+    np = pytest.importorskip("numpy")
+    s = lightcone.Scene(size=np.array([4.0, 2.0]))
+    s.add_puck("a", np.array([1.0, 1.0]), beta=np.array([0.3, 0.0]))
+    s.add_observer("eye", np.array([2.0, -1.0, 1.0]))
+    assert lightcone.Simulation(s).state()["pucks"][0]["beta"][0] == pytest.approx(0.3)
+
+
+def test_names_are_refused_when_padded_or_empty():
+    s = lightcone.Scene()
+    s.add_puck("a", (0.5, 0.5))
+    for bad in (" a ", "a ", "", "\t"):
+        with pytest.raises(lightcone.SceneError, match="name"):
+            s.add_puck(bad, (1.5, 0.5))
+    assert s.pucks == ["a"]
+
+
+def test_one_exception_class_per_kind():
+    s = lightcone.Scene()
+    with pytest.raises(lightcone.SpeedOfLightError):
+        s.add_puck("c", (0.5, 0.5), beta=(1.0, 0.0))
+    with pytest.raises(lightcone.SpeedOfLightError):
+        s.add_puck("c", (0.5, 0.5), velocity=(2.0 * s.c, 0.0))
+    with pytest.raises(lightcone.SpeedOfLightError):
+        lightcone.Scene.from_toml("[[puck]]\nposition = [0.5, 0.5]\nbeta = [1.2, 0.0]\n")
+    assert issubclass(lightcone.SpeedOfLightError, lightcone.SceneError)
+    assert issubclass(lightcone.NoAdapterError, RuntimeError)
+    sim = lightcone.Simulation(scene("paper_carom.toml"))
+    with pytest.raises(lightcone.NotComputedError):
+        sim.observe(at=1.0)
+
+
+def test_observe_at_a_past_time_is_what_was_seen_then():
+    early = lightcone.Simulation(scene("paper_carom.toml"))
+    early.run_until(0.7)
+    late = lightcone.Simulation(scene("paper_carom.toml"))
+    late.run_until(2.0)
+    then = late.observe(at=0.7)
+    now = early.observe()
+    assert then["t"] == 0.7
+    for a, b in zip(then["pucks"], now["pucks"]):
+        assert a["emission"]["position"] == pytest.approx(b["emission"]["position"], abs=1e-9)
+
+
+def test_records_match_their_typed_dicts():
+    from lightcone.records import Collision, CollisionPuck, Observation, PuckState, State
+
+    sim = lightcone.Simulation(scene("paper_carom.toml"))
+    sim.run_until(3.0)
+    optional = {"cushion", "mass_before", "mass_after", "pending", "vertices"}
+    for c in sim.collisions():
+        assert set(Collision.__annotations__) - optional <= set(c) <= set(Collision.__annotations__)
+        for p in c["pucks"]:
+            assert set(p) <= set(CollisionPuck.__annotations__)
+    st = sim.state()
+    assert set(st) == set(State.__annotations__)
+    assert set(st["pucks"][0]) == set(PuckState.__annotations__)
+    ob = sim.observe()
+    assert set(ob) == set(Observation.__annotations__)
+
+
+def test_render_returns_a_frame_shown_inline(tmp_path):
+    sim = lightcone.Simulation(scene("paper_carom.toml"))
+    sim.run_until(1.0)
+    try:
+        frame = sim.render(size=(160, 90), at=0.5)
+    except lightcone.NoAdapterError:
+        pytest.skip("no graphics adapter")
+    assert (frame.width, frame.height, frame.t) == (160, 90, 0.5)
+    assert frame._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    frame.save(str(tmp_path / "f.png"))
+    assert (tmp_path / "f.png").read_bytes() == frame.png
+    assert sim._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "Simulation(" in repr(sim) and "Frame(" in repr(frame)

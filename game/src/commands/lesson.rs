@@ -1,60 +1,116 @@
-//! `lightcone lesson FILE.py`: run a lesson headless and report its claims.
+//! `lightcone lesson FILE.py...`: run lessons headless and report their
+//! claims. Each lesson runs in a child process ([`supervise`]), so that
+//! nothing it does can hang or crash the run.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use crate::lesson::headless;
+use crate::lesson::headless::Outcome;
+use crate::lesson::supervise::{self, Limits};
 
-/// Runs the lesson; prints each claim (or the JSON outcome with `json`).
-/// Fails when the lesson raised or a claim did not hold.
-pub fn run(path: &Path, until: f64, fps: f64, hook_limit: f64, json: bool) -> ExitCode {
+/// The options of `lesson` beyond the files.
+pub struct Options {
+    /// Board time to stop at, s.
+    pub until: f64,
+    /// Frames per real second.
+    pub fps: f64,
+    /// Longest a hook may run, s.
+    pub hook_limit: f64,
+    /// Address-space limit of each lesson's process, MiB.
+    pub memory_limit: u64,
+    /// This is the child process of a `lesson` run (internal).
+    pub child: bool,
+    /// Print each outcome as one JSON line.
+    pub json: bool,
+}
+
+/// Runs each lesson; prints each claim (or one JSON outcome per line with
+/// `json`). The exit status is the worst of the lessons': 0 all passed,
+/// 1 a claim failed or a lesson raised (or a bad argument), 3 a hook was
+/// stopped at its time limit, 4 a lesson's process died.
+pub fn run(paths: &[PathBuf], options: Options) -> ExitCode {
+    if !(options.hook_limit.is_finite()
+        && options.hook_limit > 0.0
+        && options.hook_limit <= 86_400.0)
+    {
+        eprintln!(
+            "--hook-limit {}: give seconds in (0, 86400]",
+            options.hook_limit
+        );
+        return ExitCode::FAILURE;
+    }
+    if options.memory_limit < 256 {
+        eprintln!(
+            "--memory-limit {}: give at least 256 MiB",
+            options.memory_limit
+        );
+        return ExitCode::FAILURE;
+    }
+    let limits = Limits {
+        until: options.until,
+        fps: options.fps,
+        hook: std::time::Duration::from_secs_f64(options.hook_limit),
+        memory_mb: options.memory_limit,
+    };
+    if options.child {
+        return match paths {
+            [path] => ExitCode::from(supervise::child(path, limits)),
+            _ => ExitCode::FAILURE,
+        };
+    }
+    let mut worst = 0u8;
+    for path in paths {
+        worst = worst.max(one(path, limits, options.json));
+    }
+    ExitCode::from(worst)
+}
+
+/// Runs one lesson and prints its outcome; its exit status.
+fn one(path: &Path, limits: Limits, json: bool) -> u8 {
     if !path.is_file() {
         eprintln!("{}: no such lesson file", path.display());
-        return ExitCode::FAILURE;
+        return 1;
     }
-    if !(hook_limit.is_finite() && hook_limit > 0.0 && hook_limit <= 86_400.0) {
-        eprintln!("--hook-limit {hook_limit}: give seconds in (0, 86400]");
-        return ExitCode::FAILURE;
-    }
-    let limit = std::time::Duration::from_secs_f64(hook_limit);
-    let outcome = match headless::run(path, until, fps, limit) {
+    let outcome = match supervise::run(path, limits) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("{e}");
-            return ExitCode::FAILURE;
+            return 1;
         }
     };
     if json {
-        match serde_json::to_string_pretty(&outcome) {
+        match serde_json::to_string(&outcome) {
             Ok(text) => println!("{text}"),
             Err(e) => eprintln!("cannot write the outcome: {e}"),
         }
     } else {
-        for (q, a) in &outcome.answers {
-            println!("? {q} -> {a}");
-        }
-        for c in &outcome.claims {
-            let mark = if c.ok { "ok  " } else { "FAIL" };
-            println!("{mark} {}: {}", c.claim, c.detail);
-        }
-        match (&outcome.error, &outcome.finished) {
-            (Some(_), _) => {} // already on stderr
-            (None, Some(msg)) => println!("finished at t = {:.3} s: {msg}", outcome.t),
-            (None, None) => println!("stopped at t = {:.3} s without finish()", outcome.t),
-        }
+        print_outcome(&outcome);
     }
     let failed = outcome.claims.iter().filter(|c| !c.ok).count();
     if outcome.error.is_some() {
-        eprintln!("{}: the lesson raised (traceback above)", path.display());
-        ExitCode::FAILURE
+        eprintln!("{}: the lesson was stopped (reason above)", path.display());
     } else if failed > 0 {
         eprintln!(
             "{}: {failed} of {} claims failed",
             path.display(),
             outcome.claims.len()
         );
-        ExitCode::FAILURE
-    } else {
-        ExitCode::SUCCESS
+    }
+    outcome.status()
+}
+
+fn print_outcome(outcome: &Outcome) {
+    println!("== {}", outcome.file);
+    for (q, a) in &outcome.answers {
+        println!("? {q} -> {a}");
+    }
+    for c in &outcome.claims {
+        let mark = if c.ok { "ok  " } else { "FAIL" };
+        println!("{mark} {}: {}", c.claim, c.detail);
+    }
+    match (&outcome.error, &outcome.finished) {
+        (Some(_), _) => {} // already on stderr
+        (None, Some(msg)) => println!("finished at t = {:.3} s: {msg}", outcome.t),
+        (None, None) => println!("stopped at t = {:.3} s without finish()", outcome.t),
     }
 }

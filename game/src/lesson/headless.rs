@@ -5,12 +5,12 @@
 
 use std::path::Path;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::LessonHost;
 
 /// A claim as the run reports it.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ClaimLine {
     /// What was claimed.
     pub claim: String,
@@ -21,7 +21,7 @@ pub struct ClaimLine {
 }
 
 /// How a headless run ended.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Outcome {
     /// The lesson file.
     pub file: String,
@@ -33,16 +33,79 @@ pub struct Outcome {
     pub finished: Option<String>,
     /// The traceback or message that stopped the lesson, if any.
     pub error: Option<String>,
+    /// Why the host stopped the lesson, if it did: [`Stop::Timeout`] (a
+    /// hook over its time limit) or [`Stop::Died`] (the lesson's process
+    /// ended: `os._exit` through a loophole, a crash, out of memory).
+    pub stopped: Option<Stop>,
     /// Every claim checked, in order.
     pub claims: Vec<ClaimLine>,
     /// Questions asked and the choices given, in order.
     pub answers: Vec<(String, String)>,
 }
 
+/// Why the host stopped a lesson.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stop {
+    /// A hook ran past its time limit.
+    Timeout,
+    /// The lesson's process ended or crashed.
+    Died,
+}
+
 impl Outcome {
     /// No error, and no claim failed.
     pub fn passed(&self) -> bool {
         self.error.is_none() && self.claims.iter().all(|c| c.ok)
+    }
+
+    /// The exit status `lightcone lesson` gives this outcome: 0 passed, 1
+    /// a claim failed or the lesson raised, 3 a hook was stopped at its
+    /// time limit, 4 the lesson's process died.
+    pub fn status(&self) -> u8 {
+        match (self.stopped, self.passed()) {
+            (Some(Stop::Timeout), _) => 3,
+            (Some(Stop::Died), _) => 4,
+            (None, true) => 0,
+            (None, false) => 1,
+        }
+    }
+}
+
+/// What a run reports as it goes (to the parent of a child run, see
+/// [`super::supervise`]).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Progress {
+    /// A frame was stepped: board time, frames so far.
+    Frame {
+        /// Board time, s.
+        t: f64,
+        /// Frames stepped.
+        frames: u64,
+    },
+    /// A new claim was checked.
+    Claim(ClaimLine),
+    /// A question was answered.
+    Answer(String, String),
+}
+
+/// Tells `report` of the claims made since the first `seen`.
+fn new_claims(host: &LessonHost, seen: &mut usize, report: &mut dyn FnMut(Progress)) {
+    let new: Vec<ClaimLine> = host.with_ui(|ui| {
+        ui.claims
+            .iter()
+            .skip(*seen)
+            .map(|c| ClaimLine {
+                claim: c.claim.clone(),
+                ok: c.ok,
+                detail: c.detail.clone(),
+            })
+            .collect()
+    });
+    *seen += new.len();
+    for c in new {
+        report(Progress::Claim(c));
     }
 }
 
@@ -55,6 +118,17 @@ pub fn run(
     fps: f64,
     hook_limit: std::time::Duration,
 ) -> Result<Outcome, String> {
+    run_reporting(path, until, fps, hook_limit, &mut |_| {})
+}
+
+/// [`run`], telling `report` of each frame, claim and answer as it comes.
+pub fn run_reporting(
+    path: &Path,
+    until: f64,
+    fps: f64,
+    hook_limit: std::time::Duration,
+    report: &mut dyn FnMut(Progress),
+) -> Result<Outcome, String> {
     if !(until.is_finite() && until >= 0.0) {
         return Err(format!("--until {until}: give a board time ≥ 0"));
     }
@@ -65,6 +139,8 @@ pub fn run(
     let (mut host, mut game) = LessonHost::load_with_limit(path, hook_limit, super::placeholder)?;
     let mut frames = 0u64;
     let mut answers = Vec::new();
+    let mut claims_seen = 0;
+    new_claims(&host, &mut claims_seen, report);
     // Enough frames for `until` at any time scale the lesson sets, with a
     // hard cap against a lesson that pauses forever.
     let max_frames = 10_000_000u64;
@@ -84,8 +160,10 @@ pub fn run(
             break;
         }
         if let Some((text, choice, i)) = question {
+            report(Progress::Answer(text.clone(), choice.clone()));
             answers.push((text, choice));
             host.answer(&mut game, i);
+            new_claims(&host, &mut claims_seen, report);
             continue;
         }
         if game.live_time >= until {
@@ -95,8 +173,15 @@ pub fn run(
         game.paused = false;
         let before = game.live_time;
         game.step(1.0 / fps);
-        host.after_step(&mut game, before);
         frames += 1;
+        // Before the hooks: should one of them take the process down, the
+        // parent knows the frame was reached.
+        report(Progress::Frame {
+            t: game.live_time,
+            frames,
+        });
+        host.after_step(&mut game, before);
+        new_claims(&host, &mut claims_seen, report);
     }
     let (claims, finished) = host.with_ui(|ui| {
         (
@@ -117,6 +202,7 @@ pub fn run(
         frames,
         finished,
         error: host.error.clone(),
+        stopped: (host.error.is_some() && host.timed_out).then_some(Stop::Timeout),
         claims,
         answers,
     })

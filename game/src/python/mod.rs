@@ -7,11 +7,12 @@
 //! (`py/`), because the game embeds the same module for its lessons
 //! ([`crate::lesson`]): one set of classes, two ways in.
 
+mod convert;
+pub mod errors;
+mod frame;
 mod scene;
 mod simulation;
 mod world;
-
-use std::path::Path;
 
 use glam::DVec3;
 use lightcone_engine::physics::Billiard;
@@ -20,16 +21,11 @@ use lightcone_engine::scene::{Effect, Effects, Scene as SceneModel};
 use pyo3::exceptions::{PyKeyError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
+pub use errors::{NoAdapterError, NotComputedError, SceneError, SpeedOfLightError};
+pub use frame::Frame;
 pub use scene::Scene;
 pub use simulation::Simulation;
 pub use world::{Bars, Claim, LessonUi, Question, World};
-
-pyo3::create_exception!(
-    _lightcone,
-    SceneError,
-    PyValueError,
-    "A scene file or text is invalid; the message names the file, line and field."
-);
 
 /// Adds the module's classes to `m`: used by the wheel's `_lightcone` and
 /// by the embedded [`embedded`] module alike.
@@ -37,8 +33,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Simulation>()?;
     m.add_class::<World>()?;
-    m.add("SceneError", m.py().get_type::<SceneError>())?;
-    Ok(())
+    m.add_class::<Frame>()?;
+    errors::register(m)
 }
 
 /// The module as the game embeds it (registered with `append_to_inittab`
@@ -133,6 +129,18 @@ fn state<'py>(py: Python<'py>, billiard: &Billiard, t: f64) -> PyResult<Bound<'p
     to_python(py, &StateLine::new(billiard, t))
 }
 
+/// `at` (default `now`) if the physics has reached it, else
+/// NotComputedError.
+fn past_time(at: Option<f64>, now: f64) -> PyResult<f64> {
+    let t = finite_time(at.unwrap_or(now))?;
+    if t > now + 1e-12 {
+        return Err(NotComputedError::new_err(format!(
+            "t = {t} s is after the board time reached ({now} s): the future is not computed yet"
+        )));
+    }
+    Ok(t)
+}
+
 /// Strikes puck `name` at board time `t`: its proper velocity grows by `du`.
 fn impulse(billiard: &mut Billiard, name: &str, t: f64, du: (f64, f64)) -> PyResult<()> {
     let i = puck_index(billiard, name)?;
@@ -169,18 +177,25 @@ fn observation<'py>(
     to_python(py, &report)
 }
 
-/// Renders what `observer` sees at board time `t` to a PNG, headless.
-#[allow(clippy::too_many_arguments)]
-fn render_png(
+/// The headless graphics device, opened once per process.
+fn gpu() -> Result<&'static crate::render::gpu::Gpu, String> {
+    static GPU: std::sync::OnceLock<Result<crate::render::gpu::Gpu, String>> =
+        std::sync::OnceLock::new();
+    GPU.get_or_init(crate::render::gpu::headless)
+        .as_ref()
+        .map_err(Clone::clone)
+}
+
+/// Renders what `observer` sees at board time `t`, headless.
+fn render_frame(
     py: Python<'_>,
     scene: &SceneModel,
     billiard: &Billiard,
     t: f64,
-    path: &Path,
     observer: Option<&str>,
     size: (u32, u32),
     view: &str,
-) -> PyResult<()> {
+) -> PyResult<Frame> {
     use crate::render::frame::ViewKind;
     let kind = match view {
         "seen" => ViewKind::Seen,
@@ -197,12 +212,12 @@ fn render_png(
         )));
     }
     let index = observer_index(scene, observer)?;
-    py.detach(|| {
-        let gpu = crate::render::gpu::headless()?;
+    let image = py.detach(|| {
+        let gpu = gpu().map_err(NoAdapterError::new_err)?;
         crate::render::headless::render_billiard(
-            &gpu, scene, billiard, t, index, kind, size.0, size.1,
-        )?
-        .save_png(path)
-    })
-    .map_err(PyRuntimeError::new_err)
+            gpu, scene, billiard, t, index, kind, size.0, size.1,
+        )
+        .map_err(PyRuntimeError::new_err)
+    })?;
+    Frame::from_image(&image, t)
 }

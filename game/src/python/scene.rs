@@ -6,7 +6,20 @@ use lightcone_engine::spacetime::ProperVelocity;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::{SceneError, effect};
+use super::convert::{Vector, optional};
+use super::effect;
+use super::errors::{SceneError, scene_error};
+
+/// `name` for a puck or observer (`kind`), refused when empty or padded
+/// with spaces (" a " would sit beside "a" and confuse every look-up).
+fn checked_name(kind: &str, name: &str) -> PyResult<String> {
+    if name.is_empty() || name.trim() != name || name.chars().any(char::is_control) {
+        return Err(SceneError::new_err(format!(
+            "{kind} name {name:?}: give a non-empty name without spaces or control characters at its ends"
+        )));
+    }
+    Ok(name.to_owned())
+}
 
 /// A validated scene (see the README's "Scene files").
 #[pyclass(module = "lightcone._lightcone")]
@@ -23,7 +36,7 @@ impl Scene {
     fn load(path: std::path::PathBuf) -> PyResult<Self> {
         scene::load(&path)
             .map(|inner| Self { inner })
-            .map_err(|e| SceneError::new_err(e.to_string()))
+            .map_err(|e| scene_error(e.to_string()))
     }
 
     /// Parses and validates scene TOML text; `name` is used in messages.
@@ -32,45 +45,72 @@ impl Scene {
     fn from_toml(text: &str, name: &str) -> PyResult<Self> {
         scene::parse(text, name)
             .map(|inner| Self { inner })
-            .map_err(|e| SceneError::new_err(e.to_string()))
+            .map_err(|e| scene_error(e.to_string()))
     }
 
-    /// An empty scene on a table of `size` metres (default: a match carom
-    /// table) with speed of light `c` (default: light crosses the long side
-    /// in 2 s).
+    /// An empty scene on a table of `size` = (x, y) metres (default: a
+    /// match carom table) with speed of light `c` m/s (default: light
+    /// crosses the long side in 2 s).
     #[new]
-    #[pyo3(signature = (size = (2.84, 1.42), c = None, title = "scene"))]
-    fn new(size: (f64, f64), c: Option<f64>, title: &str) -> PyResult<Self> {
+    #[pyo3(signature = (size = Vector([2.84, 1.42]), c = None, title = "scene"))]
+    fn new(size: Vector<2>, c: Option<f64>, title: &str) -> PyResult<Self> {
+        let size = size.pair();
         let mut inner = scene::Scene::empty(glam::DVec2::new(size.0, size.1), c)
             .map_err(SceneError::new_err)?;
         inner.title = title.to_owned();
         Ok(Self { inner })
     }
 
-    /// Adds a puck; give at most one of `beta` (v/c) or `u` (γβ). Raises
-    /// SceneError if it would be invalid (speed ≥ c, off the table,
-    /// overlapping, duplicate name …).
-    #[pyo3(signature = (name, position, beta = None, u = None, radius = 0.0305, height = 0.02, mass = 0.21, color = None))]
+    /// Adds a puck centred at `position` (x, y) m at board time 0; give at
+    /// most one of `beta` (v/c), `velocity` (m/s) or `u` (proper velocity
+    /// γβ), each any two numbers (tuple, list, array); `radius`, `height`
+    /// in m, `mass` in kg. Raises SpeedOfLightError for a speed ≥ c and
+    /// SceneError for anything else invalid (off the table, overlapping,
+    /// duplicate or padded name …).
+    #[pyo3(signature = (name, position, beta = None, u = None, radius = 0.0305, height = 0.02, mass = 0.21, color = None, velocity = None))]
     #[allow(clippy::too_many_arguments)]
     fn add_puck(
         &mut self,
         name: &str,
-        position: (f64, f64),
-        beta: Option<(f64, f64)>,
-        u: Option<(f64, f64)>,
+        position: Vector<2>,
+        beta: Option<&Bound<'_, PyAny>>,
+        u: Option<&Bound<'_, PyAny>>,
         radius: f64,
         height: f64,
         mass: f64,
         color: Option<&str>,
+        velocity: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let u = match (beta, u) {
-            (Some(_), Some(_)) => {
-                return Err(SceneError::new_err("give at most one of beta and u"));
+        let name = checked_name("puck", name)?;
+        let beta = optional::<2>("beta", beta)?;
+        let u = optional::<2>("u", u)?;
+        let velocity = optional::<2>("velocity", velocity)?;
+        let position = position.pair();
+        let speed =
+            |e: lightcone_engine::spacetime::SpeedError| scene_error(format!("puck {name:?}: {e}"));
+        let u = match (beta, velocity, u) {
+            (Some(b), None, None) => {
+                ProperVelocity::try_from_beta(DVec3::new(b.0[0], b.0[1], 0.0)).map_err(speed)?
             }
-            (Some(b), None) => ProperVelocity::try_from_beta(DVec3::new(b.0, b.1, 0.0))
-                .map_err(|e| SceneError::new_err(format!("puck {name:?}: {e}")))?,
-            (None, Some(u)) => ProperVelocity(DVec3::new(u.0, u.1, 0.0)),
-            (None, None) => ProperVelocity::ZERO,
+            (None, Some(v), None) => {
+                ProperVelocity::try_from_velocity(DVec3::new(v.0[0], v.0[1], 0.0), self.inner.c)
+                    .map_err(speed)?
+            }
+            (None, None, Some(u)) => {
+                if !(u.0[0].is_finite() && u.0[1].is_finite()) {
+                    return Err(SceneError::new_err(format!(
+                        "puck {name:?}: u = {:?}: give finite numbers",
+                        u.0
+                    )));
+                }
+                ProperVelocity(DVec3::new(u.0[0], u.0[1], 0.0))
+            }
+            (None, None, None) => ProperVelocity::ZERO,
+            _ => {
+                return Err(SceneError::new_err(format!(
+                    "puck {name:?}: give at most one of beta, velocity and u"
+                )));
+            }
         };
         let color = match color {
             None => scene::Color::default_for(self.inner.pucks.len()),
@@ -80,7 +120,7 @@ impl Scene {
         };
         self.inner
             .add_puck(scene::PuckSpec {
-                name: name.to_owned(),
+                name,
                 position: glam::DVec2::new(position.0, position.1),
                 u,
                 radius,
@@ -88,33 +128,40 @@ impl Scene {
                 mass,
                 color,
             })
-            .map_err(SceneError::new_err)
+            .map_err(scene_error)
     }
 
-    /// Adds an observer (the first replaces the default eye).
+    /// Adds an observer with its eye at `position` (x, y, z) m, looking at
+    /// `look_at` (default: the table's centre), moving at `beta` (v/c,
+    /// three numbers); the first observer replaces the default eye.
     #[pyo3(signature = (name, position, look_at = None, beta = None))]
     fn add_observer(
         &mut self,
         name: &str,
-        position: (f64, f64, f64),
-        look_at: Option<(f64, f64, f64)>,
-        beta: Option<(f64, f64, f64)>,
+        position: Vector<3>,
+        look_at: Option<&Bound<'_, PyAny>>,
+        beta: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
+        let name = checked_name("observer", name)?;
+        let look_at = optional::<3>("look_at", look_at)?;
+        let beta = optional::<3>("beta", beta)?;
         let size = self.inner.table.size;
-        let look_at = look_at.map_or(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0), DVec3::from);
+        let look_at = look_at.map_or(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0), |v| {
+            DVec3::from(v.triple())
+        });
         let u = match beta {
             None => ProperVelocity::ZERO,
-            Some(b) => ProperVelocity::try_from_beta(DVec3::from(b))
-                .map_err(|e| SceneError::new_err(format!("observer {name:?}: {e}")))?,
+            Some(b) => ProperVelocity::try_from_beta(DVec3::from(b.triple()))
+                .map_err(|e| scene_error(format!("observer {name:?}: {e}")))?,
         };
         self.inner
             .add_observer(scene::ObserverSpec {
-                name: name.to_owned(),
-                position: DVec3::from(position),
+                name,
+                position: DVec3::from(position.triple()),
                 look_at,
                 u,
             })
-            .map_err(SceneError::new_err)
+            .map_err(scene_error)
     }
 
     /// Turns an effect on or off (`contraction`, `light_delay`,

@@ -1,122 +1,209 @@
 //! `lightcone.Simulation`: a scene's physics run from Python, headless.
+//!
+//! The state sits behind a mutex inside the (frozen) Python object, so a
+//! call from another thread while `run_until` runs waits for it (without
+//! holding the GIL) instead of raising "Already borrowed". `run_until`
+//! advances in chunks of board time, releasing the lock and checking for
+//! Ctrl-C (`KeyboardInterrupt`) between them: other threads see a
+//! consistent state at a chunk boundary, and a long run stops promptly.
 
 use std::path::PathBuf;
+use std::sync::{Mutex, MutexGuard};
+use std::time::{Duration, Instant};
 
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene;
 use pyo3::prelude::*;
 
-use super::Scene;
+use super::convert::Vector;
+use super::{Frame, Scene};
+
+/// What the lock guards.
+pub(crate) struct State {
+    pub(crate) scene: scene::Scene,
+    pub(crate) billiard: Billiard,
+}
 
 /// A running simulation of a scene: the event-anticipation physics.
-#[pyclass(module = "lightcone._lightcone")]
+#[pyclass(module = "lightcone._lightcone", frozen)]
 pub struct Simulation {
-    scene: scene::Scene,
-    billiard: Billiard,
+    state: Mutex<State>,
 }
+
+impl Simulation {
+    /// The state, waiting without the GIL while another thread holds it.
+    fn lock(&self, py: Python<'_>) -> MutexGuard<'_, State> {
+        loop {
+            match self.state.try_lock() {
+                Ok(guard) => return guard,
+                Err(std::sync::TryLockError::Poisoned(p)) => return p.into_inner(),
+                Err(std::sync::TryLockError::WouldBlock) => {
+                    // Wait for the holder to let go, then try again with
+                    // the GIL (a guard cannot leave `detach`).
+                    py.detach(|| drop(self.state.lock()));
+                }
+            }
+        }
+    }
+}
+
+/// Wall-clock time a chunk of `run_until` aims at between two checks for
+/// Ctrl-C and two chances for other threads.
+const CHUNK: Duration = Duration::from_millis(20);
 
 #[pymethods]
 impl Simulation {
     #[new]
     fn new(scene: &Scene) -> Self {
         Self {
-            billiard: Billiard::from_scene(&scene.inner),
-            scene: scene.inner.clone(),
+            state: Mutex::new(State {
+                billiard: Billiard::from_scene(&scene.inner),
+                scene: scene.inner.clone(),
+            }),
+        }
+    }
+
+    /// The scene simulated (a copy).
+    #[getter]
+    fn scene(&self, py: Python<'_>) -> Scene {
+        Scene {
+            inner: self.lock(py).scene.clone(),
         }
     }
 
     /// Board time reached, s.
     #[getter]
-    fn time(&self) -> f64 {
-        self.billiard.time()
+    fn time(&self, py: Python<'_>) -> f64 {
+        self.lock(py).billiard.time()
     }
 
     /// Runs the physics to board time `t` (s); earlier times do nothing.
-    /// Releases the GIL while it runs.
-    fn run_until(&mut self, py: Python<'_>, t: f64) -> PyResult<()> {
+    /// Releases the GIL while it runs; Ctrl-C (KeyboardInterrupt) stops it
+    /// within about 20 ms, at a consistent state.
+    fn run_until(&self, py: Python<'_>, t: f64) -> PyResult<()> {
         let t = super::finite_time(t)?;
-        let billiard = &mut self.billiard;
-        py.detach(|| billiard.advance_to(t));
-        Ok(())
+        // Board seconds a chunk, adapted to take about CHUNK of wall time.
+        let mut dt = 1e-3_f64;
+        loop {
+            let (next, took) = py.detach(|| {
+                let mut s = self.state.lock().unwrap_or_else(|e| e.into_inner());
+                let now = s.billiard.time();
+                let next = if now + dt < t { now + dt } else { t };
+                let start = Instant::now();
+                s.billiard.advance_to(next);
+                (next, start.elapsed())
+            });
+            py.check_signals()?;
+            if next >= t {
+                return Ok(());
+            }
+            if took < CHUNK / 2 {
+                dt *= 2.0;
+            } else if took > CHUNK * 2 {
+                dt = (dt / 2.0).max(1e-9);
+            }
+        }
     }
 
     /// Advances by `dt` seconds of board time.
-    fn step(&mut self, py: Python<'_>, dt: f64) -> PyResult<()> {
-        let t = self.billiard.time() + dt;
+    fn step(&self, py: Python<'_>, dt: f64) -> PyResult<()> {
+        let t = self.time(py) + dt;
         self.run_until(py, t)
     }
 
-    /// Strikes puck `name` now: its proper velocity γβ grows by `du` (a
-    /// pair (x, y)); no push reaches c.
-    fn impulse(&mut self, name: &str, du: (f64, f64)) -> PyResult<()> {
-        let t = self.billiard.time();
-        super::impulse(&mut self.billiard, name, t, du)
+    /// Strikes puck `name` now: its proper velocity γβ (dimensionless)
+    /// grows by `du` (any two numbers: tuple, list, array); no push
+    /// reaches c.
+    fn impulse(&self, py: Python<'_>, name: &str, du: Vector<2>) -> PyResult<()> {
+        let mut s = self.lock(py);
+        let t = s.billiard.time();
+        super::impulse(&mut s.billiard, name, t, du.pair())
     }
 
     /// Every collision so far, as the dicts `lightcone simulate` prints.
     fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
-        super::collisions(py, &self.billiard)
+        let s = self.lock(py);
+        super::collisions(py, &s.billiard)
     }
 
     /// Every puck now: the `state` dict of `lightcone simulate`.
     fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        super::state(py, &self.billiard, self.billiard.time())
+        let s = self.lock(py);
+        super::state(py, &s.billiard, s.billiard.time())
     }
 
-    /// What observer `observer` (default: the first) sees now, as the dict
+    /// What observer `observer` (default: the first) sees at board time
+    /// `at` (default: now; any time already computed), as the dict
     /// `lightcone observe` prints. `effects`: None for the scene's, or a
     /// list of effect names to turn on (the others off).
-    #[pyo3(signature = (observer = None, vertices = false, effects = None))]
+    #[pyo3(signature = (observer = None, vertices = false, effects = None, at = None))]
     fn observe<'py>(
         &self,
         py: Python<'py>,
         observer: Option<&str>,
         vertices: bool,
         effects: Option<Vec<String>>,
+        at: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let fx = super::effects_from(self.scene.effects, effects)?;
-        super::observation(
-            py,
-            &self.scene,
-            &self.billiard,
-            self.billiard.time(),
-            observer,
-            vertices,
-            fx,
-        )
+        let s = self.lock(py);
+        let t = super::past_time(at, s.billiard.time())?;
+        let fx = super::effects_from(s.scene.effects, effects)?;
+        super::observation(py, &s.scene, &s.billiard, t, observer, vertices, fx)
     }
 
-    /// The proper velocity γβ of puck `name` now, as (x, y).
-    fn velocity(&self, name: &str) -> PyResult<(f64, f64)> {
-        super::velocity(&self.billiard, name, self.billiard.time())
+    /// The proper velocity γβ (dimensionless) of puck `name` now, as (x, y).
+    fn velocity(&self, py: Python<'_>, name: &str) -> PyResult<(f64, f64)> {
+        let s = self.lock(py);
+        super::velocity(&s.billiard, name, s.billiard.time())
     }
 
-    /// Renders what `observer` (default: the first) sees now to a PNG,
-    /// headless; `view` is "seen" or "truth". Raises RuntimeError when
-    /// there is no graphics adapter (install mesa-vulkan-drivers).
-    #[pyo3(signature = (path, observer = None, size = (1280, 720), view = "seen"))]
+    /// Renders what `observer` (default: the first) sees at board time `at`
+    /// (default: now) headless, and returns the frame (shown inline in
+    /// Jupyter); with `path`, also saves it as a PNG. `view` is "seen" or
+    /// "truth"; `size` is (width, height) in pixels. Raises NoAdapterError
+    /// when there is no graphics adapter (install mesa-vulkan-drivers).
+    #[pyo3(signature = (path = None, observer = None, size = (1280, 720), view = "seen", at = None))]
     fn render(
         &self,
         py: Python<'_>,
-        path: PathBuf,
+        path: Option<PathBuf>,
         observer: Option<&str>,
         size: (u32, u32),
         view: &str,
-    ) -> PyResult<()> {
-        super::render_png(
-            py,
-            &self.scene,
-            &self.billiard,
-            self.billiard.time(),
-            &path,
-            observer,
-            size,
-            view,
-        )
+        at: Option<f64>,
+    ) -> PyResult<Frame> {
+        let s = self.lock(py);
+        let t = super::past_time(at, s.billiard.time())?;
+        let frame = super::render_frame(py, &s.scene, &s.billiard, t, observer, size, view)?;
+        if let Some(path) = path {
+            frame.save(path)?;
+        }
+        Ok(frame)
     }
 
     /// Warnings (e.g. a Zeno sequence ended).
-    fn warnings(&self) -> Vec<String> {
-        self.billiard.warnings().to_vec()
+    fn warnings(&self, py: Python<'_>) -> Vec<String> {
+        self.lock(py).billiard.warnings().to_vec()
+    }
+
+    /// The current view as PNG bytes, for Jupyter; None without a graphics
+    /// adapter.
+    fn _repr_png_(&self, py: Python<'_>) -> Option<Vec<u8>> {
+        let s = self.lock(py);
+        let t = s.billiard.time();
+        super::render_frame(py, &s.scene, &s.billiard, t, None, (640, 360), "seen")
+            .ok()
+            .map(|f| f.png)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let s = self.lock(py);
+        format!(
+            "Simulation({:?}, t = {} s, {} pucks, {} collisions)",
+            s.scene.title,
+            s.billiard.time(),
+            s.billiard.len(),
+            s.billiard.collisions().len()
+        )
     }
 }

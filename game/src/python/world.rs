@@ -150,7 +150,7 @@ impl World {
         };
         lightcone_engine::scene::load(&path)
             .map(|inner| Scene { inner })
-            .map_err(|e| super::SceneError::new_err(e.to_string()))
+            .map_err(|e| super::errors::scene_error(e.to_string()))
     }
 
     /// A copy of the scene being played.
@@ -292,17 +292,19 @@ impl World {
         super::velocity(&g.billiard, name, g.live_time)
     }
 
-    /// Strikes puck `name` now: its proper velocity γβ grows by `du`.
-    fn impulse(&mut self, name: &str, du: (f64, f64)) -> PyResult<()> {
+    /// Strikes puck `name` now: its proper velocity γβ (dimensionless)
+    /// grows by `du` (two numbers: tuple, list or array).
+    fn impulse(&mut self, name: &str, du: super::convert::Vector<2>) -> PyResult<()> {
         let g = self.game_mut()?;
         let t = g.live_time;
-        super::impulse(&mut g.billiard, name, t, du)
+        super::impulse(&mut g.billiard, name, t, du.pair())
     }
 
     /// What `observer` (default: the first scene observer) sees at board
-    /// time `t` (default: now), as the dict `lightcone observe` prints.
-    /// `effects`: None for those shown, or a list of effect names.
-    #[pyo3(signature = (observer = None, t = None, vertices = false, effects = None))]
+    /// time `at` s (default: now; `t` is the older name), as the dict
+    /// `lightcone observe` prints. `effects`: None for those shown, or a
+    /// list of effect names. A time after now raises NotComputedError.
+    #[pyo3(signature = (observer = None, t = None, vertices = false, effects = None, at = None))]
     fn observe<'py>(
         &self,
         py: Python<'py>,
@@ -310,15 +312,13 @@ impl World {
         t: Option<f64>,
         vertices: bool,
         effects: Option<Vec<String>>,
+        at: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let g = self.game()?;
-        let t = super::finite_time(t.unwrap_or(g.live_time))?;
-        if t > g.live_time + 1e-12 {
-            return Err(PyValueError::new_err(format!(
-                "t = {t} is after the present ({}): the future is not computed yet",
-                g.live_time
-            )));
+        if t.is_some() && at.is_some() {
+            return Err(PyValueError::new_err("observe: give at or t, not both"));
         }
+        let t = super::past_time(at.or(t), g.live_time)?;
         let fx = super::effects_from(g.effects, effects)?;
         super::observation(py, &g.scene, &g.billiard, t, observer, vertices, fx)
     }
@@ -427,13 +427,14 @@ impl World {
         Ok(())
     }
 
-    /// Ends the lesson with a closing `message`.
+    /// Ends the lesson with a closing `message`: it is shown, and no hook
+    /// runs again (the game goes on for the student).
     #[pyo3(signature = (message = ""))]
     fn finish(&mut self, message: &str) {
         self.ui.finished = Some(message.to_owned());
     }
 
-    /// Whether `finish` was called.
+    /// Whether `finish` was called (then no further hook will run).
     #[getter]
     fn finished(&self) -> bool {
         self.ui.finished.is_some()

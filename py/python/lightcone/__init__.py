@@ -7,11 +7,36 @@
     >>> sim.collisions()[0]["kind"]
     'puck_puck'
 
-Collision and observation records are the dictionaries that
-`lightcone simulate` and `lightcone observe` print as JSON (README).
-Lessons (`lightcone play LESSON.py`) receive a `World` in their hooks.
+Collision, state and observation records are the dictionaries that
+`lightcone simulate` and `lightcone observe` print as JSON (README); their
+keys, types and units are in `lightcone.records`. Lessons
+(`lightcone play LESSON.py`) receive a `World` in their hooks.
 """
 
-from ._lightcone import Scene, SceneError, Simulation, World
+from . import records
+from ._lightcone import (
+    Frame,
+    NoAdapterError,
+    NotComputedError,
+    Scene,
+    SceneError,
+    Simulation,
+    SpeedOfLightError,
+    World,
+)
+from .records import Collision, Observation, State
 
-__all__ = ["Scene", "SceneError", "Simulation", "World"]
+__all__ = [
+    "Collision",
+    "Frame",
+    "NoAdapterError",
+    "NotComputedError",
+    "Observation",
+    "Scene",
+    "SceneError",
+    "Simulation",
+    "SpeedOfLightError",
+    "State",
+    "World",
+    "records",
+]

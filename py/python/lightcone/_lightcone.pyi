@@ -1,44 +1,102 @@
-"""Type stubs of the native module (checked against it with mypy.stubtest)."""
+"""Type stubs of the native module (checked against it with mypy.stubtest).
+
+Units: metres, seconds of board time, kilograms; velocities as β = v/c, as
+v in m/s, or as proper velocity u = γβ (dimensionless). Wherever a vector
+goes, any sequence of numbers is accepted: a tuple, a list, a numpy array.
+"""
 
 from os import PathLike
-from typing import Any, Optional, Sequence, Union, final
+from typing import Iterator, Optional, Protocol, Sequence, SupportsFloat, Union, final
 
-__all__ = ["Scene", "SceneError", "Simulation", "World"]
+from lightcone.records import Collision, Observation, State
+
+__all__ = [
+    "Frame",
+    "NoAdapterError",
+    "NotComputedError",
+    "Scene",
+    "SceneError",
+    "Simulation",
+    "SpeedOfLightError",
+    "World",
+]
+
+class _Numbers(Protocol):
+    """A sequence of numbers: tuple, list or numpy array."""
+
+    def __len__(self) -> int: ...
+    def __iter__(self) -> Iterator[SupportsFloat]: ...
+
+_Vector = Union[Sequence[float], _Numbers]
 
 class SceneError(ValueError):
-    """A scene is invalid; the message names the file, line and field."""
+    """A scene is invalid; the message names the file, line and field (or the puck or observer)."""
+
+class SpeedOfLightError(SceneError):
+    """A speed at or above c was given (β ≥ 1); no body reaches c."""
+
+class NoAdapterError(RuntimeError):
+    """Rendering needs a graphics adapter and none was found (install mesa-vulkan-drivers)."""
+
+class NotComputedError(ValueError):
+    """A board time after the one the physics has reached was asked for."""
+
+@final
+class Frame:
+    """A rendered picture (shown inline in Jupyter)."""
+
+    @property
+    def width(self) -> int:
+        """Width, pixels."""
+    @property
+    def height(self) -> int:
+        """Height, pixels."""
+    @property
+    def t(self) -> float:
+        """Board time of the picture, s."""
+    @property
+    def png(self) -> bytes:
+        """The PNG file's bytes."""
+    def save(self, path: Union[str, PathLike[str]]) -> None:
+        """Saves the picture as a PNG file."""
+    def _repr_png_(self) -> bytes: ...
 
 @final
 class Scene:
     """A validated scene."""
 
-    def __new__(cls, size: tuple[float, float] = ..., c: Optional[float] = None, title: str = "scene") -> Scene: ...
+    def __new__(cls, size: _Vector = ..., c: Optional[float] = None, title: str = "scene") -> Scene:
+        """An empty scene on a table of `size` = (x, y) m with speed of light `c` m/s."""
     def add_puck(
         self,
         name: str,
-        position: tuple[float, float],
-        beta: Optional[tuple[float, float]] = None,
-        u: Optional[tuple[float, float]] = None,
+        position: _Vector,
+        beta: Optional[_Vector] = None,
+        u: Optional[_Vector] = None,
         radius: float = 0.0305,
         height: float = 0.02,
         mass: float = 0.21,
         color: Optional[str] = None,
-    ) -> None: ...
+        velocity: Optional[_Vector] = None,
+    ) -> None:
+        """Adds a puck at `position` (x, y) m; at most one of `beta` (v/c), `velocity` (m/s), `u` (γβ).
+        `radius`, `height` in m, `mass` in kg. Raises SpeedOfLightError, SceneError."""
     def add_observer(
         self,
         name: str,
-        position: tuple[float, float, float],
-        look_at: Optional[tuple[float, float, float]] = None,
-        beta: Optional[tuple[float, float, float]] = None,
-    ) -> None: ...
+        position: _Vector,
+        look_at: Optional[_Vector] = None,
+        beta: Optional[_Vector] = None,
+    ) -> None:
+        """Adds an observer with its eye at `position` (x, y, z) m, moving at `beta` (v/c)."""
     def set_effect(self, name: str, on: bool) -> None: ...
-
     @staticmethod
     def load(path: Union[str, PathLike[str]]) -> Scene: ...
     @staticmethod
     def from_toml(text: str, name: str = "<string>") -> Scene: ...
     @property
-    def c(self) -> float: ...
+    def c(self) -> float:
+        """Speed of light, m/s."""
     @c.setter
     def c(self, c: float) -> None: ...
     @property
@@ -52,31 +110,44 @@ class Scene:
 
 @final
 class Simulation:
-    """The event-anticipation physics of a scene."""
+    """The event-anticipation physics of a scene. Safe to share between
+    threads: a call made while `run_until` runs waits for a consistent state."""
 
     def __new__(cls, scene: Scene) -> Simulation: ...
     @property
-    def time(self) -> float: ...
-    def run_until(self, t: float) -> None: ...
-    def step(self, dt: float) -> None: ...
-    def impulse(self, name: str, du: tuple[float, float]) -> None: ...
-    def collisions(self) -> list[dict[str, Any]]: ...
-    def state(self) -> dict[str, Any]: ...
+    def scene(self) -> Scene: ...
+    @property
+    def time(self) -> float:
+        """Board time reached, s."""
+    def run_until(self, t: float) -> None:
+        """Runs the physics to board time `t` s; Ctrl-C stops it promptly."""
+    def step(self, dt: float) -> None:
+        """Advances by `dt` s of board time."""
+    def impulse(self, name: str, du: _Vector) -> None:
+        """Adds `du` to the proper velocity γβ of puck `name` now."""
+    def collisions(self) -> list[Collision]: ...
+    def state(self) -> State: ...
     def observe(
         self,
         observer: Optional[str] = None,
         vertices: bool = False,
         effects: Optional[Sequence[str]] = None,
-    ) -> dict[str, Any]: ...
-    def velocity(self, name: str) -> tuple[float, float]: ...
+        at: Optional[float] = None,
+    ) -> Observation:
+        """What `observer` sees at board time `at` s (default: now)."""
+    def velocity(self, name: str) -> tuple[float, float]:
+        """Proper velocity γβ of puck `name` now, (x, y)."""
     def render(
         self,
-        path: Union[str, PathLike[str]],
+        path: Optional[Union[str, PathLike[str]]] = None,
         observer: Optional[str] = None,
         size: tuple[int, int] = ...,
         view: str = "seen",
-    ) -> None: ...
+        at: Optional[float] = None,
+    ) -> Frame:
+        """Renders what `observer` sees at board time `at` s (default: now); saves it to `path` if given."""
     def warnings(self) -> list[str]: ...
+    def _repr_png_(self) -> Optional[bytes]: ...
 
 @final
 class World:
@@ -87,9 +158,11 @@ class World:
     @property
     def scene(self) -> Scene: ...
     @property
-    def t(self) -> float: ...
+    def t(self) -> float:
+        """Board time, s."""
     @property
-    def c(self) -> float: ...
+    def c(self) -> float:
+        """Speed of light, m/s."""
     @property
     def paused(self) -> bool: ...
     @paused.setter
@@ -97,7 +170,8 @@ class World:
     def pause(self) -> None: ...
     def resume(self) -> None: ...
     @property
-    def time_scale(self) -> float: ...
+    def time_scale(self) -> float:
+        """Board seconds per real second."""
     @time_scale.setter
     def time_scale(self, scale: float) -> None: ...
     @property
@@ -111,17 +185,18 @@ class World:
     @property
     def effects(self) -> dict[str, bool]: ...
     def set_effect(self, name: str, on: bool) -> None: ...
-    def state(self) -> dict[str, Any]: ...
-    def collisions(self) -> list[dict[str, Any]]: ...
+    def state(self) -> State: ...
+    def collisions(self) -> list[Collision]: ...
     def velocity(self, name: str) -> tuple[float, float]: ...
-    def impulse(self, name: str, du: tuple[float, float]) -> None: ...
+    def impulse(self, name: str, du: _Vector) -> None: ...
     def observe(
         self,
         observer: Optional[str] = None,
         t: Optional[float] = None,
         vertices: bool = False,
         effects: Optional[Sequence[str]] = None,
-    ) -> dict[str, Any]: ...
+        at: Optional[float] = None,
+    ) -> Observation: ...
     def say(self, text: str) -> None: ...
     def ask(self, question: str, choices: Sequence[str], answer: Optional[int] = None) -> None: ...
     def check(self, claim: str, ok: bool, detail: str = "") -> bool: ...
@@ -134,6 +209,8 @@ class World:
         counts: Sequence[float],
         expected: Optional[Sequence[float]] = None,
     ) -> None: ...
-    def finish(self, message: str = "") -> None: ...
+    def finish(self, message: str = "") -> None:
+        """Ends the lesson: the message is shown and no hook runs again."""
     @property
-    def finished(self) -> bool: ...
+    def finished(self) -> bool:
+        """Whether `finish` was called."""

@@ -1,0 +1,81 @@
+"""Run once in the game's embedded interpreter, before any lesson.
+
+`install(package_init)` installs the game's own `lightcone` package (the
+embedded extension module plus the wheel's `__init__.py`, whose source the
+host passes in), so a lesson never imports a different installed wheel, and
+tees `sys.stdout` so that what a lesson prints also reaches the lesson
+panel.
+"""
+
+import sys
+import types
+
+
+class _Printed:
+    """`sys.stdout` for lessons: writes through, and keeps the lines."""
+
+    def __init__(self, out):
+        self.out, self.lines = out, []
+
+    def write(self, s):
+        if self.out is not None:
+            self.out.write(s)
+        self.lines.append(s)
+        return len(s)
+
+    def flush(self):
+        if self.out is not None:
+            self.out.flush()
+
+
+def _module(name, source):
+    module = types.ModuleType(name)
+    module.__package__ = "lightcone"
+    module.__file__ = f"<lightcone game>/{name.replace('.', '/')}.py"
+    sys.modules[name] = module
+    exec(compile(source, module.__file__, "exec"), module.__dict__)
+    return module
+
+
+def install(package_init, records):
+    """Makes `import lightcone` the game's own module: `package_init` and
+    `records` are the sources of the wheel's `__init__.py` and
+    `records.py`."""
+    import lightcone_embedded
+
+    sys.modules["lightcone._lightcone"] = lightcone_embedded
+    pkg = types.ModuleType("lightcone")
+    pkg.__path__ = []
+    pkg.__package__ = "lightcone"
+    pkg.__file__ = "<lightcone game>/lightcone/__init__.py"
+    sys.modules["lightcone"] = pkg
+    pkg.records = _module("lightcone.records", records)
+    exec(compile(package_init, pkg.__file__, "exec"), pkg.__dict__)
+    sys.stdout = _Printed(sys.stdout)
+
+
+def _no_exit(*args, **kwargs):
+    raise SystemExit("a lesson cannot end the game (os._exit or os.abort was called)")
+
+
+def guard(stop):
+    """Installs what keeps a misbehaving lesson from ending or hanging the game.
+
+    `stop` raises TimeoutError when the running hook is over its limit (the
+    host's watchdog sends SIGUSR2 to break calls that wait, such as
+    time.sleep, input() or a socket read). A lesson cannot end the game
+    with os._exit / os.abort (the host's audit hook, in Rust, keeps it from
+    starting processes or signalling the game).
+    """
+    import os
+    import signal
+
+    try:
+        signal.signal(signal.SIGUSR2, stop)
+    except ValueError:
+        pass  # not the main thread (unit tests): hooks are only timed
+    import posix
+
+    for module in (os, posix):
+        module._exit = _no_exit
+        module.abort = _no_exit

@@ -1,0 +1,274 @@
+//! `lightcone lesson` runs each lesson in a child process: the same binary,
+//! `lightcone lesson FILE --child`, which runs the headless host
+//! ([`super::headless`]) and reports each hook's start and end, each
+//! frame, claim and answer, and its outcome, as JSON lines on its standard
+//! output (what the lesson prints goes to standard error). The parent
+//! times the hooks itself, so a lesson can neither swallow nor block the
+//! stop, nor take the runner down:
+//!
+//! - a hook still running [`KILL_AFTER`] past its limit (a long C builtin,
+//!   a blocked call the in-process stop could not break) has its process
+//!   group killed, and is reported as stopped at the time limit;
+//! - a process that ends without its outcome (a crash through `ctypes`,
+//!   memory beyond `--memory-limit`, an exit through a loophole) is
+//!   reported with its exit status or signal;
+//! - the child runs in its own process group, with its address space
+//!   limited (`RLIMIT_AS`), and is killed with everything it started.
+//!
+//! Either way the outcome keeps what the lesson did before: board time,
+//! frames, claims and answers.
+
+use std::io::{BufRead, BufReader, Write};
+use std::os::unix::process::{CommandExt, ExitStatusExt};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use serde::{Deserialize, Serialize};
+
+use super::headless::{self, Outcome, Progress, Stop};
+use super::watchdog::{self, HARD_STOP_STATUS};
+
+/// How long past its limit a hook runs before the parent kills its
+/// process (the in-process stop usually ends it within 50 ms of the limit).
+pub const KILL_AFTER: Duration = Duration::from_millis(500);
+
+/// Default address-space limit of a lesson's process, MiB.
+pub const MEMORY_LIMIT_MB: u64 = 4096;
+
+/// What a run needs.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Board time to stop at, s.
+    pub until: f64,
+    /// Frames per real second.
+    pub fps: f64,
+    /// Longest a hook may run.
+    pub hook: Duration,
+    /// Address-space limit of the lesson's process, MiB.
+    pub memory_mb: u64,
+}
+
+/// One line from the child.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum Event {
+    /// A hook started (`Some`) or returned (`None`).
+    Hook(Option<String>),
+    /// A frame, claim or answer.
+    Progress(Progress),
+    /// The run's outcome (the last line).
+    Outcome(Outcome),
+    /// The run could not start (no Python).
+    Failed(String),
+}
+
+/// Where the child writes its events (its original standard output).
+static EVENTS: Mutex<Option<std::fs::File>> = Mutex::new(None);
+
+fn send(event: &Event) {
+    let mut guard = EVENTS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(out) = guard.as_mut()
+        && let Ok(mut line) = serde_json::to_vec(event)
+    {
+        line.push(b'\n');
+        let _ = out.write_all(&line);
+    }
+}
+
+fn hook_event(name: Option<&'static str>) {
+    send(&Event::Hook(name.map(str::to_owned)));
+}
+
+/// The child's side (`lightcone lesson FILE --child`): limits its memory,
+/// moves standard output to the event channel (the lesson's prints go to
+/// standard error), runs the lesson and reports. Returns the exit status.
+pub fn child(path: &Path, limits: Limits) -> u8 {
+    let bytes = limits.memory_mb.saturating_mul(1 << 20);
+    // SAFETY: plain system calls on this process's own descriptors and
+    // limits; `dup` returns a fresh descriptor we own.
+    let events = unsafe {
+        let limit = libc::rlimit {
+            rlim_cur: bytes,
+            rlim_max: bytes,
+        };
+        libc::setrlimit(libc::RLIMIT_AS, &limit);
+        let fd = libc::dup(1);
+        if fd < 0 || libc::dup2(2, 1) < 0 {
+            eprintln!("cannot set up the lesson's process");
+            return 1;
+        }
+        <std::fs::File as std::os::fd::FromRawFd>::from_raw_fd(fd)
+    };
+    *EVENTS.lock().unwrap_or_else(|e| e.into_inner()) = Some(events);
+    watchdog::observe_hooks(hook_event);
+    let result = headless::run_reporting(path, limits.until, limits.fps, limits.hook, &mut |p| {
+        send(&Event::Progress(p))
+    });
+    match result {
+        Ok(outcome) => {
+            let status = outcome.status();
+            send(&Event::Outcome(outcome));
+            status
+        }
+        Err(e) => {
+            send(&Event::Failed(e));
+            1
+        }
+    }
+}
+
+/// What the parent knows of a child that did not report its outcome.
+#[derive(Default)]
+struct Partial {
+    t: f64,
+    frames: u64,
+    claims: Vec<headless::ClaimLine>,
+    answers: Vec<(String, String)>,
+}
+
+/// Runs the lesson at `path` in a child process and reports its outcome,
+/// whatever the lesson does. Fails only when the child cannot start or
+/// the run cannot (a bad argument, no Python).
+pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot find lightcone itself: {e}"))?;
+    let mut child = Command::new(exe)
+        .arg("lesson")
+        .arg(path)
+        .args(["--until", &limits.until.to_string()])
+        .args(["--fps", &limits.fps.to_string()])
+        .args(["--hook-limit", &limits.hook.as_secs_f64().to_string()])
+        .args(["--memory-limit", &limits.memory_mb.to_string()])
+        .arg("--child")
+        // A pipe nobody writes to: `input()` waits, as in a terminal.
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .process_group(0)
+        .spawn()
+        .map_err(|e| format!("cannot start the lesson's process: {e}"))?;
+    let pid = child.id() as libc::pid_t;
+    let kill_group = || {
+        // SAFETY: signals the child's own process group (its id is the
+        // child's pid, from `process_group(0)`).
+        unsafe {
+            libc::kill(-pid, libc::SIGKILL);
+        }
+    };
+    let (tx, rx) = mpsc::channel();
+    if let Some(out) = child.stdout.take() {
+        std::thread::spawn(move || {
+            for line in BufReader::new(out).lines() {
+                let Ok(line) = line else { break };
+                if let Ok(event) = serde_json::from_str::<Event>(&line)
+                    && tx.send(event).is_err()
+                {
+                    break;
+                }
+            }
+        });
+    }
+    let mut partial = Partial::default();
+    let mut hook: Option<(String, Instant)> = None;
+    let mut outcome = None;
+    let mut failed = None;
+    let mut killed = false;
+    let mut exited = None;
+    let mut deadline = None;
+    loop {
+        match rx.recv_timeout(Duration::from_millis(10)) {
+            Ok(Event::Hook(Some(name))) => hook = Some((name, Instant::now())),
+            Ok(Event::Hook(None)) => hook = None,
+            Ok(Event::Progress(Progress::Frame { t, frames })) => {
+                partial.t = t;
+                partial.frames = frames;
+            }
+            Ok(Event::Progress(Progress::Claim(c))) => partial.claims.push(c),
+            Ok(Event::Progress(Progress::Answer(q, a))) => partial.answers.push((q, a)),
+            Ok(Event::Outcome(o)) => outcome = Some(o),
+            Ok(Event::Failed(e)) => failed = Some(e),
+            Err(mpsc::RecvTimeoutError::Timeout) => {}
+            Err(mpsc::RecvTimeoutError::Disconnected) => break,
+        }
+        if let Some((_, since)) = &hook
+            && since.elapsed() > limits.hook + KILL_AFTER
+        {
+            kill_group();
+            killed = true;
+            break;
+        }
+        if exited.is_none() {
+            exited = child.try_wait().ok().flatten();
+            if exited.is_some() {
+                deadline = Some(Instant::now() + Duration::from_millis(200));
+            }
+        }
+        // Exited, but something it started holds the pipe open: give the
+        // reader a moment, then stop listening.
+        if deadline.is_some_and(|d| Instant::now() > d) {
+            break;
+        }
+    }
+    // Whatever the child left behind (a forked process) goes with it.
+    kill_group();
+    let status = match exited {
+        Some(s) => s,
+        None => child
+            .wait()
+            .map_err(|e| format!("cannot wait for the lesson's process: {e}"))?,
+    };
+    if let Some(e) = failed {
+        return Err(e);
+    }
+    if let Some(o) = outcome {
+        return Ok(o);
+    }
+    let place = match &hook {
+        Some((name, _)) => format!("in {name}"),
+        None => "between hooks".to_owned(),
+    };
+    let (stopped, error) = if killed || status.code() == Some(HARD_STOP_STATUS) {
+        (
+            Stop::Timeout,
+            format!(
+                "{place}: the hook ran for more than {} s and could not be interrupted (a long computation inside one call, such as a C builtin?); its process was stopped",
+                limits.hook.as_secs_f64()
+            ),
+        )
+    } else {
+        let how = match (status.code(), status.signal()) {
+            (Some(code), _) => format!("exited with status {code}"),
+            (None, Some(libc::SIGSEGV)) => {
+                "crashed (SIGSEGV: a bad memory access, e.g. through ctypes)".to_owned()
+            }
+            (None, Some(libc::SIGKILL)) => {
+                "was killed (SIGKILL: out of memory, or killed from outside)".to_owned()
+            }
+            (None, Some(libc::SIGABRT)) => {
+                format!(
+                    "aborted (SIGABRT: out of memory? the limit is {} MiB)",
+                    limits.memory_mb
+                )
+            }
+            (None, Some(sig)) => format!("was ended by signal {sig}"),
+            (None, None) => "ended".to_owned(),
+        };
+        (
+            Stop::Died,
+            format!("{place}: the lesson's process {how}; the lesson stopped there"),
+        )
+    };
+    eprintln!("lesson {} stopped:\n{error}", path.display());
+    Ok(Outcome {
+        file: path.display().to_string(),
+        t: partial.t,
+        frames: partial.frames,
+        finished: None,
+        error: Some(error),
+        stopped: Some(stopped),
+        claims: partial.claims,
+        answers: partial.answers,
+    })
+}

@@ -1,0 +1,13 @@
+"""A deliberately misbehaving lesson: one C call that runs for hours."""
+
+import lightcone
+
+
+def setup(world):
+    scene = lightcone.Scene(title="misbehaves")
+    scene.add_puck("a", (0.5, 0.71), beta=(0.5, 0.0))
+    world.start(scene)
+
+
+def on_frame(world, t):
+    sum(range(10**13))
