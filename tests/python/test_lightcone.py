@@ -265,3 +265,19 @@ def test_render_returns_a_frame_shown_inline(tmp_path):
     assert (tmp_path / "f.png").read_bytes() == frame.png
     assert sim._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "Simulation(" in repr(sim) and "Frame(" in repr(frame)
+
+
+def test_history_horizon_bounds_what_is_kept_and_says_so():
+    sim = lightcone.Simulation(scene("ten_pucks.toml"), history=2.0)
+    assert sim.history == 2.0
+    assert sim.forgotten_before is None
+    sim.run_until(30.0)
+    assert sim.forgotten_before is not None and 25.0 < sim.forgotten_before <= 28.0
+    # The kept collisions reach back no further than the horizon (give or
+    # take the record still completing when it was cut).
+    assert all(max(p["t"] for p in c["pucks"]) > 27.0 for c in sim.collisions()[:1])
+    everything = lightcone.Simulation(scene("ten_pucks.toml"))
+    everything.run_until(30.0)
+    assert len(sim.collisions()) < len(everything.collisions())
+    with pytest.raises(ValueError):
+        lightcone.Simulation(scene("ten_pucks.toml"), history=-1.0)

@@ -149,7 +149,7 @@ pub struct LessonHost {
     /// What the game holds while its real state is lent to the world.
     spare: Option<GameState>,
     /// Collisions already passed to `on_collision`.
-    seen_collisions: usize,
+    seen_collisions: u64,
     /// The world's generation those collisions belong to.
     generation: u64,
     /// The file's modification time at the last (re)load.
@@ -431,15 +431,23 @@ impl LessonHost {
     /// Runs the hooks due after a frame: `on_collision` for each new
     /// collision, then `on_frame` if board time advanced since `before`.
     pub fn after_step(&mut self, game: &mut GameState, before: f64) {
-        let n = game.billiard.collisions().len();
+        // `seen_collisions` is a global record index (the billiard may have
+        // dropped records older than its replay window).
+        let n = game.billiard.collision_count();
         if n < self.seen_collisions {
             // The game restarted under the lesson (the c slider).
             self.seen_collisions = 0;
         }
-        while self.running() && self.seen_collisions < game.billiard.collisions().len() {
+        while self.running() && self.seen_collisions < game.billiard.collision_count() {
             let i = self.seen_collisions;
             self.seen_collisions += 1;
-            let line = CollisionLine::new(&game.billiard, &game.billiard.collisions()[i]);
+            if game.billiard.collisions_forgotten() > i {
+                continue; // dropped before it was seen
+            }
+            let Some(record) = game.billiard.collisions_from(i).first() else {
+                continue;
+            };
+            let line = CollisionLine::new(&game.billiard, record);
             let text = match serde_json::to_string(&line) {
                 Ok(t) => t,
                 Err(_) => continue,

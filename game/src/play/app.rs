@@ -501,12 +501,26 @@ fn panels(
                 );
                 let mut t = s.view_time;
                 let live = s.live_time.max(1e-9);
+                // The replay window: the past before it is forgotten.
+                let oldest = s
+                    .billiard
+                    .forgotten_before()
+                    .map_or(0.0, |f| f.clamp(0.0, live));
                 if ui
-                    .add(egui::Slider::new(&mut t, 0.0..=live).text("board time (s)"))
+                    .add(egui::Slider::new(&mut t, oldest..=live).text("board time (s)"))
                     .changed()
                 {
                     s.replay_to(t);
                 }
+                ui.label(format!(
+                    "replay window: the last {:.0} min of board time{}",
+                    super::state::REPLAY_WINDOW / 60.0,
+                    if oldest > 0.0 {
+                        format!(" (before {oldest:.0} s is forgotten)")
+                    } else {
+                        String::new()
+                    }
+                ));
                 if s.replaying() {
                     ui.colored_label(egui::Color32::YELLOW, "replay: what was seen then");
                 }

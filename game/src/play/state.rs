@@ -55,6 +55,18 @@ pub struct Cue {
     pub du: DVec3,
 }
 
+/// How far back the game keeps the past for replay, s of board time (10
+/// minutes): memory stays bounded however long a game runs. The panel shows
+/// it, and the replay slider reaches back no further.
+pub const REPLAY_WINDOW: f64 = 600.0;
+
+/// The billiard of a scene, keeping [`REPLAY_WINDOW`] of history.
+fn replay_billiard(scene: &lightcone_engine::scene::Scene) -> Billiard {
+    let mut billiard = Billiard::from_scene(scene);
+    billiard.set_history(Some(REPLAY_WINDOW));
+    billiard
+}
+
 /// Everything the game keeps between frames.
 pub struct GameState {
     /// The scene as loaded (its `c` may be changed by the slider).
@@ -101,7 +113,7 @@ impl GameState {
             pitch: f.z.asin(),
         };
         Self {
-            billiard: Billiard::from_scene(&scene),
+            billiard: replay_billiard(&scene),
             meshes: SceneMeshes::new(&scene),
             effects: scene.effects,
             scene,
@@ -246,7 +258,7 @@ impl GameState {
             return;
         }
         self.scene.c = c;
-        self.billiard = Billiard::from_scene(&self.scene);
+        self.billiard = replay_billiard(&self.scene);
         self.live_time = 0.0;
         self.view_time = 0.0;
         self.cue = None;

@@ -53,14 +53,41 @@ const CHUNK: Duration = Duration::from_millis(20);
 
 #[pymethods]
 impl Simulation {
+    /// `history`: how far back (board seconds) worldlines and collision
+    /// records are kept; `None` keeps the whole run. With a horizon, memory
+    /// stays bounded however long the run, and `forgotten_before` says from
+    /// when the past is gone.
     #[new]
-    fn new(scene: &Scene) -> Self {
-        Self {
+    #[pyo3(signature = (scene, history = None))]
+    fn new(scene: &Scene, history: Option<f64>) -> PyResult<Self> {
+        let mut billiard = Billiard::from_scene(&scene.inner);
+        if let Some(h) = history {
+            if !(h.is_finite() && h >= 0.0) {
+                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                    "history: give a finite number of seconds ≥ 0, or None (got {h})"
+                )));
+            }
+            billiard.set_history(Some(h));
+        }
+        Ok(Self {
             state: Mutex::new(State {
-                billiard: Billiard::from_scene(&scene.inner),
+                billiard,
                 scene: scene.inner.clone(),
             }),
-        }
+        })
+    }
+
+    /// The history horizon, s (`None`: the whole run is kept).
+    #[getter]
+    fn history(&self, py: Python<'_>) -> Option<f64> {
+        self.lock(py).billiard.history()
+    }
+
+    /// Board time before which worldlines and collisions have been
+    /// forgotten (`None` while nothing has), s.
+    #[getter]
+    fn forgotten_before(&self, py: Python<'_>) -> Option<f64> {
+        self.lock(py).billiard.forgotten_before()
     }
 
     /// The scene simulated (a copy).

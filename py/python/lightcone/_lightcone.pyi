@@ -113,7 +113,15 @@ class Simulation:
     """The event-anticipation physics of a scene. Safe to share between
     threads: a call made while `run_until` runs waits for a consistent state."""
 
-    def __new__(cls, scene: Scene) -> Simulation: ...
+    def __new__(cls, scene: Scene, history: Optional[float] = None) -> Simulation:
+        """`history`: seconds of board time of worldlines and collisions to
+        keep (None: the whole run); memory stays bounded with a horizon."""
+    @property
+    def history(self) -> Optional[float]:
+        """The history horizon, s (None: everything is kept)."""
+    @property
+    def forgotten_before(self) -> Optional[float]:
+        """Board time before which the past has been forgotten, s."""
     @property
     def scene(self) -> Scene: ...
     @property
