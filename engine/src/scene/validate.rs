@@ -9,7 +9,7 @@ use super::error::number;
 use super::model::{
     C_RANGE, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE, LENGTH_RANGE, MASS_RANGE,
     MAX_DICHOTOMY_STEPS, MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS,
-    MAX_U, first_overlaps,
+    MAX_U, first_overlaps, magnitude,
 };
 use super::raw::{At, RawObserver, RawPuck, RawScene};
 use super::{Color, Effects, ObserverSpec, PuckSpec, Scene, SceneError, SceneErrors, TableSpec};
@@ -169,11 +169,15 @@ impl Checker<'_> {
             };
             match ProperVelocity::try_from_beta(to3(x)) {
                 Ok(u) => u,
-                Err(e) => {
+                Err(_) => {
                     self.error(
                         b,
                         &field,
-                        format!("{e}; to state γ beyond ~10⁷ give `u` = γβ instead"),
+                        format!(
+                            "speed |β| = {} is not below the speed of light (|β| must be < 1); \
+                             to state γ beyond ~10⁷ give `u` = γβ instead",
+                            number(magnitude(to3(x)))
+                        ),
                     );
                     ProperVelocity::ZERO
                 }
@@ -183,7 +187,7 @@ impl Checker<'_> {
             let Some(x) = self.finite::<N>(v, &field) else {
                 return ProperVelocity::ZERO;
             };
-            let speed = to3(x).length();
+            let speed = magnitude(to3(x));
             match ProperVelocity::try_from_velocity(to3(x), c) {
                 Ok(u) => u,
                 Err(_) => {
@@ -205,13 +209,13 @@ impl Checker<'_> {
                 return ProperVelocity::ZERO;
             };
             let u = ProperVelocity(to3(x));
-            if u.0.length() > MAX_U {
+            if magnitude(u.0) > MAX_U {
                 self.error(
                     v,
                     &field,
                     format!(
                         "|u| = {} is beyond what the engine holds: give |u| = γ|β| ≤ {}",
-                        number(u.0.length()),
+                        number(magnitude(u.0)),
                         number(MAX_U)
                     ),
                 );
