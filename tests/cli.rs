@@ -701,5 +701,18 @@ fn the_default_scene_is_built_in() {
     );
     assert!(stdout.contains("paper_carom.toml: ok"), "{stdout}");
     assert!(stdout.contains("3 puck(s)"), "{stdout}");
+    // `cave` with neither scene nor CAVE file renders the built-in ones.
+    let out = std::process::Command::new(&exe)
+        .args(["cave", "--out-dir", "walls", "--scale", "0.05"])
+        .current_dir(&elsewhere)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let walls = std::fs::read_dir(elsewhere.join("walls")).unwrap().count();
+    assert!(walls >= 2, "{walls} wall images");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -56,8 +56,8 @@ enum Command {
     },
     /// Render every wall of a CAVE, both eyes, headless to PNG.
     Cave {
-        /// Scene file (TOML).
-        scene: PathBuf,
+        /// Scene file (TOML); the built-in default scene when not given.
+        scene: Option<PathBuf>,
         /// CAVE description (TOML); the built-in `assets/cave.toml` when
         /// not given.
         #[arg(long)]
@@ -255,7 +255,7 @@ fn main() -> ExitCode {
             head,
             scale,
         }) => commands::cave::run(
-            &scene,
+            scene.as_deref(),
             config.as_deref(),
             &out_dir,
             at,

@@ -24,10 +24,11 @@ pub fn parse_head(text: &str) -> Result<DVec3, String> {
 }
 
 /// Renders the walls at board time `at` for a head at `head` (tracker space,
-/// facing the front), writing `DIR/<wall>_<left|right>.png`. `config`
-/// `None` is the built-in `assets/cave.toml`.
+/// facing the front), writing `DIR/<wall>_<left|right>.png`. `scene_path`
+/// `None` is the built-in default scene, `config` `None` the built-in
+/// `assets/cave.toml`.
 pub fn run(
-    scene_path: &Path,
+    scene_path: Option<&Path>,
     config: Option<&Path>,
     out_dir: &Path,
     at: f64,
@@ -48,7 +49,11 @@ pub fn run(
         Ok(h) => h.unwrap_or(DEFAULT_HEAD),
         Err(e) => return fail(e),
     };
-    let scene = match scene::load(scene_path) {
+    let loaded = match scene_path {
+        Some(path) => scene::load(path),
+        None => crate::assets::default_scene(),
+    };
+    let scene = match loaded {
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
