@@ -30,7 +30,9 @@ pub fn run(paths: &[PathBuf]) -> ExitCode {
         match scene::load(path) {
             Ok(s) => {
                 if let Err(stop) = output::print(&summary(path, &s)) {
-                    return stop.exit();
+                    // A closed stdout still fails a run that found bad scenes.
+                    let code = stop.exit();
+                    return if bad > 0 { ExitCode::FAILURE } else { code };
                 }
             }
             Err(errors) => {
