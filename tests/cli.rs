@@ -716,3 +716,34 @@ fn the_default_scene_is_built_in() {
     assert!(walls >= 2, "{walls} wall images");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn ctrl_c_stops_the_tracker_cleanly_with_exit_130() {
+    use std::process::{Command, Stdio};
+    let service = format!("lightcone-test-sigint-{}", std::process::id());
+    let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["tracker", "--service", &service, "--rate", "200", "--quiet"])
+        .current_dir(repo())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1000));
+    let sent = std::time::Instant::now();
+    assert!(
+        Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let out = child.wait_with_output().unwrap();
+    let took = sent.elapsed().as_secs_f64();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(took < 1.0, "stopped {took} s after Ctrl-C");
+    assert!(
+        stderr.contains("interrupted: the tracker stopped publishing"),
+        "{stderr}"
+    );
+}
