@@ -192,7 +192,13 @@ pub fn run_until(args: Args, stop: &dyn Fn() -> bool) -> Result<u64, String> {
         next += period;
         let now = Instant::now();
         if next > now {
-            std::thread::sleep(next - now);
+            // In slices, so that `stop` is seen within 50 ms at any rate.
+            let mut left = next - now;
+            while !left.is_zero() && !stop() {
+                let nap = left.min(Duration::from_millis(50));
+                std::thread::sleep(nap);
+                left -= nap;
+            }
         } else if now - next > period {
             next = now;
         }

@@ -61,8 +61,10 @@ impl Checker<'_> {
         !self.seen.is_empty()
     }
 
-    /// The shown errors, then one line per kind that had more.
+    /// The shown errors in file order, then one line per kind that had
+    /// more.
     fn into_errors(mut self) -> SceneErrors {
+        self.errors.sort_by_key(|e| (e.line, e.column));
         for (kind, n) in &self.seen {
             if *n > MAX_ERRORS_PER_KIND {
                 let more = n - MAX_ERRORS_PER_KIND;
