@@ -99,10 +99,15 @@ pub fn one_line(text: &str) -> String {
         }
         token.clear();
     };
+    let mut prev = ' ';
     for c in text.chars() {
-        let numeric = c.is_ascii_digit()
-            || (!token.is_empty() && matches!(c, '.' | 'e' | 'E' | '+' | '-'))
-            || (token.is_empty() && matches!(c, '-' | '.'));
+        // Digits inside a word (a name such as `p12345…`) are not a number.
+        let in_word = token.is_empty() && (prev.is_alphanumeric() || prev == '_');
+        prev = c;
+        let numeric = !in_word
+            && (c.is_ascii_digit()
+                || (!token.is_empty() && matches!(c, '.' | 'e' | 'E' | '+' | '-'))
+                || (token.is_empty() && matches!(c, '-' | '.')));
         if numeric {
             token.push(c);
             continue;
@@ -171,6 +176,8 @@ mod tests {
             "puck[12].position: 0.5 and -3"
         );
         assert_eq!(one_line(&"x".repeat(1000)).chars().count(), MAX_MESSAGE + 1);
+        let name = format!("name \"p{}\"", "1".repeat(30));
+        assert_eq!(one_line(&name), name);
         assert_eq!(number(1.42), "1.42");
         assert_eq!(number(2.5e20), "2.5e20");
         assert_eq!(number(-1e-300), "-1e-300");
