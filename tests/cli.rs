@@ -356,3 +356,405 @@ fn bench_render_quick_reports_cpu_and_gpu_time() {
         "{stdout}"
     );
 }
+
+// ---------------------------------------------------------------------------
+// No input ends in an abort, a hang, or lost output (issue 15).
+
+/// A fresh temporary folder for one test.
+fn temp_dir(tag: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("lightcone-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `lightcone ARGS` (from the repository root) with its stdout a pipe
+/// whose reading end is closed before the command writes: every write
+/// fails with a broken pipe.
+fn with_closed_stdout(args: &[&str]) -> std::process::Output {
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(args)
+        .current_dir(repo())
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the lightcone binary runs");
+    drop(child.stdout.take());
+    child.wait_with_output().expect("it ends")
+}
+
+/// A scene of `n` pucks in a row (enough output to fill a pipe).
+fn many_pucks(n: usize) -> String {
+    let mut text = format!("c = 1.0\n[table]\nsize = [{}, 1.0]\n", n as f64 * 0.1 + 1.0);
+    for i in 0..n {
+        text += &format!("[[puck]]\nposition = [{}, 0.5]\n", 0.5 + 0.1 * i as f64);
+    }
+    text
+}
+
+#[test]
+fn a_closed_stdout_ends_every_printing_command_quietly() {
+    let dir = temp_dir("pipe");
+    let many = dir.join("many.toml");
+    std::fs::write(&many, many_pucks(2000)).unwrap();
+    let many = many.to_string_lossy().into_owned();
+    for args in [
+        vec!["check", many.as_str()],
+        vec!["check"],
+        vec![
+            "check",
+            "assets/scenes/paper_carom.toml",
+            "assets/scenes/ten_pucks.toml",
+        ],
+        vec![
+            "observe",
+            "assets/scenes/paper_carom.toml",
+            "--at",
+            "1",
+            "--vertices",
+        ],
+        vec!["observe", "assets/scenes/paper_carom.toml", "--at", "1"],
+        vec!["tracker", "--help"],
+        vec!["--help"],
+    ] {
+        let out = with_closed_stdout(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !stderr.contains("panicked") && !stderr.contains("Broken pipe"),
+            "{args:?}: {stderr}"
+        );
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_failed_write_is_an_error_with_a_message() {
+    if !std::path::Path::new("/dev/full").exists() {
+        return;
+    }
+    let out = lightcone(&[
+        "render",
+        "assets/scenes/paper_carom.toml",
+        "--at",
+        "1",
+        "--size",
+        "64x36",
+        "-o",
+        "/dev/full",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("/dev/full: cannot write"), "{stderr}");
+    // stdout itself full: check says so and fails.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .arg("check")
+        .current_dir(repo())
+        .stdout(std::fs::File::create("/dev/full").unwrap())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("stdout: cannot write"), "{stderr}");
+}
+
+/// `lightcone ARGS` must be a usage error (exit 2) whose message says
+/// `words`, without clap's `-- -1` tip.
+fn usage_error(args: &[&str], words: &str) {
+    let out = lightcone(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(
+        stderr.contains(words),
+        "{args:?}: `{stderr}` lacks `{words}`"
+    );
+    assert!(!stderr.contains("-- -"), "{args:?}: {stderr}");
+}
+
+#[test]
+fn requests_with_no_end_are_usage_errors() {
+    let scene = "assets/scenes/paper_carom.toml";
+    for until in ["1e20", "1e308", "nan", "inf", "-1"] {
+        usage_error(
+            &["simulate", scene, "--until", until],
+            "give a finite board time in seconds, from 0 to 1e9",
+        );
+    }
+    for at in ["1e308", "nan", "-1e20"] {
+        usage_error(&["observe", scene, "--at", at], "from -1e9 to 1e9");
+        usage_error(
+            &["render", scene, "--at", at, "-o", "x.png"],
+            "from -1e9 to 1e9",
+        );
+    }
+    usage_error(
+        &["cave", scene, "--out-dir", "x", "--at", "-1"],
+        "from 0 to 1e9",
+    );
+    usage_error(
+        &["cave", scene, "--out-dir", "x", "--scale", "-1"],
+        "(0, 4]",
+    );
+    usage_error(
+        &["cave", scene, "--out-dir", "x", "--head", "-1,2"],
+        "three",
+    );
+    for fps in ["1e-300", "0", "-30", "nan", "1e9"] {
+        usage_error(
+            &["lesson", "tests/lessons/endless.py", "--fps", fps],
+            "from 1 to 1000 frames per second",
+        );
+    }
+    usage_error(&["lesson", "x.py", "--until", "1e308"], "from 0 to 1e9");
+    usage_error(&["lesson", "x.py", "--hook-limit", "-5"], "(0, 86400]");
+    usage_error(&["lesson", scene], "a lesson is a .py file");
+    usage_error(&["tracker", "--duration", "nan"], "--duration");
+    usage_error(&["tracker", "--duration", "-1"], "--duration");
+    usage_error(
+        &["render", scene, "--at", "1", "-o", "x.png", "--size", "0x0"],
+        "--size",
+    );
+    usage_error(
+        &["observe", scene, "--at", "1", "--effects", "redshift"],
+        "unknown effect",
+    );
+    usage_error(&["play", scene, "--frames", "-3"], "--frames");
+    // A negative time where one makes sense is a time, not an option.
+    let out = lightcone(&["observe", scene, "--at", "-0.5"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["t"].as_f64(), Some(-0.5));
+}
+
+#[test]
+fn scene_errors_name_the_field_and_stay_short() {
+    let dir = temp_dir("errs");
+    let write = |name: &str, text: &[u8]| {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_string_lossy().into_owned()
+    };
+    let cases: Vec<(String, &str)> = vec![
+        (
+            write(
+                "heavy.toml",
+                b"[[puck]]\nposition = [0.5, 0.5]\nmass = \"heavy\"\n",
+            ),
+            ":3:8: puck[0].mass: invalid type: string \"heavy\", expected a number",
+        ),
+        (
+            write(
+                "dup.toml",
+                b"[[puck]]\nposition = [0.5, 0.5]\nmass = 1\nmass = 2\n",
+            ),
+            ":4:1: puck[0].mass: duplicate key `mass`",
+        ),
+        (
+            write("latin1.toml", b"title = \"caf\xe9\"\n"),
+            ":1:13: byte 0xe9 is not UTF-8",
+        ),
+        (
+            write(
+                "tiny.toml",
+                b"[[puck]]\nposition = [0.5, 0.5]\nradius = 1e-300\n",
+            ),
+            ":3:10: puck[0].radius: 1e-300 must be a positive finite number from 1e-6 to 1e6 m",
+        ),
+        (
+            write(
+                "nan.toml",
+                b"[[observer]]\nposition = [0, 0, 1]\nlook_at = nan\n",
+            ),
+            ":3:11: observer[0].look_at: invalid type",
+        ),
+        (
+            write("flag.toml", b"[effects]\ndoppler = [true]\n"),
+            ":2:11: effects.doppler: invalid type: sequence, expected true or false",
+        ),
+        (
+            write(
+                "fast.toml",
+                b"[[puck]]\nposition = [0.5, 0.5]\nu = [1e200, 0]\n",
+            ),
+            ":3:5: puck[0].u: |u| = 1e200 is beyond what the engine holds",
+        ),
+    ];
+    for (file, words) in &cases {
+        let out = lightcone(&["check", file]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains(&format!("{file}{words}")),
+            "`{stderr}` lacks `{words}`"
+        );
+    }
+    // A newline in a name keeps the message on one line.
+    let file = write(
+        "newline.toml",
+        b"[[puck]]\nname = \"a\\nb\"\nposition = [0.5, 0.5]\n[[puck]]\nname = \"a\\nb\"\nposition = [1.5, 0.5]\n",
+    );
+    let out = lightcone(&["check", &file]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.lines().count(), 2, "{stderr}"); // the error, the count
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn floods_of_errors_are_capped_and_big_scenes_check_fast() {
+    let dir = temp_dir("flood");
+    // 2 000 pucks at one point: 20 overlaps, then the count of the rest.
+    let mut text = String::from("c = 1.0\n");
+    for _ in 0..2000 {
+        text += "[[puck]]\nposition = [0.5, 0.5]\n";
+    }
+    let one_point = dir.join("one_point.toml");
+    std::fs::write(&one_point, text).unwrap();
+    let out = lightcone(&["check", &one_point.to_string_lossy()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr.lines().count() <= 23,
+        "{} lines",
+        stderr.lines().count()
+    );
+    assert!(stderr.contains("… and 1979 more overlaps"), "{stderr}");
+    // 10⁵ pucks on a line across the table's short side (the worst case
+    // of a sweep along x) check in well under a second of overlap search.
+    let mut text = String::from("c = 1.0\n[table]\nsize = [1.0, 3001.0]\n");
+    for i in 0..100_000 {
+        text += &format!(
+            "[[puck]]\nposition = [0.5, {}]\nradius = 0.01\n",
+            0.5 + 0.03 * i as f64
+        );
+    }
+    let line = dir.join("line.toml");
+    std::fs::write(&line, text).unwrap();
+    let start = std::time::Instant::now();
+    let out = with_closed_stdout(&["check", &line.to_string_lossy()]);
+    let took = start.elapsed().as_secs_f64();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(took < 3.0, "check of 10⁵ pucks took {took} s");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn ctrl_c_stops_a_long_lesson_promptly_with_exit_130() {
+    use std::process::{Command, Stdio};
+    let dir = temp_dir("sigint");
+    let lesson = dir.join("forever.py");
+    std::fs::write(
+        &lesson,
+        "import time\nimport lightcone\n\n\ndef setup(world):\n    scene = lightcone.Scene(title=\"forever\")\n    \
+         scene.add_puck(\"a\", (0.5, 0.71), beta=(0.8, 0.1))\n    world.start(scene)\n\n\n\
+         def on_frame(world, t):\n    time.sleep(0.001)\n",
+    )
+    .unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["lesson", &lesson.to_string_lossy(), "--until", "1e9"])
+        .current_dir(repo())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(2500));
+    let sent = std::time::Instant::now();
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let took = sent.elapsed().as_secs_f64();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(took < 2.0, "stopped {took} s after Ctrl-C");
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    // What it had is still shown.
+    assert!(String::from_utf8_lossy(&out.stdout).contains("without finish()"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The default scene is built in: a binary copied out of the checkout and
+/// run from another folder checks it with no arguments. (Instead of
+/// `cargo install --path game --root TMP`, which would compile the whole
+/// game again in CI; README "Install" shows that command, and it installs
+/// this same binary.)
+#[test]
+fn the_default_scene_is_built_in() {
+    let dir = temp_dir("installed");
+    let bin = dir.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let exe = bin.join("lightcone");
+    std::fs::copy(env!("CARGO_BIN_EXE_lightcone"), &exe).unwrap();
+    let elsewhere = dir.join("elsewhere");
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    let out = std::process::Command::new(&exe)
+        .arg("check")
+        .current_dir(&elsewhere)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("paper_carom.toml: ok"), "{stdout}");
+    assert!(stdout.contains("3 puck(s)"), "{stdout}");
+    // `cave` with neither scene nor CAVE file renders the built-in ones.
+    let out = std::process::Command::new(&exe)
+        .args(["cave", "--out-dir", "walls", "--scale", "0.05"])
+        .current_dir(&elsewhere)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let walls = std::fs::read_dir(elsewhere.join("walls")).unwrap().count();
+    assert!(walls >= 2, "{walls} wall images");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn ctrl_c_stops_the_tracker_cleanly_with_exit_130() {
+    use std::process::{Command, Stdio};
+    let service = format!("lightcone-test-sigint-{}", std::process::id());
+    let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["tracker", "--service", &service, "--rate", "200", "--quiet"])
+        .current_dir(repo())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1000));
+    let sent = std::time::Instant::now();
+    assert!(
+        Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let out = child.wait_with_output().unwrap();
+    let took = sent.elapsed().as_secs_f64();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(took < 1.0, "stopped {took} s after Ctrl-C");
+    assert!(
+        stderr.contains("interrupted: the tracker stopped publishing"),
+        "{stderr}"
+    );
+}

@@ -321,3 +321,209 @@ fn scenes_built_in_code_get_the_same_checks() {
     assert!(Scene::empty(DVec2::new(-1.0, 1.0), None).is_err());
     assert!(Scene::empty(DVec2::new(1.0, 1.0), Some(0.0)).is_err());
 }
+
+/// Every error of `text`, shown.
+fn shown(text: &str) -> String {
+    match scene::parse(text, "bad.toml") {
+        Ok(s) => panic!("accepted a bad scene: {s:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn type_errors_and_duplicate_keys_name_the_field() {
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nmass = \"heavy\"\n",
+        3,
+        "puck[0].mass",
+        "invalid type: string \"heavy\", expected a number",
+    );
+    expect_one(
+        "[[observer]]\nposition = [0, 0, 1]\nlook_at = nan\n",
+        3,
+        "observer[0].look_at",
+        "invalid type",
+    );
+    expect_one(
+        "[effects]\ndoppler = [true, false]\n",
+        2,
+        "effects.doppler",
+        "expected true or false",
+    );
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\n[[puck]]\nposition = [1.5, 0.5]\nradius = 0.01\nradius = 0.02\n",
+        6,
+        "puck[1].radius",
+        "duplicate key `radius`",
+    );
+}
+
+#[test]
+fn invalid_utf8_is_located() {
+    let dir = std::env::temp_dir().join(format!("lightcone-utf8-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("latin1.toml");
+    std::fs::write(&path, b"title = \"ok\"\ndescription = \"caf\xe9\"\n").unwrap();
+    let e = scene::load(&path).unwrap_err().to_string();
+    let name = path.display().to_string();
+    assert!(e.starts_with(&format!("{name}:2:19: ")), "{e}");
+    assert!(e.contains("byte 0xe9 is not UTF-8"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn messages_stay_on_one_line_and_numbers_stay_short() {
+    // A newline inside a name does not split the message.
+    let e = shown(
+        "[[puck]]\nname = \"a\\nb\"\nposition = [0.5, 0.5]\n[[puck]]\nname = \"a\\nb\"\nposition = [1.5, 0.5]\n",
+    );
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains("duplicate name \"a\\nb\""), "{e}");
+    // 1e-300 prints as 1e-300, not as 300 digits.
+    for text in [
+        "[[puck]]\nposition = [0.5, 0.5]\nradius = 1e-300\n",
+        "[[puck]]\nposition = [0.5, 1e-300]\n",
+        "[table]\nsize = [1e-300, 1.0]\n",
+        "c = 1e-300\n",
+        "title = 1e-300\n",
+    ] {
+        let e = shown(text);
+        assert!(e.contains("1e-300") && e.len() < 300, "{text}: {e}");
+    }
+}
+
+#[test]
+fn the_engine_range_is_enforced_with_located_errors() {
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nu = [1e13, 0.0]\n",
+        3,
+        "puck[0].u",
+        "≤ 1e12",
+    );
+    expect_one(
+        "[[observer]]\nposition = [0.5, 0.5, 1.0]\nu = [0.0, 1e200, 0.0]\n",
+        3,
+        "observer[0].u",
+        "beyond what the engine holds",
+    );
+    // u = 10⁸ and 10¹² are held; β that rounds to 1 is not a speed below c.
+    for u in ["1e8", "1e12"] {
+        let text = format!("[[puck]]\nposition = [0.5, 0.5]\nu = [{u}, 3.0]\n");
+        let s = scene::parse(&text, "ok.toml").unwrap();
+        assert!(s.pucks[0].u.gamma().is_finite());
+    }
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nbeta = [0.99999999999999999999, 0.0]\n",
+        3,
+        "puck[0].beta",
+        "not below the speed of light",
+    );
+    expect_one("[table]\nsize = [2e6, 1.0]\n", 2, "table.size", "1e6 m");
+    expect_one("c = 1e10\n", 1, "c", "1e9 m/s");
+    expect_one(
+        "[[puck]]\nposition = [0.5, 0.5]\nmass = 1e300\n",
+        3,
+        "puck[0].mass",
+        "1e9 kg",
+    );
+    expect_one(
+        "[[observer]]\nposition = [0.5, 0.5, 1e300]\n",
+        2,
+        "observer[0].position",
+        "too far",
+    );
+    expect_one(
+        "[optics]\nhistory_frames = 1000000000000\n",
+        2,
+        "optics.history_frames",
+        "at most 100000",
+    );
+    expect_one(
+        "[optics]\ndichotomy_steps = 4000000000\n",
+        2,
+        "optics.dichotomy_steps",
+        "at most 64",
+    );
+}
+
+/// `n` pucks of radius 0.01 m, centres `step` apart from (x0, y0) along
+/// (dx, dy), on a table big enough.
+fn row(n: usize, step: f64, dir: (f64, f64)) -> String {
+    let mut text = format!(
+        "c = 1.0\n[table]\nsize = [{}, {}]\n",
+        1.0 + step * n as f64,
+        1.0 + step * n as f64
+    );
+    for i in 0..n {
+        let k = step * i as f64;
+        text += &format!(
+            "[[puck]]\nposition = [{}, {}]\nradius = 0.01\n",
+            0.5 + k * dir.0,
+            0.5 + k * dir.1
+        );
+    }
+    text
+}
+
+#[test]
+fn repeated_errors_are_capped() {
+    // 2 000 pucks at one point: 20 overlaps shown, the rest counted.
+    let errs = errors(&row(2000, 0.0, (1.0, 0.0)));
+    assert_eq!(errs.len(), scene::MAX_ERRORS_PER_KIND + 1);
+    assert_eq!(
+        errs.last().unwrap().to_string(),
+        "bad.toml: … and 1979 more overlaps"
+    );
+    // 100 negative masses: 20 shown, then one line for the rest.
+    let mut text = String::from("c = 1.0\n[table]\nsize = [300.0, 1.0]\n");
+    for i in 0..100 {
+        text += &format!("[[puck]]\nposition = [{}.5, 0.5]\nmass = -1\n", i);
+    }
+    let errs = errors(&text);
+    assert_eq!(errs.len(), 21);
+    assert!(
+        errs[20]
+            .to_string()
+            .ends_with("… and 80 more errors in `puck[].mass`"),
+        "{}",
+        errs[20]
+    );
+}
+
+#[test]
+fn a_hundred_thousand_pucks_check_in_well_under_a_second() {
+    use std::time::Instant;
+    // On a line across x (the worst case of a sweep along x), through the
+    // whole loader: the TOML itself is most of the time.
+    let text = row(100_000, 0.03, (0.0, 1.0));
+    let start = Instant::now();
+    let s = scene::parse(&text, "ok.toml").unwrap();
+    let took = start.elapsed().as_secs_f64();
+    assert_eq!(s.pucks.len(), 100_000);
+    assert!(took < 2.0, "{took} s");
+    // The overlap search alone, along x, along y, diagonally, all at one
+    // point (one pair per puck, not N²/2).
+    let pucks = |step: f64, dir: (f64, f64)| -> Vec<scene::PuckSpec> {
+        (0..100_000)
+            .map(|i| {
+                let k = step * i as f64;
+                scene::PuckSpec {
+                    position: glam::DVec2::new(0.5 + k * dir.0, 0.5 + k * dir.1),
+                    radius: 0.01,
+                    ..s.pucks[0].clone()
+                }
+            })
+            .collect()
+    };
+    for dir in [(1.0, 0.0), (0.0, 1.0), (0.6, 0.8)] {
+        let p = pucks(0.03, dir);
+        let start = Instant::now();
+        assert!(scene::first_overlaps(&p).is_empty());
+        let took = start.elapsed().as_secs_f64();
+        assert!(took < 0.5, "{dir:?}: overlap search {took} s");
+    }
+    let p = pucks(0.0, (1.0, 0.0));
+    let start = Instant::now();
+    assert_eq!(scene::first_overlaps(&p).len(), 100_000 - 1);
+    assert!(start.elapsed().as_secs_f64() < 0.5);
+}

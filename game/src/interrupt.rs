@@ -1,26 +1,47 @@
-//! Ctrl-C for long commands: the first press sets a flag that loops poll
-//! ([`interrupted`]) to stop cleanly with what they have; a second press
-//! exits at once with status 130.
+//! Ctrl-C (SIGINT): long commands stop promptly with exit 130.
+//!
+//! [`install`] is called once, first thing in `main`. Until a command says
+//! it [`watch`]es the flag, Ctrl-C ends the process at once with exit 130
+//! (as before: nothing was lost that a loop could have saved). A command
+//! whose loop polls [`interrupted`] calls [`watch`] first: Ctrl-C then only
+//! sets the flag, and the loop stops, writes what it has, and returns
+//! [`EXIT_INTERRUPTED`]. A second Ctrl-C always ends the process at once.
 
-use std::sync::Once;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+
+/// Exit status of a command stopped by Ctrl-C (128 + SIGINT).
+pub const EXIT_INTERRUPTED: u8 = 130;
 
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
-static INSTALL: Once = Once::new();
+static WATCHED: AtomicBool = AtomicBool::new(false);
+static PRESSES: AtomicU32 = AtomicU32::new(0);
 
-/// Installs the Ctrl-C handler (once; later calls do nothing). If it
-/// cannot be installed, Ctrl-C keeps its default meaning (exit at once).
+/// Installs the handler. Failure (another handler is installed) leaves the
+/// default: Ctrl-C ends the process.
 pub fn install() {
-    INSTALL.call_once(|| {
-        let _ = ctrlc::set_handler(|| {
-            if INTERRUPTED.swap(true, Ordering::SeqCst) {
-                std::process::exit(130);
-            }
-        });
+    let _ = ctrlc::set_handler(|| {
+        let presses = PRESSES.fetch_add(1, Ordering::SeqCst) + 1;
+        INTERRUPTED.store(true, Ordering::SeqCst);
+        if !WATCHED.load(Ordering::SeqCst) || presses > 1 {
+            crate::output::eprint_quiet("interrupted\n");
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
     });
 }
 
-/// Whether Ctrl-C has been pressed since [`install`].
+/// Says that the caller polls [`interrupted`] and stops by itself.
+pub fn watch() {
+    WATCHED.store(true, Ordering::SeqCst);
+}
+
+/// Whether Ctrl-C was pressed since the start.
 pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
+}
+
+/// Exit code 130, after saying so on stderr.
+pub fn exit_code(what: &str) -> ExitCode {
+    crate::output::eprint_quiet(&format!("interrupted: {what}\n"));
+    ExitCode::from(EXIT_INTERRUPTED)
 }

@@ -1,10 +1,12 @@
 //! The Lightcone game: its command-line tools, the wgpu renderer, and the
 //! interactive front end. The physics and optics live in `lightcone-engine`.
 
+pub mod assets;
 pub mod cave;
 pub mod commands;
 pub mod interrupt;
 pub mod lesson;
+pub mod output;
 pub mod play;
 pub mod progress;
 pub mod python;

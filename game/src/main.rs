@@ -5,7 +5,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use lightcone::{commands, render};
+use lightcone::commands::args;
+use lightcone::{commands, interrupt, render};
 
 #[derive(Parser)]
 #[command(
@@ -29,8 +30,8 @@ enum Command {
         /// after `--frames` frames, then quit.
         #[arg(long)]
         screenshot: Option<PathBuf>,
-        /// Frames to run before the screenshot.
-        #[arg(long, default_value_t = 30)]
+        /// Frames to run before the screenshot (1 to 1000000).
+        #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
         frames: u32,
         /// Drive the observer from a head tracker on this iceoryx2 service
         /// (see `lightcone tracker`).
@@ -55,23 +56,25 @@ enum Command {
     },
     /// Render every wall of a CAVE, both eyes, headless to PNG.
     Cave {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// CAVE description (TOML).
-        #[arg(long, default_value = "assets/cave.toml")]
-        config: PathBuf,
+        /// Scene file (TOML); the built-in default scene when not given.
+        scene: Option<PathBuf>,
+        /// CAVE description (TOML); the built-in `assets/cave.toml` when
+        /// not given.
+        #[arg(long)]
+        config: Option<PathBuf>,
         /// Directory for `<wall>_<left|right>.png`.
         #[arg(long)]
         out_dir: PathBuf,
-        /// Board time, s.
-        #[arg(long, default_value_t = 0.0)]
+        /// Board time, s (0 to 1e9).
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = args::time_from_zero)]
         at: f64,
         /// Head position in tracker space, `x,y,z` metres (default: the
         /// CAVE's centre, 1.7 m up).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true, value_parser = args::head)]
         head: Option<String>,
-        /// Image size as a fraction of each wall's projector resolution.
-        #[arg(long, default_value_t = 0.5)]
+        /// Image size as a fraction of each wall's projector resolution,
+        /// in (0, 4].
+        #[arg(long, default_value_t = 0.5, allow_negative_numbers = true, value_parser = args::scale)]
         scale: f64,
     },
     /// Validate scene files and print a short summary of each.
@@ -84,8 +87,8 @@ enum Command {
     Simulate {
         /// Scene file (TOML).
         scene: PathBuf,
-        /// Board time to run to, s.
-        #[arg(long)]
+        /// Board time to run to, s (0 to 1e9).
+        #[arg(long, allow_negative_numbers = true, value_parser = args::time_from_zero)]
         until: f64,
         /// Write the JSON lines here instead of stdout.
         #[arg(long)]
@@ -96,8 +99,8 @@ enum Command {
     Observe {
         /// Scene file (TOML).
         scene: PathBuf,
-        /// Board time of the observation, s.
-        #[arg(long)]
+        /// Board time of the observation, s (−1e9 to 1e9).
+        #[arg(long, allow_negative_numbers = true, value_parser = args::time)]
         at: f64,
         /// Observer name (default: the scene's first).
         #[arg(long)]
@@ -107,15 +110,15 @@ enum Command {
         vertices: bool,
         /// Effects: `scene`, `all`, `none`, or a list such as
         /// `contraction,light_delay,doppler`.
-        #[arg(long, default_value = "scene")]
+        #[arg(long, default_value = "scene", value_parser = args::effects)]
         effects: String,
     },
     /// Render what an observer sees to a PNG, headless.
     Render {
         /// Scene file (TOML).
         scene: PathBuf,
-        /// Board time, s.
-        #[arg(long)]
+        /// Board time, s (−1e9 to 1e9).
+        #[arg(long, allow_negative_numbers = true, value_parser = args::time)]
         at: f64,
         /// Observer name (default: the scene's first).
         #[arg(long)]
@@ -123,8 +126,8 @@ enum Command {
         /// Output PNG.
         #[arg(short, long)]
         out: PathBuf,
-        /// Image size, WIDTHxHEIGHT.
-        #[arg(long, default_value = "1280x720")]
+        /// Image size, WIDTHxHEIGHT (each 1 to 16384).
+        #[arg(long, default_value = "1280x720", value_parser = args::size)]
         size: String,
         /// `seen` (the scene's effects) or `truth` (board-simultaneous).
         #[arg(long, value_enum, default_value = "seen")]
@@ -135,16 +138,19 @@ enum Command {
     /// raises or a claim does not hold.
     Lesson {
         /// Lesson files (`.py`), each run in turn.
-        #[arg(required = true)]
+        #[arg(required = true, value_parser = args::lesson_file)]
         lessons: Vec<PathBuf>,
-        /// Stop at this board time (s) if the lesson has not finished.
-        #[arg(long, default_value_t = 600.0)]
+        /// Stop at this board time (s, 0 to 1e9) if the lesson has not
+        /// finished.
+        #[arg(long, default_value_t = 600.0, allow_negative_numbers = true, value_parser = args::time_from_zero)]
         until: f64,
-        /// Frames per real second to step (the lesson's time_scale applies).
-        #[arg(long, default_value_t = 30.0)]
+        /// Frames per real second to step (1 to 1000; the lesson's
+        /// time_scale applies).
+        #[arg(long, default_value_t = 30.0, allow_negative_numbers = true, value_parser = args::fps)]
         fps: f64,
-        /// Stop a hook that runs longer than this (s) with TimeoutError.
-        #[arg(long, default_value_t = 10.0)]
+        /// Stop a hook that runs longer than this (s, up to 86400) with
+        /// TimeoutError.
+        #[arg(long, default_value_t = 10.0, allow_negative_numbers = true, value_parser = args::hook_limit)]
         hook_limit: f64,
         /// Address-space limit of each lesson's process, MiB.
         #[arg(long, default_value_t = lightcone::lesson::supervise::MEMORY_LIMIT_MB)]
@@ -191,11 +197,11 @@ enum BenchWhat {
 }
 
 fn main() -> ExitCode {
+    interrupt::install();
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Check { scenes }) => commands::check::run(&scenes),
         Some(Command::Simulate { scene, until, out }) => {
-            lightcone::interrupt::install();
             commands::simulate::run(&scene, until, out.as_ref())
         }
         Some(Command::Observe {
@@ -267,7 +273,14 @@ fn main() -> ExitCode {
             at,
             head,
             scale,
-        }) => commands::cave::run(&scene, &config, &out_dir, at, head.as_deref(), scale),
+        }) => commands::cave::run(
+            scene.as_deref(),
+            config.as_deref(),
+            &out_dir,
+            at,
+            head.as_deref(),
+            scale,
+        ),
         None => commands::play::run(None, commands::play::Extras::default()),
     }
 }

@@ -73,6 +73,10 @@ impl Default for FollowerConfig {
     }
 }
 
+/// Largest tracker-space coordinate a sample may have, m: a tracked room,
+/// with a wide margin.
+pub const MAX_TRACKED_COORDINATE: f64 = 1000.0;
+
 /// Why a sample's content was rejected.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum RejectReason {
@@ -80,6 +84,9 @@ pub enum RejectReason {
     NoFix,
     /// Position has NaN or infinite components.
     NonFinitePosition,
+    /// Position further than [`MAX_TRACKED_COORDINATE`] from the tracker's
+    /// origin on some axis: no room is that big (a corrupt sample).
+    PositionOutOfRange,
     /// Orientation has NaN or infinite components.
     NonFiniteOrientation,
     /// Orientation norm too far from 1 to renormalise.
@@ -94,6 +101,10 @@ impl fmt::Display for RejectReason {
         match self {
             RejectReason::NoFix => write!(f, "no fix"),
             RejectReason::NonFinitePosition => write!(f, "non-finite position"),
+            RejectReason::PositionOutOfRange => write!(
+                f,
+                "position beyond ±{MAX_TRACKED_COORDINATE} m of the tracker's origin"
+            ),
             RejectReason::NonFiniteOrientation => write!(f, "non-finite orientation"),
             RejectReason::BadQuaternion { norm } => {
                 write!(f, "orientation not a unit quaternion (|q| = {norm:.3})")
@@ -336,6 +347,9 @@ impl Follower {
         if !p.is_finite() {
             return Err(RejectReason::NonFinitePosition);
         }
+        if p.abs().max_element() > MAX_TRACKED_COORDINATE {
+            return Err(RejectReason::PositionOutOfRange);
+        }
         let q = s.orientation_quat();
         if !q.is_finite() {
             return Err(RejectReason::NonFiniteOrientation);
@@ -391,9 +405,9 @@ impl Follower {
             Err(reason) => {
                 match reason {
                     RejectReason::NoFix => self.stats.no_fix += 1,
-                    RejectReason::NonFinitePosition | RejectReason::NonFiniteOrientation => {
-                        self.stats.non_finite += 1
-                    }
+                    RejectReason::NonFinitePosition
+                    | RejectReason::PositionOutOfRange
+                    | RejectReason::NonFiniteOrientation => self.stats.non_finite += 1,
                     RejectReason::BadQuaternion { .. } => self.stats.bad_quaternion += 1,
                 }
                 self.last_reject = Some((reason, now));
@@ -742,6 +756,44 @@ mod tests {
         let o = f.output(at(base, 2999));
         assert!((o.velocity.x - 0.5).abs() < 0.05, "{:?}", o.velocity);
         assert!(o.velocity.y.abs() < 0.05 && o.velocity.z.abs() < 0.05);
+    }
+
+    /// A hostile or crashed peer: samples of random bits (any bit pattern
+    /// is a valid `TrackerSample`) never panic the follower, and what it
+    /// outputs stays finite and in range.
+    #[test]
+    fn random_bytes_never_crash_and_never_leak_out() {
+        let base = Instant::now();
+        let mut f = Follower::default();
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for k in 0..20_000u64 {
+            let mut s = TrackerSample {
+                timestamp_ns: next(),
+                sequence: next(),
+                position: [0; 3].map(|_| f64::from_bits(next())),
+                orientation: [0; 4].map(|_| f64::from_bits(next())),
+                valid: next() as u8,
+                _pad: [0; 7],
+            };
+            // Every third one plausible, so some are accepted.
+            if k % 3 == 0 {
+                s.position = [0; 3].map(|_| (next() % 4000) as f64 / 1000.0 - 2.0);
+                s.orientation = [0.0, 0.0, 0.0, 1.0];
+            }
+            let _ = f.push(&s, at(base, k));
+            let o = f.output(at(base, k));
+            if let Some(p) = o.pose {
+                assert!(p.position.is_finite() && p.orientation.is_finite());
+                assert!(p.position.abs().max_element() <= MAX_TRACKED_COORDINATE);
+            }
+            assert!(o.velocity.is_finite(), "{:?}", o.velocity);
+        }
     }
 
     #[test]

@@ -54,6 +54,9 @@ fn parse_window(flag: &str, v: &str) -> Result<(f64, f64), String> {
     Ok((start, dur))
 }
 
+/// Longest `--duration`, s (about 32 years).
+pub const MAX_DURATION_S: f64 = 1e9;
+
 /// Parses the options (without the program name).
 pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String> {
     let mut args = Args {
@@ -107,7 +110,16 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
             }
             "--seed" => args.config.seed = parse_num(&flag, &v)?,
             "--first-seq" => args.config.first_sequence = parse_num(&flag, &v)?,
-            "--duration" => args.duration = Some(parse_num(&flag, &v)?),
+            "--duration" => {
+                let d: f64 = parse_num(&flag, &v)?;
+                if !(d.is_finite() && d > 0.0 && d <= MAX_DURATION_S) {
+                    return Err(format!(
+                        "--duration: {v} must be seconds in (0, {MAX_DURATION_S:e}] \
+                         (leave it out to publish until stopped)"
+                    ));
+                }
+                args.duration = Some(d);
+            }
             "--count" => args.count = Some(parse_num(&flag, &v)?),
             "--nan-every" => faults.nan_every = Some(parse_num(&flag, &v)?),
             "--reorder-every" => faults.reorder_every = Some(parse_num(&flag, &v)?),
@@ -123,6 +135,12 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
 /// Publishes until the duration or count is reached (forever without
 /// either). Returns the number of samples sent.
 pub fn run(args: Args) -> Result<u64, String> {
+    run_until(args, &|| false)
+}
+
+/// As [`run`], and also stops (cleanly, the service closed) as soon as
+/// `stop()` says so (Ctrl-C), checked every period.
+pub fn run_until(args: Args, stop: &dyn Fn() -> bool) -> Result<u64, String> {
     if args.quiet {
         quiet_iceoryx_logs();
     }
@@ -141,6 +159,9 @@ pub fn run(args: Args) -> Result<u64, String> {
     let mut sent: u64 = 0;
     let mut consecutive_errors = 0u32;
     loop {
+        if stop() {
+            break;
+        }
         if let Some(d) = args.duration
             && start.elapsed().as_secs_f64() >= d
         {
@@ -171,7 +192,13 @@ pub fn run(args: Args) -> Result<u64, String> {
         next += period;
         let now = Instant::now();
         if next > now {
-            std::thread::sleep(next - now);
+            // In slices, so that `stop` is seen within 50 ms at any rate.
+            let mut left = next - now;
+            while !left.is_zero() && !stop() {
+                let nap = left.min(Duration::from_millis(50));
+                std::thread::sleep(nap);
+                left -= nap;
+            }
         } else if now - next > period {
             next = now;
         }

@@ -25,8 +25,8 @@ impl SceneError {
             file: file.to_owned(),
             line,
             column,
-            field: field.to_owned(),
-            message,
+            field: one_line(field),
+            message: one_line(&message),
         }
     }
 
@@ -37,7 +37,7 @@ impl SceneError {
             line: 0,
             column: 0,
             field: String::new(),
-            message,
+            message: one_line(&message),
         }
     }
 }
@@ -81,6 +81,64 @@ impl fmt::Display for SceneErrors {
 
 impl std::error::Error for SceneErrors {}
 
+/// Longest message kept, in characters (a value quoted from the file may be
+/// huge).
+const MAX_MESSAGE: usize = 400;
+
+/// A message fit for one line of a terminal: control characters (a newline
+/// inside a string value) escaped, numbers of more than 24 characters
+/// (`0.000…0001` for 1e-300) written as [`number`] writes them, and cut at
+/// [`MAX_MESSAGE`] characters.
+pub fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut token = String::new();
+    let flush = |token: &mut String, out: &mut String| {
+        match token.parse::<f64>() {
+            Ok(x) if token.len() > 24 => out.push_str(&number(x)),
+            _ => out.push_str(token),
+        }
+        token.clear();
+    };
+    let mut prev = ' ';
+    for c in text.chars() {
+        // Digits inside a word (a name such as `p12345…`) are not a number.
+        let in_word = token.is_empty() && (prev.is_alphanumeric() || prev == '_');
+        prev = c;
+        let numeric = !in_word
+            && (c.is_ascii_digit()
+                || (!token.is_empty() && matches!(c, '.' | 'e' | 'E' | '+' | '-'))
+                || (token.is_empty() && matches!(c, '-' | '.')));
+        if numeric {
+            token.push(c);
+            continue;
+        }
+        flush(&mut token, &mut out);
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    flush(&mut token, &mut out);
+    if out.chars().count() > MAX_MESSAGE {
+        out = out.chars().take(MAX_MESSAGE).collect::<String>() + "…";
+    }
+    out
+}
+
+/// A number as messages and summaries show it: as written (`1.42`,
+/// `0.0305`, `2500`) from 10⁻⁴ to below 10⁶, else in exponent form
+/// (`1e-300`, `1e6`, `2.5e20`), never hundreds of digits; `inf` and `NaN`
+/// as such.
+pub fn number(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// 1-based line and character column of byte `offset` in `text`.
 pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
@@ -102,5 +160,26 @@ mod tests {
         assert_eq!(line_column(text, 6), (2, 1));
         assert_eq!(line_column(text, 9), (2, 3)); // after the two-byte é
         assert_eq!(line_column(text, 999), (3, 1));
+    }
+
+    #[test]
+    fn messages_stay_on_one_short_line() {
+        let tiny = format!("{}", 1e-300);
+        assert!(tiny.len() > 300);
+        assert_eq!(
+            one_line(&format!("{tiny} is too small")),
+            "1e-300 is too small"
+        );
+        assert_eq!(one_line("name \"a\nb\""), "name \"a\\nb\"");
+        assert_eq!(
+            one_line("puck[12].position: 0.5 and -3"),
+            "puck[12].position: 0.5 and -3"
+        );
+        assert_eq!(one_line(&"x".repeat(1000)).chars().count(), MAX_MESSAGE + 1);
+        let name = format!("name \"p{}\"", "1".repeat(30));
+        assert_eq!(one_line(&name), name);
+        assert_eq!(number(1.42), "1.42");
+        assert_eq!(number(2.5e20), "2.5e20");
+        assert_eq!(number(-1e-300), "-1e-300");
     }
 }

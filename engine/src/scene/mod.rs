@@ -11,18 +11,43 @@ mod model;
 mod raw;
 mod validate;
 
-pub use error::{SceneError, SceneErrors};
-pub use model::{Color, Effect, Effects, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec};
+pub use error::{SceneError, SceneErrors, number};
+pub use model::{
+    C_RANGE, Color, Effect, Effects, LENGTH_RANGE, MASS_RANGE, MAX_DICHOTOMY_STEPS,
+    MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS, MAX_U, ObserverSpec,
+    OpticsSpec, PuckSpec, Scene, TableSpec, first_overlaps, overlap,
+};
+pub use validate::MAX_ERRORS_PER_KIND;
 
 use std::path::Path;
 
 /// Reads and validates the scene file at `path`.
 pub fn load(path: &Path) -> Result<Scene, SceneErrors> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let bytes = std::fs::read(path).map_err(|e| {
         SceneErrors::single(SceneError::whole_file(&file, format!("cannot read: {e}")))
     })?;
-    parse(&text, &file)
+    let text = utf8(&bytes, &file)?;
+    parse(text, &file)
+}
+
+/// The bytes as text, or an error at the line and column of the first byte
+/// that is not UTF-8.
+pub fn utf8<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str, SceneErrors> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let good = e.valid_up_to();
+        let before = std::str::from_utf8(&bytes[..good]).unwrap_or_default();
+        SceneErrors::single(SceneError::at(
+            file,
+            before,
+            good,
+            "",
+            format!(
+                "byte 0x{:02x} is not UTF-8: save the scene as UTF-8 text",
+                bytes[good]
+            ),
+        ))
+    })
 }
 
 /// Parses and validates scene text; `file` is the name used in messages.

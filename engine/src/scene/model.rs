@@ -3,6 +3,7 @@
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
+use super::error::number;
 use crate::spacetime::ProperVelocity;
 
 /// Default puck radius, m: a carom ball's 61.5 mm diameter.
@@ -13,6 +14,45 @@ pub const DEFAULT_HEIGHT: f64 = 0.02;
 pub const DEFAULT_MASS: f64 = 0.21;
 /// Default playing area of a match carom table, m.
 pub const DEFAULT_TABLE: [f64; 2] = [2.84, 1.42];
+
+// The range the engine holds. Everything a scene gives must lie inside it;
+// outside it f64 loses the digits the physics and optics need (or a run
+// cannot finish), so scenes beyond it are refused with a located error.
+// README, "What the engine holds", gives the reasons.
+
+/// Largest proper speed |u| = γ|β| a puck or observer may have. β itself
+/// rounds to 1 in f64 from |u| ≈ 10⁸ on; the engine works with u, never
+/// with 1 − β², so it holds far beyond that, and γ = √(1 + u²) stays exact
+/// to the last digit up to here.
+pub const MAX_U: f64 = 1e12;
+/// |v| without overflow: finite for every finite `v` (10²⁰⁰ squared is
+/// not).
+pub fn magnitude(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m == 0.0 || !m.is_finite() {
+        m
+    } else {
+        m * (v / m).length()
+    }
+}
+
+/// Lengths (table sides, puck radius and height), m.
+pub const LENGTH_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
+/// Puck rest mass, kg.
+pub const MASS_RANGE: std::ops::RangeInclusive<f64> = 1e-9..=1e9;
+/// Speed of light, m/s (the real one, 299 792 458, included).
+pub const C_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e9;
+/// Largest coordinate of an observer's eye or `look_at`, m.
+pub const MAX_OBSERVER_DISTANCE: f64 = 1e9;
+/// Most pucks in one scene.
+pub const MAX_PUCKS: usize = 1_000_000;
+/// Most observers in one scene.
+pub const MAX_OBSERVERS: usize = 1000;
+/// Most frames of sampled history (`[optics] history_frames`).
+pub const MAX_HISTORY_FRAMES: usize = 100_000;
+/// Most dichotomy steps (`[optics] dichotomy_steps`): 64 halvings exhaust
+/// an f64 interval.
+pub const MAX_DICHOTOMY_STEPS: u32 = 64;
 
 /// A validated scene. Every number is finite, every speed below `c`, every
 /// puck on the table and clear of the others.
@@ -311,8 +351,14 @@ impl TableSpec {
         if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
             Some(format!(
                 "puck \"{}\" at ({}, {}) m reaches outside the table [0, {}] × [0, {}] m \
-                 (its half-extents are {:.6} × {:.6} m)",
-                puck.name, p.x, p.y, self.size.x, self.size.y, hx, hy
+                 (its half-extents are {} × {} m)",
+                puck.name,
+                number(p.x),
+                number(p.y),
+                number(self.size.x),
+                number(self.size.y),
+                number(hx),
+                number(hy)
             ))
         } else {
             None
@@ -320,34 +366,79 @@ impl TableSpec {
     }
 }
 
-/// Index pairs `(i, j)`, `i < j`, of pucks whose rest-frame discs overlap at
-/// t = 0 (touching is allowed). Sweep over x, so near O(N log N) for a
-/// spread-out scene.
+/// Whether the rest-frame discs of `a` and `b` overlap at t = 0 (touching,
+/// to a relative 10⁻¹², is allowed: pucks placed in contact to the digits of
+/// the file are not called overlapping).
+pub fn overlap(a: &PuckSpec, b: &PuckSpec) -> bool {
+    let reach = a.radius + b.radius;
+    a.position.distance(b.position) < reach * (1.0 - 1e-12)
+}
+
+/// For each puck `j` whose rest-frame disc overlaps that of an earlier puck
+/// at t = 0, one pair `(i, j)` with `i < j` (the first such `i` the search
+/// meets; touching is allowed), in increasing `j`. At most one pair per
+/// puck, so 10⁵ pucks at one point give 10⁵ − 1 pairs, not 5·10⁹.
+///
+/// A uniform grid of cells twice the median radius: each puck is filed
+/// under the cells its bounding square covers and compared only with the
+/// pucks filed there, so the cost is O(N) for pucks of similar size
+/// however they are laid out (on a line, in a crowd, all at one point). A
+/// puck covering more than 16 cells (much larger than the median) is kept
+/// on a short list compared with every puck.
 ///
 /// The rest-frame disc is conservative: a contracted puck lies inside it.
-pub fn overlapping_pairs(pucks: &[PuckSpec]) -> Vec<(usize, usize)> {
-    let mut order: Vec<usize> = (0..pucks.len()).collect();
-    order.sort_by(|&a, &b| {
-        let ka = pucks[a].position.x - pucks[a].radius;
-        let kb = pucks[b].position.x - pucks[b].radius;
-        ka.total_cmp(&kb)
-    });
+pub fn first_overlaps(pucks: &[PuckSpec]) -> Vec<(usize, usize)> {
+    use std::collections::HashMap;
+    if pucks.len() < 2 {
+        return Vec::new();
+    }
+    let mut radii: Vec<f64> = pucks.iter().map(|p| p.radius).collect();
+    let mid = radii.len() / 2;
+    let (_, median, _) = radii.select_nth_unstable_by(mid, f64::total_cmp);
+    let cell = 2.0 * *median;
+    let index = |x: f64| (x / cell).floor() as i64;
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let mut big: Vec<usize> = Vec::new();
     let mut pairs = Vec::new();
-    for (k, &i) in order.iter().enumerate() {
-        let right = pucks[i].position.x + pucks[i].radius;
-        for &j in &order[k + 1..] {
-            if pucks[j].position.x - pucks[j].radius >= right {
-                break;
+    for (j, p) in pucks.iter().enumerate() {
+        let (x0, x1) = (
+            index(p.position.x - p.radius),
+            index(p.position.x + p.radius),
+        );
+        let (y0, y1) = (
+            index(p.position.y - p.radius),
+            index(p.position.y + p.radius),
+        );
+        let cells = (x1 - x0 + 1).saturating_mul(y1 - y0 + 1);
+        let found = if cells > 16 {
+            (0..j).find(|&i| overlap(&pucks[i], p))
+        } else {
+            let mut found = big.iter().copied().find(|&i| overlap(&pucks[i], p));
+            'cells: for cx in x0..=x1 {
+                for cy in y0..=y1 {
+                    if found.is_some() {
+                        break 'cells;
+                    }
+                    if let Some(list) = grid.get(&(cx, cy)) {
+                        found = list.iter().copied().find(|&i| overlap(&pucks[i], p));
+                    }
+                }
             }
-            let reach = pucks[i].radius + pucks[j].radius;
-            // Relative tolerance so that pucks placed in contact (to the
-            // digits of the file) are not called overlapping.
-            if pucks[i].position.distance(pucks[j].position) < reach * (1.0 - 1e-12) {
-                pairs.push((i.min(j), i.max(j)));
+            found
+        };
+        if let Some(i) = found {
+            pairs.push((i, j));
+        }
+        if cells > 16 {
+            big.push(j);
+        } else {
+            for cx in x0..=x1 {
+                for cy in y0..=y1 {
+                    grid.entry((cx, cy)).or_default().push(j);
+                }
             }
         }
     }
-    pairs.sort_unstable();
     pairs
 }
 
@@ -362,9 +453,23 @@ impl Scene {
                 "table size {size} must be two positive finite numbers"
             ));
         }
+        if !(LENGTH_RANGE.contains(&size.x) && LENGTH_RANGE.contains(&size.y)) {
+            return Err(format!(
+                "table size ({}, {}) m: both sides must be from {} to {} m",
+                number(size.x),
+                number(size.y),
+                number(*LENGTH_RANGE.start()),
+                number(*LENGTH_RANGE.end())
+            ));
+        }
         let c = c.unwrap_or(Self::default_c(size));
-        if !(c.is_finite() && c > 0.0) {
-            return Err(format!("c = {c} must be a positive finite number of m/s"));
+        if !C_RANGE.contains(&c) {
+            return Err(format!(
+                "c = {} m/s must be from {} to {} m/s",
+                number(c),
+                number(*C_RANGE.start()),
+                number(*C_RANGE.end())
+            ));
         }
         Ok(Self {
             title: "scene".to_owned(),
@@ -395,33 +500,38 @@ impl Scene {
                 "puck \"{name}\": position and velocity must be finite"
             ));
         }
-        for (what, v) in [
-            ("radius", puck.radius),
-            ("height", puck.height),
-            ("mass", puck.mass),
+        if magnitude(puck.u.0) > MAX_U {
+            return Err(format!(
+                "puck \"{name}\": |u| = {} is beyond what the engine holds (at most {})",
+                number(magnitude(puck.u.0)),
+                number(MAX_U)
+            ));
+        }
+        for (what, v, range, unit) in [
+            ("radius", puck.radius, LENGTH_RANGE, "m"),
+            ("height", puck.height, LENGTH_RANGE, "m"),
+            ("mass", puck.mass, MASS_RANGE, "kg"),
         ] {
-            if !(v.is_finite() && v > 0.0) {
+            if !range.contains(&v) {
                 return Err(format!(
-                    "puck \"{name}\": {what} {v} must be a positive finite number"
+                    "puck \"{name}\": {what} {} must be a number from {} to {} {unit}",
+                    number(v),
+                    number(*range.start()),
+                    number(*range.end())
                 ));
             }
+        }
+        if self.pucks.len() >= MAX_PUCKS {
+            return Err(format!("a scene holds at most {MAX_PUCKS} pucks"));
         }
         if let Some(why) = self.table.misplaced(&puck) {
             return Err(why);
         }
-        self.pucks.push(puck);
-        if let Some(&(i, j)) = overlapping_pairs(&self.pucks)
-            .iter()
-            .find(|(i, j)| *i == self.pucks.len() - 1 || *j == self.pucks.len() - 1)
-        {
-            let other = if i == self.pucks.len() - 1 { j } else { i };
-            let msg = format!(
-                "puck \"{name}\" overlaps puck \"{}\"",
-                self.pucks[other].name
-            );
-            self.pucks.pop();
-            return Err(msg);
+        // One pass over the others: O(N) per puck added.
+        if let Some(other) = self.pucks.iter().find(|o| overlap(o, &puck)) {
+            return Err(format!("puck \"{name}\" overlaps puck \"{}\"", other.name));
         }
+        self.pucks.push(puck);
         Ok(())
     }
 
@@ -442,6 +552,24 @@ impl Scene {
             return Err(format!(
                 "observer \"{name}\": position, look_at and velocity must be finite"
             ));
+        }
+        if observer.position.abs().max_element() > MAX_OBSERVER_DISTANCE
+            || observer.look_at.abs().max_element() > MAX_OBSERVER_DISTANCE
+        {
+            return Err(format!(
+                "observer \"{name}\": keep position and look_at within ±{} m",
+                number(MAX_OBSERVER_DISTANCE)
+            ));
+        }
+        if magnitude(observer.u.0) > MAX_U {
+            return Err(format!(
+                "observer \"{name}\": |u| = {} is beyond what the engine holds (at most {})",
+                number(magnitude(observer.u.0)),
+                number(MAX_U)
+            ));
+        }
+        if !default_only && self.observers.len() >= MAX_OBSERVERS {
+            return Err(format!("a scene holds at most {MAX_OBSERVERS} observers"));
         }
         if observer.position == observer.look_at {
             return Err(format!(

@@ -3,36 +3,120 @@
 
 use glam::{DVec2, DVec3};
 
+use std::collections::{BTreeMap, HashSet};
+
+use super::error::number;
 use super::model::{
-    DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE, overlapping_pairs,
+    C_RANGE, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE, LENGTH_RANGE, MASS_RANGE,
+    MAX_DICHOTOMY_STEPS, MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS,
+    MAX_U, first_overlaps, magnitude,
 };
 use super::raw::{At, RawObserver, RawPuck, RawScene};
 use super::{Color, Effects, ObserverSpec, PuckSpec, Scene, SceneError, SceneErrors, TableSpec};
 use crate::spacetime::ProperVelocity;
 
-/// Collects located errors while a scene is checked.
+/// Errors of one kind shown before the rest are only counted.
+pub const MAX_ERRORS_PER_KIND: usize = 20;
+
+/// Collects located errors while a scene is checked, keeping the first
+/// [`MAX_ERRORS_PER_KIND`] of each kind and counting the rest.
 struct Checker<'a> {
     text: &'a str,
     file: &'a str,
     errors: Vec<SceneError>,
+    /// Errors seen per kind (the field with its indices removed, or
+    /// "overlaps").
+    seen: BTreeMap<String, usize>,
+    /// Errors seen in all.
+    count: usize,
 }
 
 impl Checker<'_> {
     fn error<T>(&mut self, at: &At<T>, field: &str, message: String) {
-        self.errors.push(SceneError::at(
-            self.file,
-            self.text,
-            at.span().start,
-            field,
-            message,
-        ));
+        let kind: String = field
+            .split('[')
+            .map(|part| part.split_once(']').map_or(part, |(_, rest)| rest))
+            .collect::<Vec<_>>()
+            .join("[]");
+        self.error_of_kind(at, field, message, kind);
+    }
+
+    fn error_of_kind<T>(&mut self, at: &At<T>, field: &str, message: String, kind: String) {
+        self.count += 1;
+        let seen = self.seen.entry(kind).or_insert(0);
+        *seen += 1;
+        if *seen <= MAX_ERRORS_PER_KIND {
+            self.errors.push(SceneError::at(
+                self.file,
+                self.text,
+                at.span().start,
+                field,
+                message,
+            ));
+        }
+    }
+
+    /// Whether any error was found (shown or only counted).
+    fn failed(&self) -> bool {
+        !self.seen.is_empty()
+    }
+
+    /// The shown errors in file order, then one line per kind that had
+    /// more.
+    fn into_errors(mut self) -> SceneErrors {
+        self.errors.sort_by_key(|e| (e.line, e.column));
+        for (kind, n) in &self.seen {
+            if *n > MAX_ERRORS_PER_KIND {
+                let more = n - MAX_ERRORS_PER_KIND;
+                let message = if kind == "overlaps" {
+                    format!("… and {more} more overlaps")
+                } else {
+                    format!("… and {more} more errors in `{kind}`")
+                };
+                self.errors.push(SceneError::whole_file(self.file, message));
+            }
+        }
+        SceneErrors(self.errors)
+    }
+
+    /// A finite number in `range` (or `default` when absent), with `unit`
+    /// for the message.
+    fn in_range(
+        &mut self,
+        v: Option<&At<f64>>,
+        field: &str,
+        default: f64,
+        range: std::ops::RangeInclusive<f64>,
+        unit: &str,
+    ) -> f64 {
+        let Some(v) = v else { return default };
+        let x = *v.get_ref();
+        if range.contains(&x) {
+            x
+        } else {
+            self.error(
+                v,
+                field,
+                format!(
+                    "{} must be a positive finite number from {} to {} {unit}",
+                    number(x),
+                    number(*range.start()),
+                    number(*range.end())
+                ),
+            );
+            default
+        }
     }
 
     /// An array of `N` finite numbers, else an error and `None`.
     fn finite<const N: usize>(&mut self, v: &At<Vec<f64>>, field: &str) -> Option<[f64; N]> {
         let x = v.get_ref();
         let Ok(a) = <[f64; N]>::try_from(x.as_slice()) else {
-            self.error(v, field, format!("{x:?} has {} numbers; give {N}", x.len()));
+            self.error(
+                v,
+                field,
+                format!("{} has {} numbers; give {N}", list(x), x.len()),
+            );
             return None;
         };
         if a.iter().all(|c| c.is_finite()) {
@@ -41,21 +125,9 @@ impl Checker<'_> {
             self.error(
                 v,
                 field,
-                format!("{x:?} has a component that is not a finite number"),
+                format!("{} has a component that is not a finite number", list(x)),
             );
             None
-        }
-    }
-
-    /// A finite number > 0 (or `default` when absent).
-    fn positive(&mut self, v: Option<&At<f64>>, field: &str, default: f64) -> f64 {
-        let Some(v) = v else { return default };
-        let x = *v.get_ref();
-        if x.is_finite() && x > 0.0 {
-            x
-        } else {
-            self.error(v, field, format!("{x} must be a positive finite number"));
-            default
         }
     }
 
@@ -66,7 +138,7 @@ impl Checker<'_> {
         if (0.0..=1.0).contains(&x) {
             x
         } else {
-            self.error(v, field, format!("{x} must lie in [0, 1]"));
+            self.error(v, field, format!("{} must lie in [0, 1]", number(x)));
             default
         }
     }
@@ -99,11 +171,15 @@ impl Checker<'_> {
             };
             match ProperVelocity::try_from_beta(to3(x)) {
                 Ok(u) => u,
-                Err(e) => {
+                Err(_) => {
                     self.error(
                         b,
                         &field,
-                        format!("{e}; to state γ beyond ~10⁷ give `u` = γβ instead"),
+                        format!(
+                            "speed |β| = {} is not below the speed of light (|β| must be < 1); \
+                             to state γ beyond ~10⁷ give `u` = γβ instead",
+                            number(magnitude(to3(x)))
+                        ),
                     );
                     ProperVelocity::ZERO
                 }
@@ -113,22 +189,41 @@ impl Checker<'_> {
             let Some(x) = self.finite::<N>(v, &field) else {
                 return ProperVelocity::ZERO;
             };
-            let speed = to3(x).length();
+            let speed = magnitude(to3(x));
             match ProperVelocity::try_from_velocity(to3(x), c) {
                 Ok(u) => u,
                 Err(_) => {
                     self.error(
                         v,
                         &field,
-                        format!("speed {speed} m/s is not below c = {c} m/s"),
+                        format!(
+                            "speed {} m/s is not below c = {} m/s",
+                            number(speed),
+                            number(c)
+                        ),
                     );
                     ProperVelocity::ZERO
                 }
             }
         } else if let Some(v) = u {
             let field = format!("{prefix}.u");
-            self.finite::<N>(v, &field)
-                .map_or(ProperVelocity::ZERO, |x| ProperVelocity(to3(x)))
+            let Some(x) = self.finite::<N>(v, &field) else {
+                return ProperVelocity::ZERO;
+            };
+            let u = ProperVelocity(to3(x));
+            if magnitude(u.0) > MAX_U {
+                self.error(
+                    v,
+                    &field,
+                    format!(
+                        "|u| = {} is beyond what the engine holds: give |u| = γ|β| ≤ {}",
+                        number(magnitude(u.0)),
+                        number(MAX_U)
+                    ),
+                );
+                return ProperVelocity::ZERO;
+            }
+            u
         } else {
             ProperVelocity::ZERO
         }
@@ -140,10 +235,10 @@ impl Checker<'_> {
         name: Option<&At<String>>,
         field: &str,
         fallback: String,
-        taken: &mut Vec<String>,
+        taken: &mut HashSet<String>,
     ) -> String {
         let Some(n) = name else {
-            taken.push(fallback.clone());
+            taken.insert(fallback.clone());
             return fallback;
         };
         let s = n.get_ref().trim().to_owned();
@@ -151,14 +246,13 @@ impl Checker<'_> {
             self.error(n, field, "a name must not be empty".to_owned());
             return fallback;
         }
-        if taken.contains(&s) {
+        if !taken.insert(s.clone()) {
             self.error(
                 n,
                 field,
                 format!("duplicate name \"{s}\": names must be unique"),
             );
         }
-        taken.push(s.clone());
         s
     }
 }
@@ -169,16 +263,49 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         text,
         file,
         errors: Vec::new(),
+        seen: BTreeMap::new(),
+        count: 0,
     };
+    if raw.puck.len() > MAX_PUCKS {
+        return Err(SceneErrors::single(SceneError::at(
+            file,
+            text,
+            raw.puck[MAX_PUCKS].span().start,
+            &format!("puck[{MAX_PUCKS}]"),
+            format!(
+                "{} pucks: a scene holds at most {MAX_PUCKS}",
+                raw.puck.len()
+            ),
+        )));
+    }
+    if raw.observer.len() > MAX_OBSERVERS {
+        return Err(SceneErrors::single(SceneError::at(
+            file,
+            text,
+            raw.observer[MAX_OBSERVERS].span().start,
+            &format!("observer[{MAX_OBSERVERS}]"),
+            format!(
+                "{} observers: a scene holds at most {MAX_OBSERVERS}",
+                raw.observer.len()
+            ),
+        )));
+    }
 
     let size = match raw.table.as_ref().and_then(|t| t.size.as_ref()) {
         Some(s) => match ck.finite::<2>(s, "table.size") {
-            Some([x, y]) if x > 0.0 && y > 0.0 => DVec2::new(x, y),
+            Some([x, y]) if LENGTH_RANGE.contains(&x) && LENGTH_RANGE.contains(&y) => {
+                DVec2::new(x, y)
+            }
             Some(x) => {
                 ck.error(
                     s,
                     "table.size",
-                    format!("{x:?}: both sides must be positive"),
+                    format!(
+                        "{}: both sides must be positive, from {} to {} m",
+                        list(&x),
+                        number(*LENGTH_RANGE.start()),
+                        number(*LENGTH_RANGE.end())
+                    ),
                 );
                 DVec2::from(DEFAULT_TABLE)
             }
@@ -197,7 +324,7 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         size,
         cushion_restitution,
     };
-    let c = ck.positive(raw.c.as_ref(), "c", Scene::default_c(size));
+    let c = ck.in_range(raw.c.as_ref(), "c", Scene::default_c(size), C_RANGE, "m/s");
     let restitution = ck.unit_interval(
         raw.physics.as_ref().and_then(|p| p.restitution.as_ref()),
         "physics.restitution",
@@ -206,13 +333,13 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
     let effects = effects(raw.effects.unwrap_or_default());
     let optics = optics(&mut ck, raw.optics.unwrap_or_default());
 
-    let mut names = Vec::new();
+    let mut names = HashSet::new();
     let mut pucks = Vec::with_capacity(raw.puck.len());
     let mut puck_spans = Vec::with_capacity(raw.puck.len());
     for (i, at) in raw.puck.iter().enumerate() {
-        let errors_before = ck.errors.len();
+        let errors_before = ck.count;
         let p = puck(&mut ck, at, i, c, &mut names);
-        if ck.errors.len() > errors_before {
+        if ck.count > errors_before {
             continue; // a puck with a bad field is not placed
         }
         if let Some(why) = table.misplaced(&p) {
@@ -221,23 +348,24 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         pucks.push(p);
         puck_spans.push((i, at));
     }
-    for (i, j) in overlapping_pairs(&pucks) {
+    for (i, j) in first_overlaps(&pucks) {
         let (a, b) = (&pucks[i], &pucks[j]);
-        ck.error(
+        ck.error_of_kind(
             &puck_spans[j].1.get_ref().position,
             &format!("puck[{}].position", puck_spans[j].0),
             format!(
-                "puck \"{}\" overlaps puck \"{}\" (line {}): centres {:.6} m apart, radii add to {:.6} m",
+                "puck \"{}\" overlaps puck \"{}\" (line {}): centres {} m apart, radii add to {} m",
                 b.name,
                 a.name,
                 super::error::line_column(text, puck_spans[i].1.span().start).0,
-                a.position.distance(b.position),
-                a.radius + b.radius
+                number(a.position.distance(b.position)),
+                number(a.radius + b.radius)
             ),
+            "overlaps".to_owned(),
         );
     }
 
-    let mut observer_names = Vec::new();
+    let mut observer_names = HashSet::new();
     let mut observers: Vec<ObserverSpec> = raw
         .observer
         .iter()
@@ -248,8 +376,8 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         observers.push(Scene::default_observer(size));
     }
 
-    if !ck.errors.is_empty() {
-        return Err(SceneErrors(ck.errors));
+    if ck.failed() {
+        return Err(ck.into_errors());
     }
     Ok(Scene {
         title: raw.title.unwrap_or_else(|| file.to_owned()),
@@ -262,6 +390,32 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         pucks,
         observers,
     })
+}
+
+impl Checker<'_> {
+    /// An error unless every component of `p` is within
+    /// [`MAX_OBSERVER_DISTANCE`] of the board's origin.
+    fn near<T>(&mut self, at: &At<T>, field: &str, p: DVec3) {
+        if p.abs().max_element() > MAX_OBSERVER_DISTANCE {
+            self.error(
+                at,
+                field,
+                format!(
+                    "({}, {}, {}) m is too far: keep each coordinate within ±{} m",
+                    number(p.x),
+                    number(p.y),
+                    number(p.z),
+                    number(MAX_OBSERVER_DISTANCE)
+                ),
+            );
+        }
+    }
+}
+
+/// `[a, b, …]` with each number as [`number`] writes it.
+fn list(x: &[f64]) -> String {
+    let parts: Vec<String> = x.iter().map(|v| number(*v)).collect();
+    format!("[{}]", parts.join(", "))
 }
 
 fn effects(raw: super::raw::RawEffects) -> Effects {
@@ -291,21 +445,27 @@ fn optics(ck: &mut Checker, raw: super::raw::RawOptics) -> super::model::OpticsS
     }
     if let Some(f) = &raw.history_frames {
         match usize::try_from(*f.get_ref()) {
-            Ok(n) if n >= 2 => o.history_frames = n,
+            Ok(n) if (2..=MAX_HISTORY_FRAMES).contains(&n) => o.history_frames = n,
             _ => ck.error(
                 f,
                 "optics.history_frames",
-                format!("{} must be at least 2", f.get_ref()),
+                format!(
+                    "{} must be at least 2 and at most {MAX_HISTORY_FRAMES}",
+                    f.get_ref()
+                ),
             ),
         }
     }
     if let Some(d) = &raw.dichotomy_steps {
         match u32::try_from(*d.get_ref()) {
-            Ok(n) => o.dichotomy_steps = n,
-            Err(_) => ck.error(
+            Ok(n) if n <= MAX_DICHOTOMY_STEPS => o.dichotomy_steps = n,
+            _ => ck.error(
                 d,
                 "optics.dichotomy_steps",
-                format!("{} must be 0 (full) or more", d.get_ref()),
+                format!(
+                    "{} must be 0 (full) or more, at most {MAX_DICHOTOMY_STEPS}",
+                    d.get_ref()
+                ),
             ),
         }
     }
@@ -315,7 +475,13 @@ fn optics(ck: &mut Checker, raw: super::raw::RawOptics) -> super::model::OpticsS
     o
 }
 
-fn puck(ck: &mut Checker, at: &At<RawPuck>, i: usize, c: f64, names: &mut Vec<String>) -> PuckSpec {
+fn puck(
+    ck: &mut Checker,
+    at: &At<RawPuck>,
+    i: usize,
+    c: f64,
+    names: &mut HashSet<String>,
+) -> PuckSpec {
     let p = at.get_ref();
     let prefix = format!("puck[{i}]");
     let name = ck.name(
@@ -335,17 +501,27 @@ fn puck(ck: &mut Checker, at: &At<RawPuck>, i: usize, c: f64, names: &mut Vec<St
         p.u.as_ref(),
         c,
     );
-    let radius = ck.positive(
+    let radius = ck.in_range(
         p.radius.as_ref(),
         &format!("{prefix}.radius"),
         DEFAULT_RADIUS,
+        LENGTH_RANGE,
+        "m",
     );
-    let height = ck.positive(
+    let height = ck.in_range(
         p.height.as_ref(),
         &format!("{prefix}.height"),
         DEFAULT_HEIGHT,
+        LENGTH_RANGE,
+        "m",
     );
-    let mass = ck.positive(p.mass.as_ref(), &format!("{prefix}.mass"), DEFAULT_MASS);
+    let mass = ck.in_range(
+        p.mass.as_ref(),
+        &format!("{prefix}.mass"),
+        DEFAULT_MASS,
+        MASS_RANGE,
+        "kg",
+    );
     let color = match &p.color {
         None => Color::default_for(i),
         Some(s) => Color::parse(s.get_ref()).unwrap_or_else(|| {
@@ -377,7 +553,7 @@ fn observer(
     i: usize,
     c: f64,
     size: DVec2,
-    names: &mut Vec<String>,
+    names: &mut HashSet<String>,
 ) -> ObserverSpec {
     let o = at.get_ref();
     let prefix = format!("observer[{i}]");
@@ -390,6 +566,7 @@ fn observer(
     let position = ck
         .finite::<3>(&o.position, &format!("{prefix}.position"))
         .map_or(DVec3::ZERO, DVec3::from);
+    ck.near(&o.position, &format!("{prefix}.position"), position);
     let centre = DVec3::new(size.x / 2.0, size.y / 2.0, 0.0);
     let look_at = match &o.look_at {
         None => centre,
@@ -397,7 +574,10 @@ fn observer(
             .finite::<3>(l, &format!("{prefix}.look_at"))
             .map(DVec3::from)
         {
-            Some(p) if p.distance(position) > 0.0 => p,
+            Some(p) if p.distance(position) > 0.0 => {
+                ck.near(l, &format!("{prefix}.look_at"), p);
+                p
+            }
             Some(_) => {
                 ck.error(
                     l,

@@ -20,13 +20,13 @@ pub fn run(quick: bool) -> ExitCode {
     let frames = match frame_times(quick) {
         Ok(t) => t,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
-    println!("{frames}");
-    println!("{}", gas_rates(quick));
-    println!("{}", exactness(quick));
+    crate::sayln!("{frames}");
+    crate::sayln!("{}", gas_rates(quick));
+    crate::sayln!("{}", exactness(quick));
     ExitCode::SUCCESS
 }
 

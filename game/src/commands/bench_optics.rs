@@ -45,7 +45,7 @@ pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
     let scene = match scene::load(Path::new("assets/scenes/paper_carom.toml")) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
@@ -72,16 +72,16 @@ pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
             );
         }
         if let Err(e) = std::fs::write(path, text) {
-            eprintln!("{}: {e}", path.display());
+            crate::errln!("{}: {e}", path.display());
             return ExitCode::FAILURE;
         }
     }
     match memory_ten_pucks() {
-        Ok(text) => println!("{text}"),
-        Err(e) => eprintln!("{e}"),
+        Ok(text) => crate::sayln!("{text}"),
+        Err(e) => crate::errln!("{e}"),
     }
-    println!("{}", throughput(quick));
-    println!("{}", effect_costs(quick));
+    crate::sayln!("{}", throughput(quick));
+    crate::sayln!("{}", effect_costs(quick));
     ExitCode::SUCCESS
 }
 
@@ -252,7 +252,7 @@ fn accuracy(scene: &Scene, quick: bool) -> Vec<Row> {
 }
 
 fn print_rows(rows: &[Row]) {
-    println!(
+    crate::sayln!(
         "### Accuracy and cost of the emission solve: the paper's 3-puck scene\n\n\
          Observer \"eye\" at rest beside the table, observation every 0.5 s from 2 s to 20 s, every vertex of \
          the three pucks (48-segment meshes). Error: apparent position against the exact solve, in metres and \
@@ -262,7 +262,7 @@ fn print_rows(rows: &[Row]) {
          | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
     );
     for r in rows {
-        println!(
+        crate::sayln!(
             "| {} | {} | {} | {} | {} | {:.2e} | {:.2e} | {:.3} | {:.3} | {:.1} | {:.0} | {} |",
             r.method,
             if r.fps.is_nan() {
@@ -296,7 +296,7 @@ fn print_rows(rows: &[Row]) {
             }
         );
     }
-    println!();
+    crate::sayln!();
 }
 
 /// History memory for the paper's 10-puck scene over 1 000 frames (its

@@ -62,18 +62,18 @@ pub fn run(quick: bool) -> ExitCode {
     let gpu = match gpu::headless() {
         Ok(g) => g,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
     let paper = match scene::load(Path::new("assets/scenes/paper_carom.toml")) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
-    println!(
+    crate::sayln!(
         "### Headless frame time, 1280×720, adapter: {}\n\n\
          | scene | pucks | triangles | CPU: physics + optics + triangles (ms) | GPU: draw + read back (ms) | frames/s |\n\
          | --- | --- | --- | --- | --- | --- |",
@@ -94,14 +94,14 @@ pub fn run(quick: bool) -> ExitCode {
             frame::build(&billiard, &meshes, &eye, scene.effects, &mut vertices);
             let mid = Instant::now();
             if let Err(e) = target.draw(&gpu, &vertices, &camera) {
-                eprintln!("{e}");
+                crate::errln!("{e}");
                 return ExitCode::FAILURE;
             }
             cpu += (mid - start).as_secs_f64();
             gpu_time += mid.elapsed().as_secs_f64();
         }
         let n = f64::from(frames);
-        println!(
+        crate::sayln!(
             "| {} | {} | {} | {:.2} | {:.2} | {:.1} |",
             scene.title,
             scene.pucks.len(),

@@ -42,7 +42,7 @@ fn directions(game: &mut GameState, position: DVec3, v: DVec3, effects: &Effects
 /// (`filtered`: the Follower's One-Euro position and velocity) or raw
 /// (last sample, finite-difference velocity).
 pub fn jitter(beta: f64, sigma: f64, rate: f64, seconds: f64, filtered: bool) -> Jitter {
-    let scene = match scene::load(std::path::Path::new(crate::DEFAULT_SCENE)) {
+    let scene = match crate::assets::default_scene() {
         Ok(s) => s,
         Err(_) => scene::Scene::empty(glam::DVec2::new(2.84, 1.42), None)
             .unwrap_or_else(|_| unreachable!("a carom table is a valid scene")),
@@ -185,12 +185,14 @@ pub fn latency(rate: f64, seconds: f64, poll: Duration) -> Result<(f64, f64, f64
 /// Prints the tables.
 pub fn run(quick: bool) -> ExitCode {
     let seconds = if quick { 3.0 } else { 20.0 };
-    println!("## On-screen jitter (px at 720 px / 60°), tracker at 120 Hz, 60 fps, c = 1.42 m/s");
-    println!();
-    println!(
+    crate::sayln!(
+        "## On-screen jitter (px at 720 px / 60°), tracker at 120 Hz, 60 fps, c = 1.42 m/s"
+    );
+    crate::sayln!();
+    crate::sayln!(
         "| head noise σ | observer β | jitter raw | jitter filtered | mean error raw | mean error filtered |"
     );
-    println!("| --- | --- | --- | --- | --- | --- |");
+    crate::sayln!("| --- | --- | --- | --- | --- | --- |");
     let sigmas: &[f64] = if quick {
         &[0.001]
     } else {
@@ -201,7 +203,7 @@ pub fn run(quick: bool) -> ExitCode {
         for &beta in betas {
             let raw = jitter(beta, sigma, 120.0, seconds, false);
             let filtered = jitter(beta, sigma, 120.0, seconds, true);
-            println!(
+            crate::sayln!(
                 "| {:.1} mm | {beta:.1} | {:.2} | {:.3} | {:.2} | {:.2} |",
                 sigma * 1e3,
                 raw.jitter_px,
@@ -211,11 +213,11 @@ pub fn run(quick: bool) -> ExitCode {
             );
         }
     }
-    println!();
-    println!("## Publish → observer update, two processes (µs)");
-    println!();
-    println!("| tracker rate | poll period | samples | p50 | p99 | max |");
-    println!("| --- | --- | --- | --- | --- | --- |");
+    crate::sayln!();
+    crate::sayln!("## Publish → observer update, two processes (µs)");
+    crate::sayln!();
+    crate::sayln!("| tracker rate | poll period | samples | p50 | p99 | max |");
+    crate::sayln!("| --- | --- | --- | --- | --- | --- |");
     let runs: &[(f64, u64)] = if quick {
         &[(1000.0, 50)]
     } else {
@@ -223,7 +225,7 @@ pub fn run(quick: bool) -> ExitCode {
     };
     for &(rate, poll_us) in runs {
         match latency(rate, seconds.min(10.0), Duration::from_micros(poll_us)) {
-            Ok((p50, p99, max, n)) => println!(
+            Ok((p50, p99, max, n)) => crate::sayln!(
                 "| {rate:.0} Hz | {} | {n} | {p50:.0} | {p99:.0} | {max:.0} |",
                 if poll_us == 0 {
                     "busy spin".to_owned()
@@ -232,7 +234,7 @@ pub fn run(quick: bool) -> ExitCode {
                 }
             ),
             Err(e) => {
-                eprintln!("latency: {e}");
+                crate::errln!("latency: {e}");
                 return ExitCode::FAILURE;
             }
         }

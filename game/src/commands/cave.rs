@@ -24,17 +24,19 @@ pub fn parse_head(text: &str) -> Result<DVec3, String> {
 }
 
 /// Renders the walls at board time `at` for a head at `head` (tracker space,
-/// facing the front), writing `DIR/<wall>_<left|right>.png`.
+/// facing the front), writing `DIR/<wall>_<left|right>.png`. `scene_path`
+/// `None` is the built-in default scene, `config` `None` the built-in
+/// `assets/cave.toml`.
 pub fn run(
-    scene_path: &Path,
-    config: &Path,
+    scene_path: Option<&Path>,
+    config: Option<&Path>,
     out_dir: &Path,
     at: f64,
     head: Option<&str>,
     scale: f64,
 ) -> ExitCode {
     let fail = |e: String| {
-        eprintln!("{e}");
+        crate::errln!("{e}");
         ExitCode::FAILURE
     };
     if !(at.is_finite() && at >= 0.0) {
@@ -47,11 +49,15 @@ pub fn run(
         Ok(h) => h.unwrap_or(DEFAULT_HEAD),
         Err(e) => return fail(e),
     };
-    let scene = match scene::load(scene_path) {
+    let loaded = match scene_path {
+        Some(path) => scene::load(path),
+        None => crate::assets::default_scene(),
+    };
+    let scene = match loaded {
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
-    let config = match cave::load(config) {
+    let config = match config.map_or_else(crate::assets::default_cave, cave::load) {
         Ok(c) => c,
         Err(e) => return fail(e),
     };
@@ -73,7 +79,9 @@ pub fn run(
         if let Err(e) = image.save_png(&path) {
             return fail(e);
         }
-        println!("{}", path.display());
+        if let Err(stop) = crate::outln!("{}", path.display()) {
+            return stop.exit();
+        }
     }
     ExitCode::SUCCESS
 }

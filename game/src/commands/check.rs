@@ -4,30 +4,45 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use lightcone_engine::scene::{self, Effect, Scene};
+use lightcone_engine::scene::{self, Effect, Scene, number};
+
+use crate::output;
 
 /// Checks every scene, printing a summary of each good one to stdout and
 /// every error (file:line:column: field: message) to stderr. Fails if any
-/// scene is bad.
+/// scene is bad. With no paths, checks the built-in default scene.
 pub fn run(paths: &[PathBuf]) -> ExitCode {
-    let default = [PathBuf::from(crate::DEFAULT_SCENE)];
-    let paths = if paths.is_empty() {
-        &default[..]
-    } else {
-        paths
-    };
+    if paths.is_empty() {
+        let name = Path::new(crate::assets::DEFAULT_SCENE_NAME);
+        return match crate::assets::default_scene() {
+            Ok(s) => match output::print(&summary(name, &s)) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(stop) => stop.exit(),
+            },
+            Err(errors) => {
+                crate::errln!("{errors}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     let mut bad = 0;
     for path in paths {
         match scene::load(path) {
-            Ok(s) => print!("{}", summary(path, &s)),
+            Ok(s) => {
+                if let Err(stop) = output::print(&summary(path, &s)) {
+                    // A closed stdout still fails a run that found bad scenes.
+                    let code = stop.exit();
+                    return if bad > 0 { ExitCode::FAILURE } else { code };
+                }
+            }
             Err(errors) => {
                 bad += 1;
-                eprintln!("{errors}");
+                crate::errln!("{errors}");
             }
         }
     }
     if bad > 0 {
-        eprintln!("{bad} of {} scene(s) have errors", paths.len());
+        crate::errln!("{bad} of {} scene(s) have errors", paths.len());
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
@@ -50,11 +65,11 @@ pub fn summary(path: &Path, s: &Scene) -> String {
     let _ = writeln!(out, "{}: ok: {}", path.display(), s.title);
     let _ = writeln!(
         out,
-        "  c = {} m/s; table {} x {} m (light crosses it in {:.3} s); restitution {} (cushions {})",
-        s.c,
-        s.table.size.x,
-        s.table.size.y,
-        s.table.size.x.max(s.table.size.y) / s.c,
+        "  c = {} m/s; table {} x {} m (light crosses it in {} s); restitution {} (cushions {})",
+        number(s.c),
+        number(s.table.size.x),
+        number(s.table.size.y),
+        number(s.table.size.x.max(s.table.size.y) / s.c),
         s.restitution,
         s.table.cushion_restitution
     );
@@ -64,16 +79,16 @@ pub fn summary(path: &Path, s: &Scene) -> String {
         let beta = p.u.beta();
         let _ = writeln!(
             out,
-            "    {:<10} at ({:.4}, {:.4}) m  β = ({:+.6}, {:+.6}) |β| = {:.9}  γ = {:.6}  r = {} m  m = {} kg  {}",
+            "    {:<10} at ({:.4}, {:.4}) m  β = ({:+.6}, {:+.6}) |β| = {:.9}  γ = {}  r = {} m  m = {} kg  {}",
             p.name,
             p.position.x,
             p.position.y,
             beta.x,
             beta.y,
             beta.length(),
-            p.u.gamma(),
-            p.radius,
-            p.mass,
+            gamma(p.u.gamma()),
+            number(p.radius),
+            number(p.mass),
             p.color.to_hex()
         );
     }
@@ -81,7 +96,7 @@ pub fn summary(path: &Path, s: &Scene) -> String {
     for o in &s.observers {
         let _ = writeln!(
             out,
-            "    {:<10} at ({:.3}, {:.3}, {:.3}) m looking at ({:.3}, {:.3}, {:.3})  |β| = {:.6}  γ = {:.6}",
+            "    {:<10} at ({:.3}, {:.3}, {:.3}) m looking at ({:.3}, {:.3}, {:.3})  |β| = {:.6}  γ = {}",
             o.name,
             o.position.x,
             o.position.y,
@@ -90,10 +105,20 @@ pub fn summary(path: &Path, s: &Scene) -> String {
             o.look_at.y,
             o.look_at.z,
             o.u.beta().length(),
-            o.u.gamma()
+            gamma(o.u.gamma())
         );
     }
     out
+}
+
+/// γ to six decimals below 10⁶, in exponent form above (never inf: the
+/// scene loader holds |u| ≤ 10¹²).
+fn gamma(g: f64) -> String {
+    if g < 1e6 {
+        format!("{g:.6}")
+    } else {
+        format!("{g:.6e}")
+    }
 }
 
 fn list(items: &[&str]) -> String {

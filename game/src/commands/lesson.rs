@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use crate::lesson::headless::Outcome;
+use crate::output::Stop;
 use crate::lesson::supervise::{self, Limits};
 
 /// The options of `lesson` beyond the files.
@@ -78,19 +79,20 @@ fn one(path: &Path, limits: Limits, json: bool) -> u8 {
             return 1;
         }
     };
-    if json {
-        match serde_json::to_string(&outcome) {
-            Ok(text) => println!("{text}"),
-            Err(e) => eprintln!("cannot write the outcome: {e}"),
+    match show(&outcome, json) {
+        Ok(()) => {}
+        // The reader closed stdout (`| head`): stop quietly.
+        Err(Stop::Closed) => return 0,
+        Err(Stop::Failed(msg)) => {
+            crate::errln!("{msg}");
+            return 1;
         }
-    } else {
-        print_outcome(&outcome);
     }
     let failed = outcome.claims.iter().filter(|c| !c.ok).count();
     if outcome.error.is_some() {
         eprintln!("{}: the lesson was stopped (reason above)", path.display());
     } else if failed > 0 {
-        eprintln!(
+        crate::errln!(
             "{}: {failed} of {} claims failed",
             path.display(),
             outcome.claims.len()
@@ -99,18 +101,26 @@ fn one(path: &Path, limits: Limits, json: bool) -> u8 {
     outcome.status()
 }
 
-fn print_outcome(outcome: &Outcome) {
-    println!("== {}", outcome.file);
+/// Prints the outcome: JSON, or one line per answer and claim.
+fn show(outcome: &Outcome, json: bool) -> Result<(), Stop> {
+    if json {
+        // One compact object per line (one line per lesson file).
+        return match serde_json::to_string(outcome) {
+            Ok(text) => crate::outln!("{text}"),
+            Err(e) => Err(Stop::Failed(format!("cannot write the outcome: {e}"))),
+        };
+    }
+    crate::outln!("== {}", outcome.file)?;
     for (q, a) in &outcome.answers {
-        println!("? {q} -> {a}");
+        crate::outln!("? {q} -> {a}")?;
     }
     for c in &outcome.claims {
         let mark = if c.ok { "ok  " } else { "FAIL" };
-        println!("{mark} {}: {}", c.claim, c.detail);
+        crate::outln!("{mark} {}: {}", c.claim, c.detail)?;
     }
     match (&outcome.error, &outcome.finished) {
-        (Some(_), _) => {} // already on stderr
-        (None, Some(msg)) => println!("finished at t = {:.3} s: {msg}", outcome.t),
-        (None, None) => println!("stopped at t = {:.3} s without finish()", outcome.t),
+        (Some(_), _) => Ok(()), // already on stderr
+        (None, Some(msg)) => crate::outln!("finished at t = {:.3} s: {msg}", outcome.t),
+        (None, None) => crate::outln!("stopped at t = {:.3} s without finish()", outcome.t),
     }
 }

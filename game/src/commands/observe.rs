@@ -83,7 +83,7 @@ pub fn run_named(
         None => match scene::load(path) {
             Ok(s) => run(path, at, &s.observers[0].name, vertices, effects),
             Err(e) => {
-                eprintln!("{e}");
+                crate::errln!("{e}");
                 ExitCode::FAILURE
             }
         },
@@ -93,26 +93,26 @@ pub fn run_named(
 /// Prints what `observer` sees at board time `at`.
 pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) -> ExitCode {
     if !at.is_finite() {
-        eprintln!("--at {at}: give a finite board time in seconds");
+        crate::errln!("--at {at}: give a finite board time in seconds");
         return ExitCode::FAILURE;
     }
     let scene = match scene::load(path) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
     let effects = match parse_effects(effects, scene.effects) {
         Ok(e) => e,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
     let Some(index) = scene.observers.iter().position(|o| o.name == observer) else {
         let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
-        eprintln!(
+        crate::errln!(
             "{}: no observer named \"{observer}\"; the scene has: {}",
             path.display(),
             names.join(", ")
@@ -123,12 +123,12 @@ pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) 
     billiard.advance_to(at);
     let report = report(&scene, &billiard, index, at, effects, vertices);
     match serde_json::to_string(&report) {
-        Ok(s) => {
-            println!("{s}");
-            ExitCode::SUCCESS
-        }
+        Ok(s) => match crate::outln!("{s}") {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(stop) => stop.exit(),
+        },
         Err(e) => {
-            eprintln!("cannot write the output: {e}");
+            crate::errln!("cannot write the output: {e}");
             ExitCode::FAILURE
         }
     }

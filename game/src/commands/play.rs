@@ -22,8 +22,8 @@ pub struct Extras {
     pub cave: Option<PathBuf>,
 }
 
-/// Loads the scene (the default one when `None`) or the lesson (`.py`) and
-/// runs the game.
+/// Loads the scene (the built-in default when `None`) or the lesson
+/// (`.py`) and runs the game.
 pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     let Extras {
         screenshot,
@@ -34,19 +34,20 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     let cave = match cave.as_deref().map(crate::cave::load).transpose() {
         Ok(c) => c,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
-    let path = path.unwrap_or(Path::new(crate::DEFAULT_SCENE));
-    let (game, lesson) = if path.extension().is_some_and(|e| e == "py") {
+    let (game, lesson) = if let Some(path) = path
+        && path.extension().is_some_and(|e| e == "py")
+    {
         if !path.is_file() {
-            eprintln!("{}: no such lesson file", path.display());
+            crate::errln!("{}: no such lesson file", path.display());
             return ExitCode::FAILURE;
         }
         // A lesson that fails before it starts a game leaves the default
         // scene on the table, with the traceback beside it.
-        let fallback = || match scene::load(Path::new(crate::DEFAULT_SCENE)) {
+        let fallback = || match crate::assets::default_scene() {
             Ok(s) => GameState::new(s),
             Err(_) => GameState::new(
                 scene::Scene::empty(glam::DVec2::new(2.84, 1.42), None)
@@ -56,15 +57,19 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         match LessonHost::load(path, fallback) {
             Ok((host, game)) => (game, Some(host)),
             Err(e) => {
-                eprintln!("{e}");
+                crate::errln!("{e}");
                 return ExitCode::FAILURE;
             }
         }
     } else {
-        match scene::load(path) {
+        let loaded = match path {
+            Some(path) => scene::load(path),
+            None => crate::assets::default_scene(),
+        };
+        match loaded {
             Ok(s) => (GameState::new(s), None),
             Err(e) => {
-                eprintln!("{e}");
+                crate::errln!("{e}");
                 return ExitCode::FAILURE;
             }
         }
@@ -79,7 +84,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     }) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             ExitCode::FAILURE
         }
     }

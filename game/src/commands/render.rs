@@ -38,7 +38,7 @@ pub fn run(
     view: ViewKind,
 ) -> ExitCode {
     let fail = |msg: String| {
-        eprintln!("{msg}");
+        crate::errln!("{msg}");
         ExitCode::FAILURE
     };
     if !at.is_finite() {

@@ -34,6 +34,7 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
     };
     let mut billiard = Billiard::from_scene(&scene);
     billiard.set_history(Some(0.0));
+    crate::interrupt::watch();
     let result = match out {
         Some(path) => match std::fs::File::create(path) {
             Ok(f) => stream(&mut billiard, until, BufWriter::new(f)),
@@ -60,12 +61,9 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
     }
     match result {
         Ok(Finish::Done) => ExitCode::SUCCESS,
-        Ok(Finish::Interrupted(t)) => {
-            eprintln!(
-                "interrupted at board time {t} s: the collisions up to then and the state then were written"
-            );
-            ExitCode::from(130)
-        }
+        Ok(Finish::Interrupted(t)) => crate::interrupt::exit_code(&format!(
+            "at board time {t} s; the collisions up to then and the state then were written"
+        )),
         // The reader went away (`| head`): not an error of ours.
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(e) => {

@@ -144,7 +144,8 @@ pub fn run_reporting(
     // Enough frames for `until` at any time scale the lesson sets, with a
     // hard cap against a lesson that pauses forever.
     let max_frames = 10_000_000u64;
-    while host.running() && frames < max_frames {
+    // Ctrl-C (`crate::interrupt`) stops between frames.
+    while host.running() && frames < max_frames && !crate::interrupt::interrupted() {
         let (finished, question) = host.with_ui(|ui| {
             let q = ui
                 .question

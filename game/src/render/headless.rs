@@ -42,8 +42,10 @@ impl Image {
 
     /// Writes a PNG.
     pub fn save_png(&self, path: &Path) -> Result<(), String> {
-        let file = std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), self.width, self.height);
+        // Encoded in memory, then written in one checked write: a buffered
+        // file writer would drop the error of its last flush (a full disk).
+        let mut bytes = Vec::new();
+        let mut encoder = png::Encoder::new(&mut bytes, self.width, self.height);
         encoder.set_color(png::ColorType::Rgba);
         encoder.set_depth(png::BitDepth::Eight);
         let mut writer = encoder
@@ -51,7 +53,9 @@ impl Image {
             .map_err(|e| format!("{}: {e}", path.display()))?;
         writer
             .write_image_data(&self.rgba)
-            .map_err(|e| format!("{}: {e}", path.display()))
+            .and_then(|()| writer.finish())
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        crate::output::write_file(path, &bytes)
     }
 
     /// Reads a PNG written by [`Self::save_png`].
