@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use lightcone::{commands, render};
+use lightcone::{commands, play, render};
 
 #[derive(Parser)]
 #[command(
@@ -40,6 +40,16 @@ enum Command {
         /// with its off-axis projection from the (tracked) head.
         #[arg(long)]
         cave: Option<PathBuf>,
+        /// Open at board time T (s), paused (repeatable screenshots); a
+        /// scene only.
+        #[arg(long)]
+        at: Option<f64>,
+        /// Open on this view.
+        #[arg(long, value_enum)]
+        view: Option<PlayView>,
+        /// Open with the camera straight above the table.
+        #[arg(long)]
+        top: bool,
     },
     /// The simulated head tracker: publish head motion (a path, or a
     /// recorded CSV track) with noise and faults on an iceoryx2 service.
@@ -182,7 +192,39 @@ enum BenchWhat {
     Tracker,
 }
 
+/// The views `play --view` opens on.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum PlayView {
+    Seen,
+    Truth,
+    Split,
+}
+
+/// Mesa's and the windowing libraries' clients print `XDG_RUNTIME_DIR is
+/// invalid or not set` (twice) when it is missing, as under `xvfb-run` or
+/// `su`: give them a private one (mode 0700) before any thread starts.
+fn private_runtime_dir() {
+    use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
+    let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| {
+        std::fs::metadata(&d).is_ok_and(|m| m.is_dir() && m.permissions().mode() & 0o077 == 0)
+    });
+    if valid {
+        return;
+    }
+    let uid = std::fs::metadata("/proc/self").map_or(0, |m| m.uid());
+    let dir = std::env::temp_dir().join(format!("lightcone-runtime-{uid}"));
+    let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
+    let ours = std::fs::metadata(&dir)
+        .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o077 == 0);
+    if ours {
+        // SAFETY: called first thing in `main`, before any thread exists,
+        // so nothing reads the environment concurrently.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    }
+}
+
 fn main() -> ExitCode {
+    private_runtime_dir();
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Check { scenes }) => commands::check::run(&scenes),
@@ -229,6 +271,9 @@ fn main() -> ExitCode {
             frames,
             tracker,
             cave,
+            at,
+            view,
+            top,
         }) => commands::play::run(
             scene.as_deref(),
             commands::play::Extras {
@@ -236,6 +281,13 @@ fn main() -> ExitCode {
                 frames,
                 tracker,
                 cave,
+                at,
+                view: view.map(|v| match v {
+                    PlayView::Seen => play::state::ViewMode::Seen,
+                    PlayView::Truth => play::state::ViewMode::Truth,
+                    PlayView::Split => play::state::ViewMode::Split,
+                }),
+                top,
             },
         ),
         Some(Command::Tracker { args }) => commands::tracker::run(args),

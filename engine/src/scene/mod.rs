@@ -12,7 +12,9 @@ mod raw;
 mod validate;
 
 pub use error::{SceneError, SceneErrors};
-pub use model::{Color, Effect, Effects, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec};
+pub use model::{
+    BeforeStart, Color, Effect, Effects, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec,
+};
 
 use std::path::Path;
 

@@ -7,7 +7,7 @@ use lightcone_engine::scene;
 
 use crate::lesson::LessonHost;
 use crate::play::app::{self, Options};
-use crate::play::state::GameState;
+use crate::play::state::{GameState, ViewMode};
 
 /// The options of `play` beyond the scene.
 #[derive(Default)]
@@ -20,6 +20,12 @@ pub struct Extras {
     pub tracker: Option<String>,
     /// CAVE description.
     pub cave: Option<PathBuf>,
+    /// Open a scene at this board time, paused.
+    pub at: Option<f64>,
+    /// Open on this view.
+    pub view: Option<ViewMode>,
+    /// Open with the camera above the table.
+    pub top: bool,
 }
 
 /// Loads the scene (the default one when `None`) or the lesson (`.py`) and
@@ -30,7 +36,16 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         frames,
         tracker,
         cave,
+        at,
+        view,
+        top,
     } = extras;
+    if let Some(t) = at
+        && !(t.is_finite() && t >= 0.0)
+    {
+        eprintln!("--at {t}: give a board time of 0 s or more");
+        return ExitCode::FAILURE;
+    }
     let cave = match cave.as_deref().map(crate::cave::load).transpose() {
         Ok(c) => c,
         Err(e) => {
@@ -39,7 +54,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         }
     };
     let path = path.unwrap_or(Path::new(crate::DEFAULT_SCENE));
-    let (game, lesson) = if path.extension().is_some_and(|e| e == "py") {
+    let (mut game, lesson) = if path.extension().is_some_and(|e| e == "py") {
         if !path.is_file() {
             eprintln!("{}: no such lesson file", path.display());
             return ExitCode::FAILURE;
@@ -62,13 +77,36 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         }
     } else {
         match scene::load(path) {
-            Ok(s) => (GameState::new(s), None),
+            Ok(s) => {
+                // A scene opens paused on its title and description.
+                let mut game = GameState::new(s);
+                game.paused = true;
+                game.intro = true;
+                (game, None)
+            }
             Err(e) => {
                 eprintln!("{e}");
                 return ExitCode::FAILURE;
             }
         }
     };
+    if let Some(t) = at {
+        if lesson.is_some() {
+            eprintln!("--at is for scenes: a lesson runs its own time");
+            return ExitCode::FAILURE;
+        }
+        game.billiard.advance_to(t);
+        game.live_time = t;
+        game.view_time = t;
+        game.paused = true;
+        game.intro = false;
+    }
+    if let Some(v) = view {
+        game.view = v;
+    }
+    if top {
+        game.top_view();
+    }
     match app::run(Options {
         game,
         lesson,
