@@ -36,10 +36,19 @@ fn shot(args: &[&str], name: &str, frames: u32) -> (Image, serde_json::Value) {
     (img, layout)
 }
 
+/// `Err(message)` unless `cond`.
+macro_rules! ensure {
+    ($cond:expr, $($msg:tt)+) => {
+        if !$cond {
+            return Err(format!($($msg)+));
+        }
+    };
+}
+
 /// The whole table inside every view, with a margin, and large enough to
 /// fill it on one axis; every puck marked ≥ 30 px across in its colour.
-fn check(name: &str, img: &Image, layout: &serde_json::Value, pucks: usize) {
-    assert_eq!((img.width, img.height), (1280, 720));
+fn check(name: &str, img: &Image, layout: &serde_json::Value, pucks: usize) -> Result<(), String> {
+    ensure!((img.width, img.height) == (1280, 720), "{name}: size");
     let views = layout["views"].as_array().unwrap();
     for v in views {
         let r: Vec<f64> = v["rect"]
@@ -53,7 +62,7 @@ fn check(name: &str, img: &Image, layout: &serde_json::Value, pucks: usize) {
             ((r[0] + r[2]).floor() as u32).min(img.width) - 1,
             ((r[1] + r[3]).floor() as u32).min(img.height) - 1,
         );
-        assert!(x1 > x0 + 200, "{name}: a view only {} px wide", x1 - x0);
+        ensure!(x1 > x0 + 200, "{name}: a view only {} px wide", x1 - x0);
         // The bounding box of the table's pixels.
         let (mut bx0, mut bx1, mut by0, mut by1) = (u32::MAX, 0, u32::MAX, 0);
         for y in y0..=y1 {
@@ -66,9 +75,9 @@ fn check(name: &str, img: &Image, layout: &serde_json::Value, pucks: usize) {
                 }
             }
         }
-        assert!(bx1 > bx0, "{name}: no table in view {r:?}");
+        ensure!(bx1 > bx0, "{name}: no table in view {r:?}");
         let m = 4;
-        assert!(
+        ensure!(
             bx0 >= x0 + m && bx1 + m <= x1 && by0 >= y0 + m && by1 + m <= y1,
             "{name}: the table [{bx0}, {bx1}] × [{by0}, {by1}] is cut by the view \
              [{x0}, {x1}] × [{y0}, {y1}]"
@@ -77,16 +86,15 @@ fn check(name: &str, img: &Image, layout: &serde_json::Value, pucks: usize) {
             f64::from(bx1 - bx0) / f64::from(x1 - x0),
             f64::from(by1 - by0) / f64::from(y1 - y0),
         );
-        assert!(
+        ensure!(
             fw > 0.7 || fh > 0.7,
             "{name}: the table fills only {fw:.2} × {fh:.2} of its view"
         );
     }
     // Every puck in every view, marked at least 30 px across.
     let marks = layout["pucks"].as_array().unwrap();
-    assert_eq!(
-        marks.len(),
-        pucks * views.len(),
+    ensure!(
+        marks.len() == pucks * views.len(),
         "{name}: pucks missing from the views: {layout}"
     );
     for m in marks {
@@ -117,12 +125,13 @@ fn check(name: &str, img: &Image, layout: &serde_json::Value, pucks: usize) {
             }
         }
         let across = hi - lo + 1.0;
-        assert!(
+        ensure!(
             across >= 30.0,
             "{name}: puck {} is {across} px across at ({cx:.0}, {cy:.0})",
             m["name"]
         );
     }
+    Ok(())
 }
 
 fn scenes() -> Vec<PathBuf> {
@@ -139,6 +148,7 @@ fn every_scene_and_lesson_shows_the_whole_table_and_every_puck() {
     // A scene, with a lesson's panel open: a two-line lesson that starts it.
     let dir = std::env::temp_dir().join(format!("lightcone-view-lessons-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    let mut failures = Vec::new();
     for scene in scenes() {
         let name = scene.file_stem().unwrap().to_string_lossy().into_owned();
         let lesson = dir.join(format!("{name}.py"));
@@ -154,18 +164,24 @@ fn every_scene_and_lesson_shows_the_whole_table_and_every_puck() {
         let pucks = lightcone_engine::scene::load(&scene).unwrap().pucks.len();
         let lesson = lesson.display().to_string();
         let (img, layout) = shot(&["play", &lesson], &name, 4);
-        check(&name, &img, &layout, pucks);
+        failures.extend(check(&name, &img, &layout, pucks).err());
     }
     // The shipped lessons, as they open.
-    for entry in std::fs::read_dir(repo().join("scripts/lessons")).unwrap() {
-        let path = entry.unwrap().path();
+    let mut lessons: Vec<PathBuf> = std::fs::read_dir(repo().join("scripts/lessons"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    lessons.sort();
+    for path in lessons {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         let rel = Path::new("scripts/lessons").join(path.file_name().unwrap());
         let (img, layout) = shot(&["play", &rel.display().to_string()], &name, 4);
         let pucks = layout["scene_pucks"].as_u64().unwrap() as usize;
         assert!(pucks > 0, "{name}: no puck in the scene");
-        check(&name, &img, &layout, pucks);
+        failures.extend(check(&name, &img, &layout, pucks).err());
     }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -182,7 +198,7 @@ fn the_split_view_and_the_top_view_frame_the_table_too() {
         "split",
         3,
     );
-    check("split", &img, &layout, 3);
+    check("split", &img, &layout, 3).unwrap();
     let (img, layout) = shot(
         &[
             "play",
@@ -194,5 +210,5 @@ fn the_split_view_and_the_top_view_frame_the_table_too() {
         "top",
         3,
     );
-    check("top", &img, &layout, 10);
+    check("top", &img, &layout, 10).unwrap();
 }

@@ -50,6 +50,10 @@ enum Command {
         /// Open with the camera straight above the table.
         #[arg(long)]
         top: bool,
+        /// Effects shown: `scene` (default), `all`, `none`, or a
+        /// comma-separated list, as for `observe`.
+        #[arg(long)]
+        effects: Option<String>,
     },
     /// The simulated head tracker: publish head motion (a path, or a
     /// recorded CSV track) with noise and faults on an iceoryx2 service.
@@ -274,6 +278,7 @@ fn main() -> ExitCode {
             at,
             view,
             top,
+            effects,
         }) => commands::play::run(
             scene.as_deref(),
             commands::play::Extras {
@@ -288,6 +293,7 @@ fn main() -> ExitCode {
                     PlayView::Split => play::state::ViewMode::Split,
                 }),
                 top,
+                effects,
             },
         ),
         Some(Command::Tracker { args }) => commands::tracker::run(args),

@@ -26,6 +26,8 @@ pub struct Extras {
     pub view: Option<ViewMode>,
     /// Open with the camera above the table.
     pub top: bool,
+    /// Effects shown (`observe`'s syntax), instead of the scene's.
+    pub effects: Option<String>,
 }
 
 /// Loads the scene (the default one when `None`) or the lesson (`.py`) and
@@ -39,6 +41,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         at,
         view,
         top,
+        effects,
     } = extras;
     if let Some(t) = at
         && !(t.is_finite() && t >= 0.0)
@@ -103,6 +106,15 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     }
     if let Some(v) = view {
         game.view = v;
+    }
+    if let Some(spec) = effects {
+        match crate::commands::observe::parse_effects(&spec, game.effects) {
+            Ok(e) => game.effects = e,
+            Err(e) => {
+                eprintln!("{e}");
+                return ExitCode::FAILURE;
+            }
+        }
     }
     if top {
         game.top_view();

@@ -326,11 +326,8 @@ fn physics_marks(
 pub fn doppler_legend(ui: &mut egui::Ui) {
     ui.horizontal_wrapped(|ui| {
         ui.small("Doppler:");
-        ui.colored_label(
-            egui::Color32::from_rgb(140, 150, 255),
-            "approaching → bluer",
-        );
-        ui.colored_label(egui::Color32::from_rgb(255, 130, 110), "receding → redder");
+        ui.colored_label(egui::Color32::from_rgb(140, 150, 255), "approaching: bluer");
+        ui.colored_label(egui::Color32::from_rgb(255, 130, 110), "receding: redder");
     });
     ui.small("hue shifted, brightness kept; the ring keeps each puck's own colour");
 }

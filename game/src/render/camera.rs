@@ -39,49 +39,66 @@ pub fn basis(forward: DVec3) -> (DVec3, DVec3) {
 /// are ignored; with none in front, looks at their mean direction with
 /// a 60° field.
 pub fn fit(points: &[DVec3], aspect: f64, margin: f64, zoom: f64) -> Camera {
-    let centroid = points.iter().sum::<DVec3>() / points.len().max(1) as f64;
-    let mut forward = centroid.normalize_or(DVec3::Y);
     let aspect = if aspect.is_finite() && aspect > 0.0 {
         aspect
     } else {
         1.0
     };
-    let mut half = (1.0, 1.0);
-    // Re-aim at the middle of the points' angular extent until centred
-    // (a few rounds suffice: each one halves the offset or better).
-    for _ in 0..12 {
-        let (right, up) = basis(forward);
-        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for p in points {
-            let z = p.dot(forward);
-            if z <= 1e-6 * p.length() {
-                continue;
-            }
-            let (x, y) = (p.dot(right) / z, p.dot(up) / z);
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-        }
-        if x0 > x1 {
-            return Camera {
-                forward,
-                fovy: std::f64::consts::FRAC_PI_3,
-            };
-        }
-        half = ((x1 - x0) / 2.0, (y1 - y0) / 2.0);
-        let (mx, my) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
-        forward = (forward + right * mx + up * my).normalize();
-        if mx.abs() < 1e-6 && my.abs() < 1e-6 {
-            break;
-        }
-    }
-    let tan_half = half.1.max(half.0 / aspect) * (1.0 + margin);
     let zoom = if zoom.is_finite() && zoom > 0.0 {
         zoom
     } else {
         1.0
     };
+    let ahead: Vec<DVec3> = points
+        .iter()
+        .filter(|p| p.length() > 1e-9)
+        .map(|p| p.normalize())
+        .collect();
+    // Start from the mean direction to the points, which sees all of them
+    // whenever they span less than a half space.
+    let mut forward = ahead.iter().sum::<DVec3>().normalize_or(DVec3::Y);
+    // The points' extents in the image plane of `f` (x0, x1, y0, y1), or
+    // `None` if one is not in front of it.
+    let extents = |f: DVec3| {
+        let (right, up) = basis(f);
+        let (mut e, mut ok) = ([f64::MAX, f64::MIN, f64::MAX, f64::MIN], true);
+        for p in &ahead {
+            let z = p.dot(f);
+            if z <= 1e-3 {
+                ok = false;
+                break;
+            }
+            let (x, y) = (p.dot(right) / z, p.dot(up) / z);
+            e = [e[0].min(x), e[1].max(x), e[2].min(y), e[3].max(y)];
+        }
+        (ok && !ahead.is_empty()).then_some(e)
+    };
+    let Some(mut e) = extents(forward) else {
+        return Camera {
+            forward,
+            fovy: std::f64::consts::FRAC_PI_3,
+        };
+    };
+    // Re-aim, damped, at the middle of the extents until centred; a step
+    // that would put a point behind the camera is not taken.
+    for _ in 0..40 {
+        let (right, up) = basis(forward);
+        let (mx, my) = ((e[0] + e[1]) / 2.0, (e[2] + e[3]) / 2.0);
+        if mx.abs() < 1e-7 && my.abs() < 1e-7 {
+            break;
+        }
+        let next = (forward + (right * mx + up * my) * 0.7).normalize();
+        match extents(next) {
+            Some(n) => {
+                forward = next;
+                e = n;
+            }
+            None => break,
+        }
+    }
+    let half_x = e[0].abs().max(e[1].abs());
+    let half_y = e[2].abs().max(e[3].abs());
+    let tan_half = half_y.max(half_x / aspect) * (1.0 + margin);
     let fovy = 2.0 * (tan_half / zoom).atan();
     Camera {
         forward,
@@ -163,6 +180,26 @@ mod tests {
             let (x, _) = ndc(&z, aspect, points[1]).unwrap();
             let (x1, _) = ndc(&cam, aspect, points[1]).unwrap();
             assert!((x - 2.0 * x1).abs() < 1e-3);
+        }
+    }
+
+    #[test]
+    fn from_low_beside_a_corner_every_corner_is_in_view() {
+        // The simultaneity scene's off-centre eye, low by the near corner.
+        let eye = DVec3::new(0.4, -0.8, 0.5);
+        let points: Vec<DVec3> = table_corners(glam::DVec2::new(2.84, 1.42), 0.04, 0.06)
+            .into_iter()
+            .map(|p| p - eye)
+            .collect();
+        for aspect in [0.8, 1.6] {
+            let cam = fit(&points, aspect, 0.08, 1.0);
+            let mut widest = 0.0f64;
+            for &p in &points {
+                let (x, y) = ndc(&cam, aspect, p).unwrap();
+                assert!(x.abs() <= 1.0 / 1.08 + 1e-9 && y.abs() <= 1.0 / 1.08 + 1e-9);
+                widest = widest.max(x.abs()).max(y.abs());
+            }
+            assert!(widest > 0.85, "{aspect}: {widest}");
         }
     }
 
