@@ -39,7 +39,8 @@ fn shot(args: &[&str], name: &str, frames: u32) -> (Image, serde_json::Value) {
 /// `Err(message)` unless `cond`.
 macro_rules! ensure {
     ($cond:expr, $($msg:tt)+) => {
-        if !$cond {
+        let holds: bool = $cond;
+        if !holds {
             return Err(format!($($msg)+));
         }
     };

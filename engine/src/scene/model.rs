@@ -512,11 +512,12 @@ impl Scene {
     }
 
     /// The observer used when a scene names none: standing at rest beside
-    /// the long side, eye 0.9 m above the board, looking at its centre.
+    /// the long side, 1.25 m back and 1.6 m above the board (high enough
+    /// that the table, seen whole, is not a sliver), looking at its centre.
     pub fn default_observer(size: DVec2) -> ObserverSpec {
         ObserverSpec {
             name: "eye".to_owned(),
-            position: DVec3::new(size.x / 2.0, -0.9, 0.9),
+            position: DVec3::new(size.x / 2.0, -1.25, 1.6),
             look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
             u: ProperVelocity::ZERO,
         }

@@ -38,7 +38,7 @@ pub const MARKER_PX: f32 = 32.0;
 /// dark to see on the dark room (a black puck).
 pub fn ring_colour(c: lightcone_engine::scene::Color) -> egui::Color32 {
     let y = 0.2126 * f32::from(c.r) + 0.7152 * f32::from(c.g) + 0.0722 * f32::from(c.b);
-    if y < 90.0 {
+    if y < 40.0 {
         let mix = |x: u8| ((f32::from(x) + 200.0) / 2.0) as u8;
         egui::Color32::from_rgb(mix(c.r), mix(c.g), mix(c.b))
     } else {
