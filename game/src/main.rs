@@ -144,6 +144,25 @@ enum Command {
         #[arg(long, value_enum, default_value = "seen")]
         view: ViewArg,
     },
+    /// Draw the space-time diagram at board time T to a PNG: worldlines
+    /// (board x across, time up), the eye's past light cone along each
+    /// puck's path, the emission events it sees, collisions.
+    Diagram {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Board time of the observation, s.
+        #[arg(long)]
+        at: f64,
+        /// Observer name (default: the scene's first).
+        #[arg(long)]
+        observer: Option<String>,
+        /// Output PNG.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "1000x700")]
+        size: String,
+    },
     /// Run a Python lesson headless: its hooks, questions answered with
     /// the lesson's answer, and its claims checked. Fails if the lesson
     /// raises or a claim does not hold.
@@ -256,6 +275,13 @@ fn main() -> ExitCode {
             };
             commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
         }
+        Some(Command::Diagram {
+            scene,
+            at,
+            observer,
+            out,
+            size,
+        }) => commands::diagram::run(&scene, at, observer.as_deref(), &out, &size),
         Some(Command::Lesson {
             lesson,
             until,

@@ -3,6 +3,7 @@
 //!
 //! * [`camera`]: framing the table (direction and field of view from a
 //!   fixed eye);
+//! * [`diagram`]: the space-time diagram, drawn on the CPU;
 //! * [`frame`]: turns an observer's view into a triangle list in the
 //!   observer's frame, relative to the eye (f32 only here);
 //! * [`pipeline`]: the wgpu pipeline (`scene.wgsl` beside it), with
@@ -11,6 +12,7 @@
 //! * [`headless`]: render to a PNG (`lightcone render`, the image tests).
 
 pub mod camera;
+pub mod diagram;
 pub mod frame;
 pub mod gpu;
 pub mod headless;
