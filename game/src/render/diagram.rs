@@ -81,9 +81,9 @@ impl Canvas {
             return;
         }
         let i = 4 * (yi as usize * self.img.width as usize + xi as usize);
-        for k in 0..3 {
-            let old = f64::from(self.img.rgba[i + k]);
-            self.img.rgba[i + k] = (old + (f64::from(rgb[k]) - old) * alpha).round() as u8;
+        for (px, &new) in self.img.rgba[i..i + 3].iter_mut().zip(&rgb) {
+            let old = f64::from(*px);
+            *px = (old + (f64::from(new) - old) * alpha).round() as u8;
         }
     }
 
@@ -280,7 +280,7 @@ mod tests {
                 let report =
                     crate::commands::observe::report(&scene, &billiard, 0, t, scene.effects, false);
                 for (i, e) in drawn.emissions.iter().enumerate() {
-                    let r = &report.pucks[i].emission;
+                    let r = &report.pucks[i].centre.emission;
                     let reported = Event::new(r.t, DVec3::from(r.position));
                     let optics = emission::solve(
                         billiard.worldline(i),
