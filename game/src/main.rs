@@ -54,6 +54,9 @@ enum Command {
         /// comma-separated list, as for `observe`.
         #[arg(long)]
         effects: Option<String>,
+        /// Open with the live space-time diagram shown.
+        #[arg(long)]
+        diagram: bool,
     },
     /// The simulated head tracker: publish head motion (a path, or a
     /// recorded CSV track) with noise and faults on an iceoryx2 service.
@@ -305,6 +308,7 @@ fn main() -> ExitCode {
             view,
             top,
             effects,
+            diagram,
         }) => commands::play::run(
             scene.as_deref(),
             commands::play::Extras {
@@ -320,6 +324,7 @@ fn main() -> ExitCode {
                 }),
                 top,
                 effects,
+                diagram,
             },
         ),
         Some(Command::Tracker { args }) => commands::tracker::run(args),

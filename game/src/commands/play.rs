@@ -28,6 +28,8 @@ pub struct Extras {
     pub top: bool,
     /// Effects shown (`observe`'s syntax), instead of the scene's.
     pub effects: Option<String>,
+    /// Show the live space-time diagram.
+    pub diagram: bool,
 }
 
 /// Loads the scene (the default one when `None`) or the lesson (`.py`) and
@@ -42,6 +44,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         view,
         top,
         effects,
+        diagram,
     } = extras;
     if let Some(t) = at
         && !(t.is_finite() && t >= 0.0)
@@ -119,6 +122,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     if top {
         game.top_view();
     }
+    game.show.diagram = diagram;
     match app::run(Options {
         game,
         lesson,

@@ -312,6 +312,7 @@ impl App {
             KeyCode::Digit7 => s.show.trails = !s.show.trails,
             KeyCode::Digit8 => s.show.ghost = !s.show.ghost,
             KeyCode::Digit9 => s.show.arrows = !s.show.arrows,
+            KeyCode::KeyY => s.show.diagram = !s.show.diagram,
             KeyCode::KeyV => s.top_view(),
             KeyCode::KeyG => {
                 let n = s.billiard.len();
@@ -561,6 +562,7 @@ fn panels(
                     ui.checkbox(&mut s.show.ghost, "ghost (8)");
                     ui.checkbox(&mut s.show.arrows, "arrows (9)");
                 });
+                ui.checkbox(&mut s.show.diagram, "space-time diagram (Y)");
                 if s.effects.doppler {
                     super::overlay::doppler_legend(ui);
                 }
@@ -658,14 +660,25 @@ fn panels(
             });
         left = ui.available_rect_before_wrap().left() * ppp;
     }
+    if state.show.diagram {
+        let mut open = true;
+        egui::Window::new("space-time diagram")
+            .open(&mut open)
+            .default_pos(egui::pos2(left / ppp + 12.0, size.1 as f32 / ppp - 340.0))
+            .default_width(420.0)
+            .show(ctx, |ui| super::overlay::diagram_panel(ui, state));
+        state.show.diagram = open;
+    }
     if state.intro {
         intro(state, ctx, (left + right) / 2.0 / ppp, 12.0);
     }
     if !hud.clocks {
         return (left, right);
     }
+    // Under windows (the diagram) and the intro: the background layer,
+    // drawn within the views.
     let painter = ctx.layer_painter(egui::LayerId::new(
-        egui::Order::Foreground,
+        egui::Order::Background,
         egui::Id::unique("clocks"),
     ));
     let rects = layout(state.view, left, right - left, size.1 as f32);

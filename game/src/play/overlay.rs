@@ -331,3 +331,58 @@ pub fn doppler_legend(ui: &mut egui::Ui) {
     });
     ui.small("hue shifted, brightness kept; the ring keeps each puck's own colour");
 }
+
+/// The live space-time diagram (see [`crate::render::diagram`]): board x
+/// across, board time up, for the eye looked through at the time shown.
+pub fn diagram_panel(ui: &mut egui::Ui, state: &GameState) {
+    use crate::render::diagram::{Mark, plot};
+    let p = plot(&state.scene, &state.billiard, state.eye().event);
+    let size = egui::vec2(ui.available_width().max(300.0), 260.0);
+    let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 0.0, egui::Color32::from_rgb(18, 18, 24));
+    let map = |(x, t): (f64, f64)| {
+        egui::pos2(
+            rect.left() + 6.0 + ((x - p.x.0) / (p.x.1 - p.x.0)) as f32 * (rect.width() - 12.0),
+            rect.bottom() - 6.0 - ((t - p.t.0) / (p.t.1 - p.t.0)) as f32 * (rect.height() - 12.0),
+        )
+    };
+    let rgb = |c: [u8; 3], a: f64| {
+        egui::Color32::from_rgba_unmultiplied(c[0], c[1], c[2], (a * 255.0) as u8)
+    };
+    for mark in &p.marks {
+        match mark {
+            Mark::Line {
+                points,
+                rgb: c,
+                width,
+                alpha,
+                dashed,
+            } => {
+                let stroke = egui::Stroke::new(*width as f32 * 0.7, rgb(*c, *alpha));
+                // Every fourth sample is plenty at this size.
+                let pts: Vec<egui::Pos2> = points.iter().step_by(4).map(|&q| map(q)).collect();
+                for (k, pair) in pts.windows(2).enumerate() {
+                    if !dashed || (k / 3) % 2 == 0 {
+                        painter.line_segment([pair[0], pair[1]], stroke);
+                    }
+                }
+            }
+            Mark::Cross { at } => {
+                let q = map(*at);
+                let s = egui::Stroke::new(1.5, egui::Color32::WHITE);
+                painter.line_segment([q - egui::vec2(4.0, 4.0), q + egui::vec2(4.0, 4.0)], s);
+                painter.line_segment([q + egui::vec2(-4.0, 4.0), q + egui::vec2(4.0, -4.0)], s);
+            }
+            Mark::Event { at, rgb: c } => {
+                painter.circle_filled(map(*at), 5.0, egui::Color32::WHITE);
+                painter.circle_filled(map(*at), 3.5, rgb(*c, 1.0));
+            }
+        }
+    }
+    ui.small(
+        "board x across, board time up (grid 0.5 m, 0.5 s; green: cushions). \
+         Dashed: the eye's past light cone along each puck's path; dots: the \
+         events seen now (top: the eye); crosses: collisions.",
+    );
+}

@@ -69,6 +69,8 @@ pub struct Overlays {
     /// Velocity arrows: the board velocity now (truth) or at emission
     /// (seen), the distance covered in half a second.
     pub arrows: bool,
+    /// The live space-time diagram, in its own window (key Y).
+    pub diagram: bool,
 }
 
 impl Default for Overlays {
@@ -77,6 +79,7 @@ impl Default for Overlays {
             trails: true,
             ghost: true,
             arrows: true,
+            diagram: false,
         }
     }
 }

@@ -118,6 +118,182 @@ impl Canvas {
     }
 }
 
+/// One thing drawn, in diagram coordinates (board x in m, board time in s).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Mark {
+    /// A polyline.
+    Line {
+        /// Its points (x, t).
+        points: Vec<(f64, f64)>,
+        /// sRGB colour.
+        rgb: [u8; 3],
+        /// Width, px.
+        width: f64,
+        /// Opacity, 0–1.
+        alpha: f64,
+        /// Dashed.
+        dashed: bool,
+    },
+    /// An event: a disc ringed in white.
+    Event {
+        /// Where (x, t).
+        at: (f64, f64),
+        /// sRGB colour.
+        rgb: [u8; 3],
+    },
+    /// A collision: a white cross.
+    Cross {
+        /// Where (x, t).
+        at: (f64, f64),
+    },
+}
+
+/// The diagram as marks, with its ranges.
+pub struct Plot {
+    /// Board x shown, m.
+    pub x: (f64, f64),
+    /// Board time shown, s.
+    pub t: (f64, f64),
+    /// What to draw, back to front.
+    pub marks: Vec<Mark>,
+    /// The eye's observation event.
+    pub eye: Event,
+    /// Each puck's emission event: where the cone meets its worldline.
+    pub emissions: Vec<Event>,
+}
+
+/// The diagram of `scene` (its `billiard` run to at least `eye.t`) for
+/// an eye at observation event `eye`.
+pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
+    let t = eye.t;
+    let c = scene.c;
+    let lifts: Vec<DVec3> = scene
+        .pucks
+        .iter()
+        .map(|p| DVec3::new(0.0, 0.0, p.height / 2.0))
+        .collect();
+    let emissions: Vec<Event> = (0..billiard.len())
+        .map(|i| cone_crossing(billiard.worldline(i), lifts[i], eye, c))
+        .collect();
+    let earliest = emissions.iter().map(|e| e.t).fold(0.0f64, f64::min);
+    let span = (t - earliest).max(0.5);
+    let t_range = (earliest - 0.15 * span, t + 0.08 * span);
+    let size = scene.table.size;
+    let x_range = (
+        (-0.1f64).min(eye.position.x - 0.1),
+        (size.x + 0.1).max(eye.position.x + 0.1),
+    );
+    let mut marks = Vec::new();
+    let line =
+        |points: Vec<(f64, f64)>, rgb: [u8; 3], width: f64, alpha: f64, dashed: bool| Mark::Line {
+            points,
+            rgb,
+            width,
+            alpha,
+            dashed,
+        };
+    // Grid: every 0.5 m and 0.5 s, t = 0 and the cushions brighter.
+    let grid = [60, 60, 70];
+    let mut g = (x_range.0 / 0.5).ceil() * 0.5;
+    while g <= x_range.1 {
+        marks.push(line(
+            vec![(g, t_range.0), (g, t_range.1)],
+            grid,
+            1.0,
+            0.6,
+            false,
+        ));
+        g += 0.5;
+    }
+    let mut g = (t_range.0 / 0.5).ceil() * 0.5;
+    while g <= t_range.1 {
+        marks.push(line(
+            vec![(x_range.0, g), (x_range.1, g)],
+            grid,
+            1.0,
+            0.6,
+            false,
+        ));
+        g += 0.5;
+    }
+    marks.push(line(
+        vec![(x_range.0, 0.0), (x_range.1, 0.0)],
+        [150, 150, 160],
+        1.5,
+        0.9,
+        false,
+    ));
+    for x in [0.0, size.x] {
+        marks.push(line(
+            vec![(x, t_range.0), (x, t_range.1)],
+            [60, 140, 70],
+            2.0,
+            0.9,
+            false,
+        ));
+    }
+    // The eye's worldline (where it is now, at rest or not).
+    marks.push(line(
+        vec![(eye.position.x, t_range.0), (eye.position.x, t)],
+        [230, 230, 230],
+        1.5,
+        0.7,
+        false,
+    ));
+    const N: usize = 800;
+    let times: Vec<f64> = (0..=N)
+        .map(|k| t_range.0 + (t - t_range.0) * k as f64 / N as f64)
+        .collect();
+    let colours: Vec<[u8; 3]> = scene
+        .pucks
+        .iter()
+        .map(|p| {
+            let rgb = [p.color.r, p.color.g, p.color.b];
+            if u32::from(rgb[0]) + u32::from(rgb[1]) + u32::from(rgb[2]) < 120 {
+                [150, 150, 150]
+            } else {
+                rgb
+            }
+        })
+        .collect();
+    for (i, &rgb) in colours.iter().enumerate() {
+        let w = billiard.worldline(i);
+        // The cone's trace along this puck's path: dashed.
+        let trace = times
+            .iter()
+            .map(|&s| {
+                let p = w.position_at(s) + lifts[i];
+                (p.x, t - p.distance(eye.position) / c)
+            })
+            .collect();
+        marks.push(line(trace, rgb, 1.5, 0.55, true));
+        let path = times.iter().map(|&s| (w.position_at(s).x, s)).collect();
+        marks.push(line(path, rgb, 2.5, 1.0, false));
+    }
+    for k in billiard.collisions().iter().filter(|k| k.t <= t) {
+        marks.push(Mark::Cross {
+            at: (k.contact.x, k.t),
+        });
+    }
+    for (e, &rgb) in emissions.iter().zip(&colours) {
+        marks.push(Mark::Event {
+            at: (e.position.x, e.t),
+            rgb,
+        });
+    }
+    marks.push(Mark::Event {
+        at: (eye.position.x, t),
+        rgb: [255, 255, 255],
+    });
+    Plot {
+        x: x_range,
+        t: t_range,
+        marks,
+        eye,
+        emissions,
+    }
+}
+
 /// What the diagram shows, for tests and captions.
 pub struct Drawn {
     /// The image.
@@ -139,124 +315,62 @@ pub fn draw(
     height: u32,
 ) -> Drawn {
     let (eye, _) = super::frame::eye_of(scene, observer, t);
-    let c = scene.c;
-    let lifts: Vec<DVec3> = scene
-        .pucks
-        .iter()
-        .map(|p| DVec3::new(0.0, 0.0, p.height / 2.0))
-        .collect();
-    let emissions: Vec<Event> = (0..billiard.len())
-        .map(|i| cone_crossing(billiard.worldline(i), lifts[i], eye.event, c))
-        .collect();
-    let earliest = emissions.iter().map(|e| e.t).fold(0.0f64, f64::min);
-    let span = (t - earliest).max(0.5);
-    let t_range = (earliest - 0.15 * span, t + 0.08 * span);
-    let size = scene.table.size;
-    let x_range = (
-        (-0.1f64).min(eye.event.position.x - 0.1),
-        (size.x + 0.1).max(eye.event.position.x + 0.1),
-    );
+    let plot = plot(scene, billiard, eye.event);
     let mut cv = Canvas {
         img: Image {
             width,
             height,
             rgba: [18u8, 18, 24, 255].repeat(width as usize * height as usize),
         },
-        x: x_range,
-        t: t_range,
+        x: plot.x,
+        t: plot.t,
         margin: 24.0,
     };
-    // Grid: every 0.5 m and 0.5 s, t = 0 and the cushions brighter.
-    let grid = [60, 60, 70];
-    let mut g = (x_range.0 / 0.5).ceil() * 0.5;
-    while g <= x_range.1 {
-        let (a, b) = (cv.px(g, t_range.0), cv.px(g, t_range.1));
-        cv.line(a, b, 1.0, grid, 0.6);
-        g += 0.5;
-    }
-    let mut g = (t_range.0 / 0.5).ceil() * 0.5;
-    while g <= t_range.1 {
-        let (a, b) = (cv.px(x_range.0, g), cv.px(x_range.1, g));
-        cv.line(a, b, 1.0, grid, 0.6);
-        g += 0.5;
-    }
-    let (a, b) = (cv.px(x_range.0, 0.0), cv.px(x_range.1, 0.0));
-    cv.line(a, b, 1.5, [150, 150, 160], 0.9);
-    for x in [0.0, size.x] {
-        let (a, b) = (cv.px(x, t_range.0), cv.px(x, t_range.1));
-        cv.line(a, b, 2.0, [60, 140, 70], 0.9);
-    }
-    // The eye: its worldline and the observation event.
-    let (a, b) = (
-        cv.px(eye.event.position.x, t_range.0),
-        cv.px(eye.event.position.x, t),
-    );
-    cv.line(a, b, 1.5, [230, 230, 230], 0.7);
-    const N: usize = 800;
-    let times: Vec<f64> = (0..=N)
-        .map(|k| t_range.0 + (t - t_range.0) * k as f64 / N as f64)
-        .collect();
-    for (i, spec) in scene.pucks.iter().enumerate() {
-        let rgb = [spec.color.r, spec.color.g, spec.color.b];
-        let rgb = if u32::from(rgb[0]) + u32::from(rgb[1]) + u32::from(rgb[2]) < 120 {
-            [150, 150, 150]
-        } else {
-            rgb
-        };
-        let w = billiard.worldline(i);
-        // The cone's trace along this puck's path: dashed.
-        let trace: Vec<(f64, f64)> = times
-            .iter()
-            .map(|&s| {
-                let p = w.position_at(s) + lifts[i];
-                cv.px(p.x, t - p.distance(eye.event.position) / c)
-            })
-            .collect();
-        for (k, pair) in trace.windows(2).enumerate() {
-            if (k / 6) % 2 == 0 {
-                cv.line(pair[0], pair[1], 1.5, rgb, 0.55);
+    for mark in &plot.marks {
+        match mark {
+            Mark::Line {
+                points,
+                rgb,
+                width,
+                alpha,
+                dashed,
+            } => {
+                for (k, pair) in points.windows(2).enumerate() {
+                    if !dashed || (k / 6) % 2 == 0 {
+                        let (a, b) = (cv.px(pair[0].0, pair[0].1), cv.px(pair[1].0, pair[1].1));
+                        cv.line(a, b, *width, *rgb, *alpha);
+                    }
+                }
+            }
+            Mark::Cross { at } => {
+                let p = cv.px(at.0, at.1);
+                let white = [255, 255, 255];
+                cv.line(
+                    (p.0 - 5.0, p.1 - 5.0),
+                    (p.0 + 5.0, p.1 + 5.0),
+                    2.0,
+                    white,
+                    1.0,
+                );
+                cv.line(
+                    (p.0 - 5.0, p.1 + 5.0),
+                    (p.0 + 5.0, p.1 - 5.0),
+                    2.0,
+                    white,
+                    1.0,
+                );
+            }
+            Mark::Event { at, rgb } => {
+                let p = cv.px(at.0, at.1);
+                cv.disc(p, 7.0, [255, 255, 255]);
+                cv.disc(p, 5.0, *rgb);
             }
         }
-        // The worldline.
-        let line: Vec<(f64, f64)> = times
-            .iter()
-            .map(|&s| cv.px(w.position_at(s).x, s))
-            .collect();
-        for pair in line.windows(2) {
-            cv.line(pair[0], pair[1], 2.5, rgb, 1.0);
-        }
     }
-    // Collisions: white crosses at the contact events.
-    for k in billiard.collisions().iter().filter(|k| k.t <= t) {
-        let p = cv.px(k.contact.x, k.t);
-        cv.line(
-            (p.0 - 5.0, p.1 - 5.0),
-            (p.0 + 5.0, p.1 + 5.0),
-            2.0,
-            [255, 255, 255],
-            1.0,
-        );
-        cv.line(
-            (p.0 - 5.0, p.1 + 5.0),
-            (p.0 + 5.0, p.1 - 5.0),
-            2.0,
-            [255, 255, 255],
-            1.0,
-        );
-    }
-    // Emission events: discs ringed in white, and the eye's event.
-    for (i, e) in emissions.iter().enumerate() {
-        let spec = &scene.pucks[i];
-        let p = cv.px(e.position.x, e.t);
-        cv.disc(p, 7.0, [255, 255, 255]);
-        cv.disc(p, 5.0, [spec.color.r, spec.color.g, spec.color.b]);
-    }
-    let p = cv.px(eye.event.position.x, t);
-    cv.disc(p, 6.0, [255, 255, 255]);
     Drawn {
         image: cv.img,
-        eye: eye.event,
-        emissions,
+        eye: plot.eye,
+        emissions: plot.emissions,
     }
 }
 
