@@ -130,7 +130,10 @@ fn simulate_prints_the_documented_schema() {
             .collect();
         let first = kicks.iter().copied().fold(f64::INFINITY, f64::min);
         let last_kick = kicks.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        assert!(first >= previous && first <= 20.0, "collisions in the order processed");
+        assert!(
+            first >= previous && first <= 20.0,
+            "collisions in the order processed"
+        );
         assert!(first <= t + 1e-12 && t <= last_kick + 1e-12, "{c}");
         previous = first;
         xy(&c["contact"]);

@@ -33,6 +33,7 @@ fn one_puck(
         restitution: 1.0,
         effects,
         optics: Default::default(),
+        before_start: Default::default(),
         pucks: vec![PuckSpec {
             name: "red".into(),
             position,

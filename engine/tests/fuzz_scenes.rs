@@ -29,9 +29,28 @@ fn shipped() -> Vec<(String, String)> {
 
 /// Values that have broken parsers and engines before.
 const VALUES: &[&str] = &[
-    "1e308", "-1e308", "1e-300", "0", "-0.5", "nan", "inf", "-inf", "1e200", "1e20",
-    "0.9999999999999999", "1.0", "\"heavy\"", "[]", "[1e308, 1e308]", "[0.5]", "true",
-    "[nan, 0]", "{}", "\"\"", "-1", "1e-320",
+    "1e308",
+    "-1e308",
+    "1e-300",
+    "0",
+    "-0.5",
+    "nan",
+    "inf",
+    "-inf",
+    "1e200",
+    "1e20",
+    "0.9999999999999999",
+    "1.0",
+    "\"heavy\"",
+    "[]",
+    "[1e308, 1e308]",
+    "[0.5]",
+    "true",
+    "[nan, 0]",
+    "{}",
+    "\"\"",
+    "-1",
+    "1e-320",
 ];
 
 /// Lines worth inserting anywhere.
@@ -161,7 +180,10 @@ fn exercise(file: &str, text: &str) {
             }
             out += &serde_json::to_string(&StateLine::new(&b, b.time().min(until))).expect("json");
             // serde_json writes a non-finite f64 as null.
-            assert!(!out.contains("null"), "non-finite output for {file}:\n{text}\n{out}");
+            assert!(
+                !out.contains("null"),
+                "non-finite output for {file}:\n{text}\n{out}"
+            );
         }
     }
 }

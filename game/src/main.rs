@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use lightcone::commands::args;
-use lightcone::{commands, interrupt, render};
+use lightcone::{commands, interrupt, play, render};
 
 #[derive(Parser)]
 #[command(
@@ -41,6 +41,23 @@ enum Command {
         /// with its off-axis projection from the (tracked) head.
         #[arg(long)]
         cave: Option<PathBuf>,
+        /// Open at board time T (s), paused (repeatable screenshots); a
+        /// scene only.
+        #[arg(long)]
+        at: Option<f64>,
+        /// Open on this view.
+        #[arg(long, value_enum)]
+        view: Option<PlayView>,
+        /// Open with the camera straight above the table.
+        #[arg(long)]
+        top: bool,
+        /// Effects shown: `scene` (default), `all`, `none`, or a
+        /// comma-separated list, as for `observe`.
+        #[arg(long)]
+        effects: Option<String>,
+        /// Open with the live space-time diagram shown.
+        #[arg(long)]
+        diagram: bool,
     },
     /// The simulated head tracker: publish head motion (a path, or a
     /// recorded CSV track) with noise and faults on an iceoryx2 service.
@@ -133,6 +150,25 @@ enum Command {
         #[arg(long, value_enum, default_value = "seen")]
         view: ViewArg,
     },
+    /// Draw the space-time diagram at board time T to a PNG: worldlines
+    /// (board x across, time up), the eye's past light cone along each
+    /// puck's path, the emission events it sees, collisions.
+    Diagram {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Board time of the observation, s.
+        #[arg(long)]
+        at: f64,
+        /// Observer name (default: the scene's first).
+        #[arg(long)]
+        observer: Option<String>,
+        /// Output PNG.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "1000x700")]
+        size: String,
+    },
     /// Run a Python lesson headless: its hooks, questions answered with
     /// the lesson's answer, and its claims checked. Fails if the lesson
     /// raises or a claim does not hold.
@@ -196,7 +232,39 @@ enum BenchWhat {
     Tracker,
 }
 
+/// The views `play --view` opens on.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum PlayView {
+    Seen,
+    Truth,
+    Split,
+}
+
+/// Mesa's and the windowing libraries' clients print `XDG_RUNTIME_DIR is
+/// invalid or not set` (twice) when it is missing, as under `xvfb-run` or
+/// `su`: give them a private one (mode 0700) before any thread starts.
+fn private_runtime_dir() {
+    use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
+    let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| {
+        std::fs::metadata(&d).is_ok_and(|m| m.is_dir() && m.permissions().mode() & 0o077 == 0)
+    });
+    if valid {
+        return;
+    }
+    let uid = std::fs::metadata("/proc/self").map_or(0, |m| m.uid());
+    let dir = std::env::temp_dir().join(format!("lightcone-runtime-{uid}"));
+    let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
+    let ours = std::fs::metadata(&dir)
+        .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o077 == 0);
+    if ours {
+        // SAFETY: called first thing in `main`, before any thread exists,
+        // so nothing reads the environment concurrently.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    }
+}
+
 fn main() -> ExitCode {
+    private_runtime_dir();
     interrupt::install();
     let cli = Cli::parse();
     match cli.command {
@@ -225,6 +293,13 @@ fn main() -> ExitCode {
             };
             commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
         }
+        Some(Command::Diagram {
+            scene,
+            at,
+            observer,
+            out,
+            size,
+        }) => commands::diagram::run(&scene, at, observer.as_deref(), &out, &size),
         Some(Command::Lesson {
             lessons,
             until,
@@ -256,6 +331,11 @@ fn main() -> ExitCode {
             frames,
             tracker,
             cave,
+            at,
+            view,
+            top,
+            effects,
+            diagram,
         }) => commands::play::run(
             scene.as_deref(),
             commands::play::Extras {
@@ -263,6 +343,15 @@ fn main() -> ExitCode {
                 frames,
                 tracker,
                 cave,
+                at,
+                view: view.map(|v| match v {
+                    PlayView::Seen => play::state::ViewMode::Seen,
+                    PlayView::Truth => play::state::ViewMode::Truth,
+                    PlayView::Split => play::state::ViewMode::Split,
+                }),
+                top,
+                effects,
+                diagram,
             },
         ),
         Some(Command::Tracker { args }) => commands::tracker::run(args),

@@ -11,8 +11,9 @@ import math
 import lightcone
 
 BETA = 0.6
-# Eye near the left end, a little above the cloth.
-EYE = (0.25, 0.71, 0.35)
+# Eye beyond the left cushion, above the cloth (outside the table, so the
+# whole table is in view).
+EYE = (-0.8, 0.71, 0.6)
 
 
 def setup(world):

@@ -281,13 +281,20 @@ impl Billiard {
     /// The billiard of a validated scene.
     pub fn from_scene(scene: &Scene) -> Self {
         let pucks = scene.pucks.iter().map(PuckInit::from).collect();
-        Self::new(
+        let mut billiard = Self::new(
             scene.c,
             scene.table.size,
             scene.restitution,
             scene.table.cushion_restitution,
             pucks,
-        )
+        );
+        // `before_start = "rest"`: each puck rests until struck at t = 0.
+        if scene.before_start == crate::scene::BeforeStart::Rest {
+            for puck in &mut billiard.pucks {
+                puck.worldline.rest_before_start();
+            }
+        }
+        billiard
     }
 
     /// Whether to keep a log of collisions (on by default; long benchmark

@@ -74,10 +74,38 @@ pub struct Scene {
     /// How emission events are found (`[optics]`).
     #[serde(default)]
     pub optics: OpticsSpec,
+    /// What the pucks did before board time 0 (`before_start`).
+    #[serde(default)]
+    pub before_start: BeforeStart,
     /// Pucks, in file order.
     pub pucks: Vec<PuckSpec>,
     /// Observers, in file order (never empty: a default one is added).
     pub observers: Vec<ObserverSpec>,
+}
+
+/// What the pucks did before board time 0, which an observer sees while
+/// light from then is still arriving.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BeforeStart {
+    /// Each puck rested at its start position and was struck at t = 0
+    /// (the default): the student sees each one start late, by its light
+    /// delay.
+    #[default]
+    Rest,
+    /// Each puck's initial motion extends back to t = −∞ (it was already
+    /// moving: through the cushions, in the past).
+    Moving,
+}
+
+impl BeforeStart {
+    /// The value in a scene file.
+    pub fn key(self) -> &'static str {
+        match self {
+            BeforeStart::Rest => "rest",
+            BeforeStart::Moving => "moving",
+        }
+    }
 }
 
 /// The billiard table: the board is the rectangle `[0, size.x] × [0, size.y]`
@@ -482,6 +510,7 @@ impl Scene {
             restitution: 1.0,
             effects: Effects::default(),
             optics: OpticsSpec::default(),
+            before_start: BeforeStart::default(),
             pucks: Vec::new(),
             observers: vec![Self::default_observer(size)],
         })
@@ -583,6 +612,27 @@ impl Scene {
         Ok(())
     }
 
+    /// The same scene under another speed of light `c` (m/s), every
+    /// body keeping its proper velocity in m/s (`γ v`, its momentum per unit
+    /// mass): its `u = γβ` scales by `c_old / c`. Raising `c` thus tends to
+    /// the Newtonian scene with velocities `γ v`; lowering it never brings a
+    /// body to `c`. Errors on a `c` that is not a positive finite number.
+    pub fn with_c(&self, c: f64) -> Result<Self, String> {
+        if !(c.is_finite() && c > 0.0) {
+            return Err(format!("c = {c} must be a positive finite number of m/s"));
+        }
+        let k = self.c / c;
+        let mut scene = self.clone();
+        scene.c = c;
+        for p in &mut scene.pucks {
+            p.u = ProperVelocity(p.u.0 * k);
+        }
+        for o in &mut scene.observers {
+            o.u = ProperVelocity(o.u.0 * k);
+        }
+        Ok(scene)
+    }
+
     /// Speed of light for a table: light crosses the long side in 2 s, as in
     /// the paper's experiments.
     pub fn default_c(size: DVec2) -> f64 {
@@ -590,11 +640,12 @@ impl Scene {
     }
 
     /// The observer used when a scene names none: standing at rest beside
-    /// the long side, eye 0.9 m above the board, looking at its centre.
+    /// the long side, 1.25 m back and 1.6 m above the board (high enough
+    /// that the table, seen whole, is not a sliver), looking at its centre.
     pub fn default_observer(size: DVec2) -> ObserverSpec {
         ObserverSpec {
             name: "eye".to_owned(),
-            position: DVec3::new(size.x / 2.0, -0.9, 0.9),
+            position: DVec3::new(size.x / 2.0, -1.25, 1.6),
             look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
             u: ProperVelocity::ZERO,
         }

@@ -16,6 +16,7 @@ pub struct RawScene {
     pub title: Option<String>,
     pub description: Option<String>,
     pub c: Option<At<f64>>,
+    pub before_start: Option<At<String>>,
     pub table: Option<RawTable>,
     pub physics: Option<RawPhysics>,
     pub effects: Option<RawEffects>,

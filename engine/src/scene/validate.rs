@@ -330,6 +330,21 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         "physics.restitution",
         1.0,
     );
+    let before_start = match &raw.before_start {
+        None => super::model::BeforeStart::default(),
+        Some(b) => match b.get_ref().as_str() {
+            "rest" => super::model::BeforeStart::Rest,
+            "moving" => super::model::BeforeStart::Moving,
+            other => {
+                ck.error(
+                    b,
+                    "before_start",
+                    format!("\"{other}\" is not allowed: use \"rest\" or \"moving\""),
+                );
+                super::model::BeforeStart::default()
+            }
+        },
+    };
     let effects = effects(raw.effects.unwrap_or_default());
     let optics = optics(&mut ck, raw.optics.unwrap_or_default());
 
@@ -387,6 +402,7 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         restitution,
         effects,
         optics,
+        before_start,
         pucks,
         observers,
     })

@@ -120,7 +120,9 @@ pub struct BodyState {
 /// * **Before the first event** the first segment extends back to
 ///   `t = −∞`: a body keeps its initial state for all earlier times, which is
 ///   what an observer looking into the scene's past (light delay at t = 0)
-///   must see. Proper time is then negative.
+///   must see. Proper time is then negative. [`Worldline::rest_before_start`]
+///   instead has the body rest at its start until then (struck at the
+///   start).
 /// * **At a kink** the later segment applies (right-continuous velocity).
 #[derive(Clone, Debug, PartialEq, bevy_ecs::component::Component)]
 pub struct Worldline {
@@ -194,6 +196,23 @@ impl Worldline {
     /// The event of this worldline at board time `t`.
     pub fn event_at(&self, t: f64) -> Event {
         Event::new(t, self.position_at(t))
+    }
+
+    /// Has the body rest at its first segment's start position before that
+    /// segment begins, as if struck there and then, instead of extending
+    /// its first motion back to `t = −∞`: a rest segment is put first,
+    /// starting at the same event (at the start itself the moving segment
+    /// applies, velocities being right-continuous). Proper time runs at
+    /// the board rate before the start (negative there). Nothing changes
+    /// when the first segment is already at rest (it extends back as a
+    /// rest), so calling it twice is harmless.
+    pub fn rest_before_start(&mut self) {
+        let first = self.segments[0];
+        if first.u.0 == DVec3::ZERO {
+            return;
+        }
+        let rest = Segment::new(first.start, ProperVelocity::ZERO, first.proper_time, self.c);
+        self.segments.insert(0, rest);
     }
 
     /// Changes the proper velocity to `u` from board time `t` on (a kink).
@@ -274,6 +293,25 @@ mod tests {
         let s = w.state_at(-1.0);
         assert!((s.position.x - (1.0 - 1.2)).abs() < 1e-14);
         assert!((s.proper_time + 0.8).abs() < 1e-14);
+    }
+
+    #[test]
+    fn struck_at_the_start_it_rests_before() {
+        let mut w = line();
+        w.rest_before_start();
+        w.rest_before_start();
+        assert_eq!(w.segments().len(), 2);
+        let s = w.state_at(-1.0);
+        assert_eq!(s.position, DVec3::new(1.0, 0.5, 0.0));
+        assert_eq!(s.u, ProperVelocity::ZERO);
+        assert!((s.proper_time + 1.0).abs() < 1e-14);
+        // From the start on, the motion: at the start itself and after.
+        assert!(w.velocity_at(0.0).0.x > 0.7);
+        assert!((w.state_at(2.0).position.x - 3.4).abs() < 1e-14);
+        assert!((w.proper_time_at(2.0) - 1.6).abs() < 1e-14);
+        // A kink at the start replaces the motion, not the rest.
+        w.push(0.0, ProperVelocity::ZERO).unwrap();
+        assert_eq!(w.position_at(5.0), DVec3::new(1.0, 0.5, 0.0));
     }
 
     #[test]

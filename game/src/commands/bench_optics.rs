@@ -426,6 +426,7 @@ fn lanes(n: usize) -> Scene {
         restitution: 1.0,
         effects: Effects::NONE,
         optics: Default::default(),
+        before_start: Default::default(),
         pucks,
         observers: vec![ObserverSpec {
             name: "eye".into(),

@@ -30,6 +30,7 @@ fn large(n: usize) -> Scene {
         restitution: 1.0,
         effects: Effects::default(),
         optics: Default::default(),
+        before_start: Default::default(),
         pucks: (0..n)
             .map(|i| {
                 let phi = i as f64 * 2.399;

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use crate::lesson::headless::Outcome;
-use crate::output::Stop;
 use crate::lesson::supervise::{self, Limits};
+use crate::output::Stop;
 
 /// The options of `lesson` beyond the files.
 pub struct Options {

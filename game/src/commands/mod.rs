@@ -7,6 +7,7 @@ pub mod bench_render;
 pub mod bench_tracker;
 pub mod cave;
 pub mod check;
+pub mod diagram;
 pub mod lesson;
 pub mod observe;
 pub mod play;

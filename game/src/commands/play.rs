@@ -7,7 +7,7 @@ use lightcone_engine::scene;
 
 use crate::lesson::LessonHost;
 use crate::play::app::{self, Options};
-use crate::play::state::GameState;
+use crate::play::state::{GameState, ViewMode};
 
 /// The options of `play` beyond the scene.
 #[derive(Default)]
@@ -20,6 +20,16 @@ pub struct Extras {
     pub tracker: Option<String>,
     /// CAVE description.
     pub cave: Option<PathBuf>,
+    /// Open a scene at this board time, paused.
+    pub at: Option<f64>,
+    /// Open on this view.
+    pub view: Option<ViewMode>,
+    /// Open with the camera above the table.
+    pub top: bool,
+    /// Effects shown (`observe`'s syntax), instead of the scene's.
+    pub effects: Option<String>,
+    /// Show the live space-time diagram.
+    pub diagram: bool,
 }
 
 /// Loads the scene (the built-in default when `None`) or the lesson
@@ -30,7 +40,18 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         frames,
         tracker,
         cave,
+        at,
+        view,
+        top,
+        effects,
+        diagram,
     } = extras;
+    if let Some(t) = at
+        && !(t.is_finite() && t >= 0.0)
+    {
+        eprintln!("--at {t}: give a board time of 0 s or more");
+        return ExitCode::FAILURE;
+    }
     let cave = match cave.as_deref().map(crate::cave::load).transpose() {
         Ok(c) => c,
         Err(e) => {
@@ -38,7 +59,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let (game, lesson) = if let Some(path) = path
+    let (mut game, lesson) = if let Some(path) = path
         && path.extension().is_some_and(|e| e == "py")
     {
         if !path.is_file() {
@@ -67,13 +88,46 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
             None => crate::assets::default_scene(),
         };
         match loaded {
-            Ok(s) => (GameState::new(s), None),
+            Ok(s) => {
+                // A scene opens paused on its title and description.
+                let mut game = GameState::new(s);
+                game.paused = true;
+                game.intro = true;
+                (game, None)
+            }
             Err(e) => {
                 crate::errln!("{e}");
                 return ExitCode::FAILURE;
             }
         }
     };
+    if let Some(t) = at {
+        if lesson.is_some() {
+            eprintln!("--at is for scenes: a lesson runs its own time");
+            return ExitCode::FAILURE;
+        }
+        game.billiard.advance_to(t);
+        game.live_time = t;
+        game.view_time = t;
+        game.paused = true;
+        game.intro = false;
+    }
+    if let Some(v) = view {
+        game.view = v;
+    }
+    if let Some(spec) = effects {
+        match crate::commands::observe::parse_effects(&spec, game.effects) {
+            Ok(e) => game.effects = e,
+            Err(e) => {
+                eprintln!("{e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    if top {
+        game.top_view();
+    }
+    game.show.diagram = diagram;
     match app::run(Options {
         game,
         lesson,

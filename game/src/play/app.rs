@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use glam::{DVec2, DVec3, Vec4};
+use glam::{DVec2, DVec3};
 use lightcone_engine::scene::Effect;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
@@ -15,10 +15,11 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use super::lesson_panel::{self, LessonAction};
+use super::overlay::{aspect, markers, overlays, project, ring_colour};
 use super::state::{GameState, ViewMode};
 use crate::cave::{self, Side, TrackedHead};
 use crate::lesson::LessonHost;
-use crate::render::frame::{self, Camera, FrameVertex, ViewKind};
+use crate::render::frame::{self, FrameVertex, ViewKind};
 use crate::render::gpu::{self, Gpu};
 use crate::render::headless::BACKGROUND;
 use crate::render::pipeline::{Draw, Renderer};
@@ -75,6 +76,7 @@ pub fn run(options: Options) -> Result<(), String> {
         keys: HashSet::new(),
         cursor: DVec2::ZERO,
         looking: false,
+        orbiting: false,
         aiming: None,
         scene_left: 0.0,
         scene_right: 0.0,
@@ -91,7 +93,7 @@ struct Gfx {
     surface: wgpu::Surface<'static>,
     gpu: Gpu,
     config: wgpu::SurfaceConfiguration,
-    /// One renderer per view drawn (grown on demand: CAVE walls).
+    /// The scene renderer (one for every view and CAVE wall).
     views: Vec<Renderer>,
     egui: egui::Context,
     egui_state: egui_winit::State,
@@ -122,6 +124,8 @@ struct App {
     keys: HashSet<KeyCode>,
     cursor: DVec2,
     looking: bool,
+    /// Middle-drag orbits the eye about the table (or the followed puck).
+    orbiting: bool,
     /// Puck being aimed and where the drag started (physical px).
     aiming: Option<(usize, DVec2)>,
     /// Left and right edges (physical px) of the area the panels leave for
@@ -205,21 +209,6 @@ fn layout(mode: ViewMode, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], ViewKind)> 
     }
 }
 
-/// Screen position (physical px) of a point at `p` relative to the eye in
-/// the observer's frame, inside `rect`; `None` behind the camera.
-fn project(camera: &Camera, rect: [f32; 4], p: DVec3) -> Option<DVec2> {
-    let m = camera.view_proj(rect[2] / rect[3]);
-    let clip = m * Vec4::new(p.x as f32, p.y as f32, p.z as f32, 1.0);
-    if clip.w <= 1e-6 {
-        return None;
-    }
-    let (x, y) = (clip.x / clip.w, clip.y / clip.w);
-    Some(DVec2::new(
-        f64::from(rect[0] + (x + 1.0) / 2.0 * rect[2]),
-        f64::from(rect[1] + (1.0 - y) / 2.0 * rect[3]),
-    ))
-}
-
 impl App {
     fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
         let attributes = Window::default_attributes()
@@ -248,10 +237,12 @@ impl App {
         config.usage |=
             wgpu::TextureUsages::COPY_SRC & surface.get_capabilities(&gpu.handle).usages;
         surface.configure(&gpu.device, &config);
-        let views = vec![
-            Renderer::new(&gpu.device, config.format, config.width, config.height),
-            Renderer::new(&gpu.device, config.format, config.width, config.height),
-        ];
+        let views = vec![Renderer::new(
+            &gpu.device,
+            config.format,
+            config.width,
+            config.height,
+        )];
         let egui = egui::Context::default();
         let egui_state = egui_winit::State::new(
             egui.clone(),
@@ -279,7 +270,7 @@ impl App {
     /// Held keys fly the eye: W/S forward and back, A/D sideways, R/F up
     /// and down, at a proper acceleration of 0.5 c per second.
     fn fly(&mut self, dt: f64) {
-        let f = self.state.eye.forward();
+        let f = self.state.eye_and_camera(1.0).1.forward;
         let flat = DVec3::new(f.x, f.y, 0.0).normalize_or(DVec3::X);
         let side = flat.cross(DVec3::Z);
         let mut dir = DVec3::ZERO;
@@ -311,9 +302,33 @@ impl App {
     fn key(&mut self, code: KeyCode) {
         let s = &mut self.state;
         match code {
-            KeyCode::KeyP | KeyCode::Space => s.paused = !s.paused,
+            KeyCode::KeyP | KeyCode::Space => {
+                s.paused = !s.paused;
+                s.intro = false;
+            }
             KeyCode::KeyL => s.go_live(),
             KeyCode::KeyX => s.halt(),
+            KeyCode::Home => s.reset_view(),
+            KeyCode::Digit7 => s.show.trails = !s.show.trails,
+            KeyCode::Digit8 => s.show.ghost = !s.show.ghost,
+            KeyCode::Digit9 => s.show.arrows = !s.show.arrows,
+            KeyCode::KeyY => s.show.diagram = !s.show.diagram,
+            KeyCode::KeyV => s.top_view(),
+            KeyCode::KeyG => {
+                let n = s.billiard.len();
+                s.follow = match s.follow {
+                    None if n > 0 => Some(0),
+                    Some(i) if i + 1 < n => Some(i + 1),
+                    _ => None,
+                };
+                s.framing = super::state::Framing::Fit;
+            }
+            KeyCode::ArrowLeft => s.orbit(-0.1, 0.0),
+            KeyCode::ArrowRight => s.orbit(0.1, 0.0),
+            KeyCode::ArrowUp => s.orbit(0.0, 0.08),
+            KeyCode::ArrowDown => s.orbit(0.0, -0.08),
+            KeyCode::Equal | KeyCode::NumpadAdd => s.zoom_by(1.25),
+            KeyCode::Minus | KeyCode::NumpadSubtract => s.zoom_by(0.8),
             KeyCode::KeyE => {
                 self.cave_eye = match self.cave_eye {
                     Side::Mono => Side::Left,
@@ -378,7 +393,7 @@ impl App {
         let Some((rect, kind)) = self.pick_rect() else {
             return;
         };
-        let (_, camera) = self.state.eye_and_camera();
+        let (_, camera) = self.state.eye_and_camera(aspect(rect));
         let centres = self.state.apparent_centres(&self.effects_for(kind));
         let best = centres
             .iter()
@@ -398,12 +413,13 @@ impl App {
         let Some((puck, start)) = self.aiming else {
             return;
         };
-        let (_, camera) = self.state.eye_and_camera();
+        let aspect = self.pick_rect().map_or(1.0, |(r, _)| aspect(r));
+        let (_, camera) = self.state.eye_and_camera(aspect);
         let f = camera.forward;
         let flat = DVec3::new(f.x, f.y, 0.0).normalize_or(DVec3::Y);
         let right = flat.cross(DVec3::Z);
         let d = self.cursor - start;
-        // 60 px of pull = one unit of γβ.
+        // 60 px of pull = 1 m/s of proper velocity γv.
         let pull = (right * d.x - flat * d.y) / 60.0;
         self.state.aim(puck, pull.truncate());
     }
@@ -435,6 +451,8 @@ impl App {
             (Some(head), _) => {
                 head.poll(now);
                 head.drive(&mut self.state, self.flight, self.flight_v);
+                // The tracked head aims the camera.
+                self.state.framing = super::state::Framing::Look;
             }
             (None, Some(c)) => {
                 // No tracker: the head stands at the CAVE's centre, carried
@@ -489,9 +507,16 @@ fn panels(
                         .clicked()
                     {
                         s.paused = !s.paused;
+                        s.intro = false;
                     }
                     if ui.button("live (L)").clicked() {
                         s.go_live();
+                    }
+                    if ui.button("restart").clicked() {
+                        s.restart();
+                    }
+                    if ui.button("view (Home)").clicked() {
+                        s.reset_view();
                     }
                 });
                 ui.add(
@@ -531,7 +556,7 @@ fn panels(
                 if ui
                     .add_enabled(
                         !hud.lesson,
-                        egui::Slider::new(&mut c, 0.2..=20.0)
+                        egui::Slider::new(&mut c, 0.2..=1.0e6)
                             .logarithmic(true)
                             .text("c (m/s)"),
                     )
@@ -545,6 +570,15 @@ fn panels(
                     if ui.checkbox(&mut on, e.key()).changed() {
                         s.effects.set(e, on);
                     }
+                }
+                ui.horizontal(|ui| {
+                    ui.checkbox(&mut s.show.trails, "trails (7)");
+                    ui.checkbox(&mut s.show.ghost, "ghost (8)");
+                    ui.checkbox(&mut s.show.arrows, "arrows (9)");
+                });
+                ui.checkbox(&mut s.show.diagram, "space-time diagram (Y)");
+                if s.effects.doppler {
+                    super::overlay::doppler_legend(ui);
                 }
                 ui.label("view (T):");
                 ui.horizontal(|ui| {
@@ -563,6 +597,29 @@ fn panels(
                             ui.selectable_value(&mut s.observer, Some(i), &o.name);
                         }
                     });
+                let follow_name = |f: Option<usize>| match f {
+                    Some(i) if i < s.scene.pucks.len() => s.scene.pucks[i].name.clone(),
+                    _ => "the table".to_owned(),
+                };
+                let mut follow = s.follow;
+                egui::ComboBox::from_label("camera on (G)")
+                    .selected_text(follow_name(follow))
+                    .show_ui(ui, |ui| {
+                        ui.selectable_value(&mut follow, None, "the table");
+                        for (i, p) in s.scene.pucks.iter().enumerate() {
+                            ui.selectable_value(&mut follow, Some(i), &p.name);
+                        }
+                    });
+                if follow != s.follow {
+                    s.follow = follow;
+                    s.framing = super::state::Framing::Fit;
+                }
+                ui.horizontal(|ui| {
+                    if ui.button("from above (V)").clicked() {
+                        s.top_view();
+                    }
+                    ui.label(format!("zoom {:.2}× (wheel)", s.zoom));
+                });
                 let eb = s.eye.u.beta();
                 ui.label(format!(
                     "your β = ({:.3}, {:.3}, {:.3}), γ = {:.4} (X stops)",
@@ -617,45 +674,58 @@ fn panels(
             });
         left = ui.available_rect_before_wrap().left() * ppp;
     }
+    if state.show.diagram {
+        let mut open = true;
+        egui::Window::new("space-time diagram")
+            .open(&mut open)
+            .default_pos(egui::pos2(left / ppp + 12.0, size.1 as f32 / ppp - 340.0))
+            .default_width(420.0)
+            .show(ctx, |ui| super::overlay::diagram_panel(ui, state));
+        state.show.diagram = open;
+    }
+    if state.intro {
+        intro(state, ctx, (left + right) / 2.0 / ppp, 12.0);
+    }
     if !hud.clocks {
         return (left, right);
     }
-    // Clocks on the pucks: the proper time each shows in the picture.
+    // Under windows (the diagram) and the intro: the background layer,
+    // drawn within the views.
     let painter = ctx.layer_painter(egui::LayerId::new(
-        egui::Order::Foreground,
+        egui::Order::Background,
         egui::Id::unique("clocks"),
     ));
-    let (_, camera) = state.eye_and_camera();
-    for (rect, kind) in layout(state.view, left, right - left, size.1 as f32) {
-        let effects = kind.effects(state.effects);
-        for (i, (e, s)) in state.apparent_centres(&effects).iter().enumerate() {
-            let Some(p) = project(&camera, rect, s.position) else {
-                continue;
-            };
-            // Only clocks whose puck is inside its view (not over a panel
-            // or the other half of a split).
-            let inside = |v: f64, lo: f32, len: f32| v >= f64::from(lo) && v <= f64::from(lo + len);
-            if !(inside(p.x, rect[0], rect[2]) && inside(p.y, rect[1], rect[3])) {
-                continue;
-            }
-            {
-                let w = state.billiard.worldline(i);
-                let tau = if effects.time_dilation {
-                    w.proper_time_at(e.event.t)
-                } else {
-                    e.event.t
-                };
-                painter.text(
-                    egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp - 14.0),
-                    egui::Align2::CENTER_BOTTOM,
-                    format!("{tau:.2}"),
-                    egui::FontId::monospace(11.0),
-                    egui::Color32::from_gray(230),
-                );
-            }
-        }
-    }
+    let rects = layout(state.view, left, right - left, size.1 as f32);
+    overlays(state, &painter, &rects, ppp);
     (left, right)
+}
+
+/// The scene's title and description at the top of the views, with a
+/// start button (Space or P also starts), its top centre at `(x, y)`
+/// (points).
+fn intro(state: &mut GameState, ctx: &egui::Context, x: f32, y: f32) {
+    egui::Area::new(egui::Id::unique("intro"))
+        .fixed_pos(egui::pos2(x, y))
+        .pivot(egui::Align2::CENTER_TOP)
+        .order(egui::Order::Foreground)
+        .show(ctx, |ui| {
+            egui::Frame::window(ui.style()).show(ui, |ui| {
+                ui.set_max_width(420.0);
+                ui.heading(&state.scene.title);
+                if !state.scene.description.is_empty() {
+                    ui.add(egui::Label::new(egui::RichText::new(&state.scene.description).size(15.0)).wrap());
+                }
+                ui.separator();
+                ui.small(
+                    "Drag from a puck to strike it. Wheel: zoom; middle-drag or arrows: orbit; \
+                     V: from above; G: follow a puck; Home: reset the view; T: seen / truth / split.",
+                );
+                if ui.button("start (Space)").clicked() {
+                    state.intro = false;
+                    state.paused = false;
+                }
+            });
+        });
 }
 
 impl App {
@@ -740,7 +810,7 @@ impl App {
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
         let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
-        let (eye, camera) = self.state.eye_and_camera();
+        let eye = self.state.eye();
         let mut vertices: Vec<FrameVertex> = Vec::new();
         let right = if self.scene_right > self.scene_left {
             self.scene_right.min(w)
@@ -759,7 +829,7 @@ impl App {
             (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
             TrackedHead::head,
         );
-        for (k, (rect, plan)) in plans.into_iter().enumerate() {
+        for (rect, plan) in plans {
             vertices.clear();
             let view_proj = match (plan, &self.cave) {
                 (Plan::Wall(i), Some(c)) => {
@@ -784,6 +854,7 @@ impl App {
                         kind.effects(self.state.effects),
                         &mut vertices,
                     );
+                    let (_, camera) = self.state.eye_and_camera(aspect(rect));
                     camera.view_proj(rect[2] / rect[3])
                 }
                 (Plan::Wall(_), None) => continue,
@@ -791,22 +862,17 @@ impl App {
             let Some(rect) = clamp_rect(rect, w, h) else {
                 continue;
             };
-            while gfx.views.len() <= k {
-                gfx.views.push(Renderer::new(
-                    &gfx.gpu.device,
-                    gfx.config.format,
-                    gfx.config.width,
-                    gfx.config.height,
-                ));
-            }
+            // One renderer draws every view, each submitted before the next
+            // is written: its multisampled target then holds the views
+            // drawn so far, which the next one loads and resolves whole.
             let mut encoder =
                 gfx.gpu
                     .device
                     .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                         label: Some("scene view"),
                     });
-            gfx.views[k].resize(&gfx.gpu.device, gfx.config.width, gfx.config.height);
-            gfx.views[k].render(
+            gfx.views[0].resize(&gfx.gpu.device, gfx.config.width, gfx.config.height);
+            gfx.views[0].render(
                 &gfx.gpu.device,
                 &gfx.gpu.queue,
                 &mut encoder,
@@ -869,9 +935,55 @@ impl App {
         }
         if let (Some((buffer, padded)), Some(path)) = (readback, &self.screenshot) {
             save(gfx, &buffer, padded, path)?;
+            self.save_layout(&path.with_extension("json"), w, h)?;
         }
         gfx.gpu.queue.present(frame);
         Ok(())
+    }
+}
+
+impl App {
+    /// Beside a screenshot, where its views and pucks are (for tests and
+    /// for marking up slides): `{"views": [{"rect": [x, y, w, h], "kind"}],
+    /// "pucks": [{"name", "view", "centre": [x, y], "ring_px", "ring_colour":
+    /// [r, g, b], "clock_s"}]}`, physical px from the top left.
+    fn save_layout(&self, path: &std::path::Path, w: f32, h: f32) -> Result<(), String> {
+        let right = if self.scene_right > self.scene_left {
+            self.scene_right.min(w)
+        } else {
+            w
+        };
+        let rects = layout(self.state.view, self.scene_left, right - self.scene_left, h);
+        let views: Vec<serde_json::Value> = rects
+            .iter()
+            .map(|(r, k)| {
+                serde_json::json!({
+                    "rect": r,
+                    "kind": match k { ViewKind::Seen => "seen", ViewKind::Truth => "truth" },
+                })
+            })
+            .collect();
+        let pucks: Vec<serde_json::Value> = markers(&self.state, &rects)
+            .iter()
+            .map(|m| {
+                let c = ring_colour(self.state.scene.pucks[m.puck].color);
+                serde_json::json!({
+                    "name": self.state.scene.pucks[m.puck].name,
+                    "view": m.view,
+                    "centre": [m.centre.x, m.centre.y],
+                    "ring_px": 2.0 * m.ring,
+                    "ring_colour": [c.r(), c.g(), c.b()],
+                    "clock_s": m.clock,
+                })
+            })
+            .collect();
+        let text = serde_json::json!({
+            "views": views,
+            "pucks": pucks,
+            "scene_pucks": self.state.billiard.len(),
+        })
+        .to_string();
+        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
     }
 }
 
@@ -980,14 +1092,22 @@ impl ApplicationHandler for App {
             }
             WindowEvent::CursorMoved { position, .. } => {
                 let p = DVec2::new(position.x, position.y);
+                let d = p - self.cursor;
                 if self.looking {
-                    let d = p - self.cursor;
-                    let eye = &mut self.state.eye;
-                    eye.yaw -= d.x * 0.004;
-                    eye.pitch = (eye.pitch - d.y * 0.004).clamp(-1.5, 1.5);
+                    self.state.look(-d.x * 0.004, -d.y * 0.004);
+                }
+                if self.orbiting {
+                    self.state.orbit(-d.x * 0.006, d.y * 0.006);
                 }
                 self.cursor = p;
                 self.drag();
+            }
+            WindowEvent::MouseWheel { delta, .. } if !consumed => {
+                let lines = match delta {
+                    winit::event::MouseScrollDelta::LineDelta(_, y) => f64::from(y),
+                    winit::event::MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
+                };
+                self.state.zoom_by(1.1f64.powf(lines));
             }
             WindowEvent::MouseInput { state, button, .. }
                 if !consumed || state == ElementState::Released =>
@@ -996,6 +1116,7 @@ impl ApplicationHandler for App {
                     (MouseButton::Left, ElementState::Pressed) => self.press(),
                     (MouseButton::Left, ElementState::Released) => self.release(),
                     (MouseButton::Right, s) => self.looking = s == ElementState::Pressed,
+                    (MouseButton::Middle, s) => self.orbiting = s == ElementState::Pressed,
                     _ => {}
                 }
             }

@@ -49,6 +49,23 @@ pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<LessonAction
     });
 }
 
+/// A check mark (held) or a cross (failed), drawn with strokes: the
+/// default fonts have no ✔/✘ glyphs, which rendered as empty boxes.
+fn mark(ui: &mut egui::Ui, ok: bool, colour: Color32) {
+    let size = egui::vec2(14.0, 14.0);
+    let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
+    let p = |x: f32, y: f32| rect.min + egui::vec2(x * rect.width(), y * rect.height());
+    let stroke = egui::Stroke::new(2.2, colour);
+    let painter = ui.painter();
+    if ok {
+        painter.line_segment([p(0.1, 0.55), p(0.4, 0.85)], stroke);
+        painter.line_segment([p(0.4, 0.85), p(0.9, 0.15)], stroke);
+    } else {
+        painter.line_segment([p(0.15, 0.15), p(0.85, 0.85)], stroke);
+        painter.line_segment([p(0.85, 0.15), p(0.15, 0.85)], stroke);
+    }
+}
+
 fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<LessonAction>) {
     if !lesson.text.is_empty() {
         ui.label(RichText::new(&lesson.text).size(15.0));
@@ -91,12 +108,15 @@ fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<LessonAction
     if !lesson.claims.is_empty() {
         ui.label("checked:");
         for c in &lesson.claims {
-            let (mark, colour) = if c.ok {
-                ("✔", Color32::LIGHT_GREEN)
+            let colour = if c.ok {
+                Color32::LIGHT_GREEN
             } else {
-                ("✘", Color32::LIGHT_RED)
+                Color32::LIGHT_RED
             };
-            ui.colored_label(colour, format!("{mark} {}", c.claim));
+            ui.horizontal_wrapped(|ui| {
+                mark(ui, c.ok, colour);
+                ui.colored_label(colour, &c.claim);
+            });
             if !c.detail.is_empty() {
                 ui.small(&c.detail);
             }

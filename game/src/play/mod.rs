@@ -4,4 +4,5 @@
 
 pub mod app;
 pub mod lesson_panel;
+pub mod overlay;
 pub mod state;

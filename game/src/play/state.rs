@@ -46,6 +46,51 @@ impl FlyingEye {
     }
 }
 
+/// How the camera chooses its direction and field of view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Framing {
+    /// Turned and widened to show the whole table in the view, with a
+    /// margin (the default; Home returns to it).
+    Fit,
+    /// Where the free eye looks (yaw, pitch: right-drag, a tracked head),
+    /// with a 60° field of view.
+    Look,
+}
+
+/// Drawings over the views that show the physics (keys 7, 8, 9).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Overlays {
+    /// Trails: where each puck was seen (solid) and where it was (dotted),
+    /// over the last [`TRAIL_S`] seconds of board time.
+    pub trails: bool,
+    /// A faint ghost of each puck where it is now (board frame) over the
+    /// seen picture.
+    pub ghost: bool,
+    /// Velocity arrows: the board velocity now (truth) or at emission
+    /// (seen), the distance covered in half a second.
+    pub arrows: bool,
+    /// The live space-time diagram, in its own window (key Y).
+    pub diagram: bool,
+}
+
+impl Default for Overlays {
+    fn default() -> Self {
+        Self {
+            trails: true,
+            ghost: true,
+            arrows: true,
+            diagram: false,
+        }
+    }
+}
+
+/// How far back trails reach, s of board time.
+pub const TRAIL_S: f64 = 3.0;
+
+/// Margin kept around the fitted table, as a fraction of the view's
+/// half-size.
+pub const FIT_MARGIN: f64 = 0.08;
+
 /// A cue stroke being aimed: which puck, and the impulse so far.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cue {
@@ -95,6 +140,18 @@ pub struct GameState {
     pub cue: Option<Cue>,
     /// Something to tell the player (errors, hints).
     pub message: String,
+    /// How the camera is aimed.
+    pub framing: Framing,
+    /// Zoom (mouse wheel): > 1 narrows the field of view.
+    pub zoom: f64,
+    /// `Some(i)`: the camera keeps puck `i` (where it is seen) in the
+    /// middle of the view.
+    pub follow: Option<usize>,
+    /// What is drawn over the views.
+    pub show: Overlays,
+    /// The scene's title and description are shown over the table until
+    /// the player starts (a scene opened with `play` starts paused on it).
+    pub intro: bool,
 }
 
 /// Largest cue stroke, as a proper-velocity change (γβ): β ≈ 0.995.
@@ -104,14 +161,7 @@ impl GameState {
     /// A game on `scene`, starting at board time 0 looking through its first
     /// observer's eye (which the player may then fly).
     pub fn new(scene: Scene) -> Self {
-        let o = &scene.observers[0];
-        let f = (o.look_at - o.position).normalize_or(DVec3::Y);
-        let eye = FlyingEye {
-            position: o.position,
-            u: ProperVelocity::ZERO,
-            yaw: f.y.atan2(f.x),
-            pitch: f.z.asin(),
-        };
+        let eye = Self::eye_at_observer(&scene, 0);
         Self {
             billiard: replay_billiard(&scene),
             meshes: SceneMeshes::new(&scene),
@@ -126,7 +176,137 @@ impl GameState {
             observer: None,
             cue: None,
             message: String::new(),
+            framing: Framing::Fit,
+            zoom: 1.0,
+            follow: None,
+            intro: false,
+            show: Overlays::default(),
         }
+    }
+
+    /// The free eye at rest where observer `i` of `scene` stands at t = 0,
+    /// looking where it looks.
+    fn eye_at_observer(scene: &Scene, i: usize) -> FlyingEye {
+        let o = &scene.observers[i.min(scene.observers.len() - 1)];
+        let f = (o.look_at - o.position).normalize_or(DVec3::Y);
+        FlyingEye {
+            position: o.position,
+            u: ProperVelocity::ZERO,
+            yaw: f.y.atan2(f.x),
+            pitch: f.z.clamp(-1.0, 1.0).asin(),
+        }
+    }
+
+    /// Back to the default view: the camera fitted to the table, no zoom,
+    /// following nothing; the free eye back where the scene's first
+    /// observer stands, at rest.
+    pub fn reset_view(&mut self) {
+        self.framing = Framing::Fit;
+        self.zoom = 1.0;
+        self.follow = None;
+        if self.observer.is_none() {
+            self.eye = Self::eye_at_observer(&self.scene, 0);
+        }
+    }
+
+    /// Zooms by `factor` (> 1 in), within 0.2–50×.
+    pub fn zoom_by(&mut self, factor: f64) {
+        if factor.is_finite() && factor > 0.0 {
+            self.zoom = (self.zoom * factor).clamp(0.2, 50.0);
+        }
+    }
+
+    /// Takes the free eye over from the scene observer looked through (same
+    /// place, velocity and direction), so the player can move it.
+    fn take_over(&mut self) {
+        if let Some(i) = self.observer.take()
+            && i < self.scene.observers.len()
+        {
+            let (eye, _) = crate::render::frame::eye_of(&self.scene, i, self.view_time);
+            let o = &self.scene.observers[i];
+            let f = (o.look_at - o.position).normalize_or(DVec3::Y);
+            self.eye = FlyingEye {
+                position: eye.event.position,
+                u: eye.u,
+                yaw: f.y.atan2(f.x),
+                pitch: f.z.clamp(-1.0, 1.0).asin(),
+            };
+        }
+    }
+
+    /// The point orbits turn about: the followed puck (where it is now) or
+    /// the table's centre.
+    pub fn orbit_target(&self) -> DVec3 {
+        match self.follow {
+            Some(i) if i < self.billiard.len() => {
+                self.billiard.worldline(i).position_at(self.view_time)
+            }
+            _ => (self.scene.table.size / 2.0).extend(0.0),
+        }
+    }
+
+    /// Orbits the free eye about [`Self::orbit_target`]: `yaw` radians about
+    /// the vertical, `pitch` radians of elevation (kept between 3° and
+    /// 89.9°), at the same distance. The camera then frames the table.
+    pub fn orbit(&mut self, yaw: f64, pitch: f64) {
+        if !(yaw.is_finite() && pitch.is_finite()) {
+            return;
+        }
+        self.take_over();
+        let target = self.orbit_target();
+        let d = self.eye.position - target;
+        let r = d.length().max(0.1);
+        let horizontal = d.truncate().length();
+        let azimuth = if horizontal > 1e-9 {
+            d.y.atan2(d.x)
+        } else {
+            -std::f64::consts::FRAC_PI_2
+        } + yaw;
+        let elevation = (d.z / r).clamp(-1.0, 1.0).asin() + pitch;
+        let elevation = elevation.clamp(3f64.to_radians(), 89.9f64.to_radians());
+        self.eye.position = target
+            + r * DVec3::new(
+                elevation.cos() * azimuth.cos(),
+                elevation.cos() * azimuth.sin(),
+                elevation.sin(),
+            );
+        let f = (target - self.eye.position).normalize_or(DVec3::Y);
+        self.eye.yaw = f.y.atan2(f.x);
+        self.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
+        self.framing = Framing::Fit;
+    }
+
+    /// The free eye at rest straight above the table's centre, high enough
+    /// to see it all with a 60° field of view; the camera frames the table.
+    pub fn top_view(&mut self) {
+        self.observer = None;
+        let size = self.scene.table.size;
+        let half = (size.x / 1.6).max(size.y) / 2.0 + 0.1;
+        let height = half / (std::f64::consts::FRAC_PI_6).tan() * 1.1;
+        self.eye = FlyingEye {
+            position: (size / 2.0).extend(height),
+            u: ProperVelocity::ZERO,
+            yaw: std::f64::consts::FRAC_PI_2,
+            pitch: -std::f64::consts::FRAC_PI_2 + 1e-6,
+        };
+        self.framing = Framing::Fit;
+        self.zoom = 1.0;
+    }
+
+    /// Right-drag: turns the free eye (taking it over from a scene
+    /// observer) and frees the camera from the table.
+    pub fn look(&mut self, dyaw: f64, dpitch: f64) {
+        self.take_over();
+        if self.framing == Framing::Fit {
+            // Start from where the fitted camera looks.
+            let (_, cam) = self.eye_and_camera(1.0);
+            let f = cam.forward.normalize_or(DVec3::Y);
+            self.eye.yaw = f.y.atan2(f.x);
+            self.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
+            self.framing = Framing::Look;
+        }
+        self.eye.yaw += dyaw;
+        self.eye.pitch = (self.eye.pitch + dpitch).clamp(-1.5, 1.5);
     }
 
     /// Whether the picture is a replay of the past (not live).
@@ -182,54 +362,88 @@ impl GameState {
         self.eye.u = ProperVelocity::ZERO;
     }
 
-    /// The eye and camera to draw with.
-    pub fn eye_and_camera(&self) -> (Eye, Camera) {
+    /// The eye looked through now: a scene observer's or the free one.
+    pub fn eye(&self) -> Eye {
         match self.observer {
             Some(i) if i < self.scene.observers.len() => {
-                crate::render::frame::eye_of(&self.scene, i, self.view_time)
+                crate::render::frame::eye_of(&self.scene, i, self.view_time).0
             }
-            _ => (
-                Eye {
-                    event: Event::new(self.view_time, self.eye.position),
-                    u: self.eye.u,
-                },
-                Camera {
-                    forward: self.eye.forward(),
-                    fovy: std::f64::consts::FRAC_PI_3,
-                },
-            ),
+            _ => Eye {
+                event: Event::new(self.view_time, self.eye.position),
+                u: self.eye.u,
+            },
         }
+    }
+
+    /// The eye and the camera to draw a view of `aspect` (width / height)
+    /// with: fitted to the table (and turned to the followed puck), or
+    /// where the free eye looks; zoomed.
+    pub fn eye_and_camera(&self, aspect: f64) -> (Eye, Camera) {
+        let eye = self.eye();
+        let camera = match self.framing {
+            Framing::Look => crate::render::camera::zoomed(
+                self.eye.forward(),
+                std::f64::consts::FRAC_PI_3,
+                self.zoom,
+            ),
+            Framing::Fit => {
+                let c = self.scene.c;
+                let points: Vec<DVec3> = crate::render::camera::table_corners(
+                    self.scene.table.size,
+                    crate::render::frame::CUSHION_HEIGHT,
+                    crate::render::frame::CUSHION_WIDTH,
+                )
+                .into_iter()
+                .map(|p| eye.see_static(p, c, self.effects.aberration).position)
+                .collect();
+                let mut cam = crate::render::camera::fit(&points, aspect, FIT_MARGIN, self.zoom);
+                if let Some(i) = self.follow.filter(|&i| i < self.billiard.len()) {
+                    let (_, seen) = self.apparent_centre(&eye, &self.effects, i);
+                    if seen.position.length() > 1e-9 {
+                        cam.forward = seen.position.normalize();
+                    }
+                }
+                cam
+            }
+        };
+        (eye, camera)
     }
 
     /// The apparent centre (mid-height) of every puck as seen with
     /// `effects`, for clocks and picking.
     pub fn apparent_centres(&self, effects: &Effects) -> Vec<(Emission, Seen)> {
-        let (eye, _) = self.eye_and_camera();
-        let heights: Vec<f64> = self.scene.pucks.iter().map(|p| p.height).collect();
+        let eye = self.eye();
         (0..self.billiard.len())
-            .map(|i| {
-                let (mut e, mut s) = (Vec::new(), Vec::new());
-                let offset = [DVec3::new(0.0, 0.0, heights[i] / 2.0)];
-                view::emissions(
-                    &self.billiard,
-                    i,
-                    &offset,
-                    &eye,
-                    effects,
-                    Method::Exact,
-                    &mut e,
-                );
-                view::seen(&eye, self.billiard.c(), effects, &e, &mut s);
-                (e[0], s[0])
-            })
+            .map(|i| self.apparent_centre(&eye, effects, i))
             .collect()
     }
 
-    /// Aims a stroke on `puck`: a pull of `pull` (board-plane direction and
-    /// length in units of γβ) gives an impulse the opposite way, capped at
-    /// [`MAX_STROKE`]. Returns the puck's velocity after the stroke.
+    /// The apparent centre (mid-height) of puck `i` as `eye` sees it with
+    /// `effects`.
+    pub fn apparent_centre(&self, eye: &Eye, effects: &Effects, i: usize) -> (Emission, Seen) {
+        let height = self.scene.pucks.get(i).map_or(0.0, |p| p.height);
+        let (mut e, mut s) = (Vec::new(), Vec::new());
+        let offset = [DVec3::new(0.0, 0.0, height / 2.0)];
+        view::emissions(
+            &self.billiard,
+            i,
+            &offset,
+            eye,
+            effects,
+            Method::Exact,
+            &mut e,
+        );
+        view::seen(eye, self.billiard.c(), effects, &e, &mut s);
+        (e[0], s[0])
+    }
+
+    /// Aims a stroke on `puck`: a pull of `pull` (board-plane direction, and
+    /// length as a proper velocity `γ v` in m/s, so that a stroke means the
+    /// same momentum whatever c is) gives an impulse the opposite way,
+    /// capped at [`MAX_STROKE`] in γβ. Returns the puck's velocity after the
+    /// stroke.
     pub fn aim(&mut self, puck: usize, pull: DVec2) -> ProperVelocity {
-        let mut du = -pull.extend(0.0);
+        let mut du = -pull.extend(0.0) / self.scene.c;
         if du.length() > MAX_STROKE {
             du = du.normalize() * MAX_STROKE;
         }
@@ -251,17 +465,26 @@ impl GameState {
             .map_err(|e| e.to_string())
     }
 
-    /// Restarts the scene with a new speed of light (m/s).
+    /// Restarts the scene with a new speed of light (m/s), each puck (and
+    /// observer) keeping its proper velocity in m/s, `γ v`: its momentum
+    /// (see [`Scene::with_c`]). Raising c tends to Newton.
     pub fn restart_with_c(&mut self, c: f64) {
-        if !(c.is_finite() && c > 0.0) {
-            self.message = format!("c = {c} is not a positive speed");
-            return;
+        match self.scene.with_c(c) {
+            Ok(scene) => self.scene = scene,
+            Err(e) => {
+                self.message = e;
+                return;
+            }
         }
-        self.scene.c = c;
         self.billiard = replay_billiard(&self.scene);
         self.live_time = 0.0;
         self.view_time = 0.0;
         self.cue = None;
+    }
+
+    /// Starts the scene again from board time 0 (same c, same eye).
+    pub fn restart(&mut self) {
+        self.restart_with_c(self.scene.c);
     }
 
     /// A line about the latest collision shown (at or before the view time).
@@ -337,6 +560,20 @@ mod tests {
         assert!((g.eye.position.x - x0 - g.eye.u.velocity(g.scene.c).x * 0.01).abs() < 1e-12);
         g.halt();
         assert_eq!(g.eye.u, ProperVelocity::ZERO);
+    }
+
+    #[test]
+    fn changing_c_keeps_each_pucks_proper_velocity_in_metres_per_second() {
+        let mut g = game();
+        let before: Vec<DVec3> = g.scene.pucks.iter().map(|p| p.u.0 * g.scene.c).collect();
+        g.restart_with_c(1e6);
+        for (p, b) in g.scene.pucks.iter().zip(&before) {
+            assert!((p.u.0 * 1e6 - *b).length() < 1e-12 * (1.0 + b.length()));
+        }
+        // Slow light: the same momentum, never c.
+        g.restart_with_c(0.01);
+        assert!(g.scene.pucks[0].u.speed_deficit() > 0.0);
+        assert!((g.scene.pucks[0].u.0 * 0.01 - before[0]).length() < 1e-12);
     }
 
     #[test]

@@ -88,6 +88,11 @@ fn linear(c: Color) -> [f32; 3] {
     [f(c.r), f(c.g), f(c.b)]
 }
 
+/// Height of the cushions above the board, m.
+pub const CUSHION_HEIGHT: f64 = 0.04;
+/// Width of the cushions, m.
+pub const CUSHION_WIDTH: f64 = 0.06;
+
 const CLOTH: [f32; 3] = [0.02, 0.16, 0.05];
 const CUSHION: [f32; 3] = [0.05, 0.09, 0.04];
 
@@ -101,7 +106,7 @@ impl SceneMeshes {
                 .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
                 .collect(),
             colours: scene.pucks.iter().map(|p| linear(p.color)).collect(),
-            table: mesh::table(scene.table.size, 0.04, 0.06),
+            table: mesh::table(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH),
         }
     }
 }

@@ -9,6 +9,9 @@ use super::frame::FrameVertex;
 
 /// Depth buffer format.
 const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Samples per pixel (MSAA); 4 is supported by every WebGPU adapter for
+/// renderable colour formats and for the depth format.
+pub const SAMPLES: u32 = 4;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -40,7 +43,35 @@ pub struct Renderer {
     vertices: wgpu::Buffer,
     capacity: u64,
     depth: wgpu::TextureView,
+    /// The multisampled colour target, resolved into the caller's target
+    /// after each pass (and kept, so a second view drawn beside the first
+    /// loads it).
+    colour: wgpu::TextureView,
+    format: wgpu::TextureFormat,
     size: (u32, u32),
+}
+
+fn colour_view(
+    device: &wgpu::Device,
+    format: wgpu::TextureFormat,
+    (width, height): (u32, u32),
+) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("scene colour (multisampled)"),
+            size: wgpu::Extent3d {
+                width: width.max(1),
+                height: height.max(1),
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: SAMPLES,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&wgpu::TextureViewDescriptor::default())
 }
 
 fn depth_view(device: &wgpu::Device, (width, height): (u32, u32)) -> wgpu::TextureView {
@@ -53,7 +84,7 @@ fn depth_view(device: &wgpu::Device, (width, height): (u32, u32)) -> wgpu::Textu
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
-            sample_count: 1,
+            sample_count: SAMPLES,
             dimension: wgpu::TextureDimension::D2,
             format: DEPTH,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
@@ -139,7 +170,10 @@ impl Renderer {
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
-            multisample: Default::default(),
+            multisample: wgpu::MultisampleState {
+                count: SAMPLES,
+                ..Default::default()
+            },
             fragment: Some(wgpu::FragmentState {
                 module: &shader,
                 entry_point: Some("fs_main"),
@@ -161,6 +195,8 @@ impl Renderer {
             vertices: vertex_buffer(device, capacity),
             capacity,
             depth: depth_view(device, (width, height)),
+            colour: colour_view(device, format, (width, height)),
+            format,
             size: (width, height),
         }
     }
@@ -175,6 +211,7 @@ impl Renderer {
         if (width, height) != self.size {
             self.size = (width, height);
             self.depth = depth_view(device, self.size);
+            self.colour = colour_view(device, self.format, self.size);
         }
     }
 
@@ -209,9 +246,9 @@ impl Renderer {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene pass"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
+                view: &self.colour,
                 depth_slice: None,
-                resolve_target: None,
+                resolve_target: Some(target),
                 ops: wgpu::Operations {
                     load: clear.map_or(wgpu::LoadOp::Load, wgpu::LoadOp::Clear),
                     store: wgpu::StoreOp::Store,

@@ -1,6 +1,6 @@
 // The scene pass: flat-shaded triangles in the observer's frame, coloured
-// by their base colour shifted by the Doppler factor and scaled by the
-// searchlight intensity. Positions arrive relative to the eye.
+// by their base colour's hue shifted by the Doppler factor (luminance
+// kept) and scaled by the searchlight intensity. Positions arrive relative to the eye.
 
 struct Camera {
     view_proj: mat4x4<f32>,
@@ -52,11 +52,31 @@ fn shift(c: vec3<f32>, d: f32) -> vec3<f32> {
     return vec3<f32>(spectrum(c, 610.0 * d), spectrum(c, 550.0 * d), spectrum(c, 465.0 * d));
 }
 
+fn luminance(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
+
+// The Doppler-shifted hue at the colour's own luminance: the shift moves
+// the spectrum (the hue turns bluer approaching, redder receding) without
+// turning a puck black or blinding white, so every puck stays visible;
+// brightness is the searchlight's effect, applied separately. A spectrum
+// shifted wholly out of the visible band shows as deep violet (D > 1) or
+// deep red (D < 1).
+fn shift_hue(c: vec3<f32>, d: f32) -> vec3<f32> {
+    if (abs(d - 1.0) < 1e-6) { return c; }
+    let y0 = luminance(c);
+    var s = shift(c, d);
+    if (luminance(s) < 1e-4) {
+        s = select(vec3<f32>(1.0, 0.05, 0.0), vec3<f32>(0.35, 0.1, 1.0), d > 1.0);
+    }
+    return s * (y0 / luminance(s));
+}
+
 @fragment
 fn fs_main(f: VertexOut) -> @location(0) vec4<f32> {
     let n = normalize(cross(dpdx(f.position), dpdy(f.position)));
     let facing = abs(dot(n, normalize(camera.light.xyz)));
     let lit = 0.35 + 0.65 * facing;
-    let c = shift(f.colour, f.doppler) * f.intensity * lit;
+    let c = shift_hue(f.colour, f.doppler) * f.intensity * lit;
     return vec4<f32>(min(c, vec3<f32>(1.0)), 1.0);
 }

@@ -1,0 +1,121 @@
+//! c that means c: a scene under a larger speed of light keeps each puck's
+//! proper velocity in m/s (its momentum), so at c = 10⁶ m/s the paper's
+//! carom is Newton's, checked against a classical event loop written here
+//! (equal discs, elastic hits, elastic cushions) and against nothing the
+//! engine computed.
+
+use std::path::Path;
+
+use glam::DVec2;
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::scene;
+
+/// Classical elastic discs of equal mass and radius `r` on the table
+/// `[0, size.x] × [0, size.y]`, run from t = 0 to `until`.
+fn newton(mut x: Vec<DVec2>, mut v: Vec<DVec2>, r: f64, size: DVec2, until: f64) -> Vec<DVec2> {
+    let n = x.len();
+    let mut t = 0.0;
+    loop {
+        // The earliest event: a disc reaching a cushion, or two discs touching.
+        let mut next = (until - t, None::<(usize, Option<usize>)>);
+        for i in 0..n {
+            for (pos, vel, hi) in [(x[i].x, v[i].x, size.x), (x[i].y, v[i].y, size.y)] {
+                let dt = if vel > 0.0 {
+                    (hi - r - pos) / vel
+                } else if vel < 0.0 {
+                    (r - pos) / vel
+                } else {
+                    f64::INFINITY
+                };
+                if dt >= 0.0 && dt < next.0 {
+                    next = (dt, Some((i, None)));
+                }
+            }
+            for j in i + 1..n {
+                // |d + w t| = 2r, approaching (d·w < 0).
+                let (d, w) = (x[j] - x[i], v[j] - v[i]);
+                let (a, b, c) = (w.dot(w), d.dot(w), d.dot(d) - 4.0 * r * r);
+                let disc = b * b - a * c;
+                if b < 0.0 && disc >= 0.0 && a > 0.0 {
+                    let dt = c / (-b + disc.sqrt()); // the smaller root, stably
+                    if dt >= 0.0 && dt < next.0 {
+                        next = (dt, Some((i, Some(j))));
+                    }
+                }
+            }
+        }
+        let (dt, event) = next;
+        for i in 0..n {
+            x[i] += v[i] * dt;
+        }
+        t += dt;
+        match event {
+            None => return x,
+            Some((i, None)) => {
+                if x[i].x <= r + 1e-12 || x[i].x >= size.x - r - 1e-12 {
+                    v[i].x = -v[i].x;
+                }
+                if x[i].y <= r + 1e-12 || x[i].y >= size.y - r - 1e-12 {
+                    v[i].y = -v[i].y;
+                }
+            }
+            Some((i, Some(j))) => {
+                // Equal masses: the normal components swap.
+                let nrm = (x[j] - x[i]).normalize();
+                let (a, b) = (v[i].dot(nrm), v[j].dot(nrm));
+                v[i] += nrm * (b - a);
+                v[j] += nrm * (a - b);
+            }
+        }
+    }
+}
+
+#[test]
+fn at_a_million_metres_per_second_the_papers_carom_is_newtons() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml");
+    let paper = scene::load(&path).unwrap();
+    let fast = paper.with_c(1.0e6).unwrap();
+    // The momenta (γ v, m/s) are the paper's.
+    for (a, b) in paper.pucks.iter().zip(&fast.pucks) {
+        assert!((a.u.0 * paper.c - b.u.0 * fast.c).length() < 1e-12);
+    }
+    let until = 6.0;
+    let mut billiard = Billiard::from_scene(&fast);
+    billiard.advance_to(until);
+    let r = paper.pucks[0].radius;
+    assert!(
+        paper
+            .pucks
+            .iter()
+            .all(|p| p.radius == r && p.mass == paper.pucks[0].mass)
+    );
+    let x0: Vec<DVec2> = paper.pucks.iter().map(|p| p.position).collect();
+    let v0: Vec<DVec2> = paper
+        .pucks
+        .iter()
+        .map(|p| (p.u.0 * paper.c).truncate())
+        .collect();
+    let expected = newton(x0, v0, r, paper.table.size, until);
+    let hits = billiard.collisions().len();
+    assert!(hits >= 4, "only {hits} collisions by t = {until} s");
+    for (i, e) in expected.iter().enumerate() {
+        let got = billiard.worldline(i).position_at(until).truncate();
+        assert!(
+            got.distance(*e) < 1e-6,
+            "{}: {got} vs Newton's {e} ({} m apart)",
+            paper.pucks[i].name,
+            got.distance(*e)
+        );
+    }
+}
+
+#[test]
+fn lowering_c_keeps_the_momentum_below_c() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml");
+    let paper = scene::load(&path).unwrap();
+    let slow = paper.with_c(0.05).unwrap();
+    let u = slow.pucks[0].u;
+    assert!((u.0 * 0.05 - paper.pucks[0].u.0 * paper.c).length() < 1e-12);
+    assert!(u.speed_deficit() > 0.0 && u.gamma() > 30.0);
+    assert!(paper.with_c(0.0).is_err() && paper.with_c(f64::NAN).is_err());
+}

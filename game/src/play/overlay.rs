@@ -1,0 +1,388 @@
+//! What is drawn over the views with egui: each puck ringed in its colour
+//! with its name and clock, trails of where the pucks were seen and where
+//! they were, velocity arrows, a faint ghost of the truth over the seen
+//! picture, the cue with the stroke's β and γ, the split view's divider and
+//! captions, and the Doppler legend.
+
+use glam::{DVec2, DVec3, Vec4};
+
+use super::state::GameState;
+use crate::render::frame::{Camera, ViewKind};
+
+/// Width / height of a rectangle `[x, y, w, h]`.
+pub fn aspect(rect: [f32; 4]) -> f64 {
+    f64::from(rect[2].max(1.0)) / f64::from(rect[3].max(1.0))
+}
+
+/// Screen position (physical px) of a point at `p` relative to the eye in
+/// the observer's frame, inside `rect`; `None` behind the camera.
+pub fn project(camera: &Camera, rect: [f32; 4], p: DVec3) -> Option<DVec2> {
+    let m = camera.view_proj(rect[2] / rect[3]);
+    let clip = m * Vec4::new(p.x as f32, p.y as f32, p.z as f32, 1.0);
+    if clip.w <= 1e-6 {
+        return None;
+    }
+    let (x, y) = (clip.x / clip.w, clip.y / clip.w);
+    Some(DVec2::new(
+        f64::from(rect[0] + (x + 1.0) / 2.0 * rect[2]),
+        f64::from(rect[1] + (1.0 - y) / 2.0 * rect[3]),
+    ))
+}
+
+/// Smallest diameter of the ring marking a puck, physical px: a carom
+/// puck on a whole table is 13–25 px across at 1280×720, too small to find
+/// at a glance, so each is ringed in its colour at least this wide.
+pub const MARKER_PX: f32 = 32.0;
+
+/// The colour a puck is ringed and named in: its own, lightened when too
+/// dark to see on the dark room (a black puck).
+pub fn ring_colour(c: lightcone_engine::scene::Color) -> egui::Color32 {
+    let y = 0.2126 * f32::from(c.r) + 0.7152 * f32::from(c.g) + 0.0722 * f32::from(c.b);
+    if y < 40.0 {
+        let mix = |x: u8| ((f32::from(x) + 200.0) / 2.0) as u8;
+        egui::Color32::from_rgb(mix(c.r), mix(c.g), mix(c.b))
+    } else {
+        egui::Color32::from_rgb(c.r, c.g, c.b)
+    }
+}
+
+/// A puck as marked over one view.
+#[derive(Clone, Debug)]
+pub struct Marker {
+    /// Index of the view rectangle.
+    pub view: usize,
+    /// The puck.
+    pub puck: usize,
+    /// Apparent centre on screen, physical px.
+    pub centre: DVec2,
+    /// The ring's radius, physical px.
+    pub ring: f32,
+    /// The proper time its clock shows in the picture, s.
+    pub clock: f64,
+}
+
+/// Every puck visible in its view, where it is drawn.
+pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker> {
+    let mut out = Vec::new();
+    for (k, &(rect, kind)) in rects.iter().enumerate() {
+        let (_, camera) = state.eye_and_camera(aspect(rect));
+        let effects = kind.effects(state.effects);
+        let (right, _) = crate::render::camera::basis(camera.forward.normalize_or(DVec3::Y));
+        for (i, (e, s)) in state.apparent_centres(&effects).iter().enumerate() {
+            let Some(p) = project(&camera, rect, s.position) else {
+                continue;
+            };
+            // Only pucks inside their own view (not over a panel or the
+            // other half of a split).
+            let inside = |v: f64, lo: f32, len: f32| v >= f64::from(lo) && v <= f64::from(lo + len);
+            if !(inside(p.x, rect[0], rect[2]) && inside(p.y, rect[1], rect[3])) {
+                continue;
+            }
+            let spec = &state.scene.pucks[i];
+            // The puck's apparent radius on screen (its rest radius at its
+            // apparent distance).
+            let edge = project(&camera, rect, s.position + right * spec.radius);
+            let r_px = edge.map_or(0.0, |q| q.distance(p) as f32);
+            let w = state.billiard.worldline(i);
+            out.push(Marker {
+                view: k,
+                puck: i,
+                centre: p,
+                ring: (r_px + 4.0).max(MARKER_PX / 2.0),
+                clock: if effects.time_dilation {
+                    w.proper_time_at(e.event.t)
+                } else {
+                    e.event.t
+                },
+            });
+        }
+    }
+    out
+}
+
+/// What is drawn over the views: each puck ringed in its colour (at least
+/// [`MARKER_PX`] across) with its name and the proper time its clock shows
+/// in the picture; the cue line with the stroke's β and γ; in a split view
+/// the divider and the captions.
+pub fn overlays(
+    state: &GameState,
+    painter: &egui::Painter,
+    rects: &[([f32; 4], ViewKind)],
+    ppp: f32,
+) {
+    let pt = |p: DVec2| egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp);
+    let label = egui::Color32::from_gray(235);
+    for &(rect, kind) in rects {
+        physics_marks(state, painter, rect, kind, ppp);
+    }
+    for m in markers(state, rects) {
+        let spec = &state.scene.pucks[m.puck];
+        let colour = ring_colour(spec.color);
+        let r = m.ring / ppp;
+        painter.circle_stroke(pt(m.centre), r, egui::Stroke::new(2.5, colour));
+        painter.text(
+            pt(m.centre) - egui::vec2(0.0, r + 1.0),
+            egui::Align2::CENTER_BOTTOM,
+            &spec.name,
+            egui::FontId::proportional(12.0),
+            label,
+        );
+        painter.text(
+            pt(m.centre) + egui::vec2(0.0, r + 1.0),
+            egui::Align2::CENTER_TOP,
+            format!("{:.2} s", m.clock),
+            egui::FontId::monospace(11.0),
+            label,
+        );
+        // The cue: from the puck along the stroke, with the β and γ the
+        // puck will have.
+        if let Some(cue) = state.cue.filter(|c| c.puck == m.puck)
+            && rects[m.view].1 == ViewKind::Seen
+            && cue.du.length() > 0.0
+        {
+            let rect = rects[m.view].0;
+            let (_, camera) = state.eye_and_camera(aspect(rect));
+            let (_, s) = state.apparent_centre(&state.eye(), &state.effects, m.puck);
+            let metres = (cue.du.length() * state.scene.c * 0.25).clamp(0.1, 1.5);
+            let tip = s.position + cue.du.normalize() * metres;
+            if let Some(q) = project(&camera, rect, tip) {
+                let u = lightcone_engine::spacetime::ProperVelocity(
+                    state
+                        .billiard
+                        .worldline(cue.puck)
+                        .velocity_at(state.live_time)
+                        .0
+                        + cue.du,
+                );
+                let cue_colour = egui::Color32::from_rgb(120, 190, 255);
+                painter.arrow(
+                    pt(m.centre),
+                    pt(q) - pt(m.centre),
+                    egui::Stroke::new(2.5, cue_colour),
+                );
+                painter.text(
+                    pt(q) + egui::vec2(6.0, 0.0),
+                    egui::Align2::LEFT_CENTER,
+                    format!("β = {:.4}\nγ = {:.4}", u.beta().length(), u.gamma()),
+                    egui::FontId::proportional(14.0),
+                    cue_colour,
+                );
+            }
+        }
+    }
+    if rects.len() > 1 {
+        for &(rect, kind) in rects {
+            let caption = match kind {
+                ViewKind::Truth => "truth: where the pucks are now (board frame)",
+                ViewKind::Seen => "seen: what the eye's light shows",
+            };
+            painter.text(
+                egui::pos2((rect[0] + rect[2] / 2.0) / ppp, rect[1] / ppp + 8.0),
+                egui::Align2::CENTER_TOP,
+                caption,
+                egui::FontId::proportional(14.0),
+                egui::Color32::from_gray(240),
+            );
+        }
+        let x = rects[1].0[0] / ppp;
+        let h = rects[1].0[3] / ppp;
+        painter.line_segment(
+            [egui::pos2(x, 0.0), egui::pos2(x, h)],
+            egui::Stroke::new(2.0, egui::Color32::from_gray(200)),
+        );
+    }
+}
+
+/// `colour` at opacity `alpha` (0–255).
+fn faded(colour: egui::Color32, alpha: u8) -> egui::Color32 {
+    egui::Color32::from_rgba_unmultiplied(colour.r(), colour.g(), colour.b(), alpha)
+}
+
+/// Trails, the truth ghost and velocity arrows of every puck in one view.
+fn physics_marks(
+    state: &GameState,
+    painter: &egui::Painter,
+    rect: [f32; 4],
+    kind: ViewKind,
+    ppp: f32,
+) {
+    let show = state.show;
+    if !(show.trails || show.ghost || show.arrows) {
+        return;
+    }
+    let pt = |p: DVec2| egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp);
+    let (eye, camera) = state.eye_and_camera(aspect(rect));
+    let effects = kind.effects(state.effects);
+    let c = state.scene.c;
+    let clip = egui::Rect::from_min_size(
+        egui::pos2(rect[0] / ppp, rect[1] / ppp),
+        egui::vec2(rect[2] / ppp, rect[3] / ppp),
+    );
+    let painter = painter.with_clip_rect(clip);
+    // A board point (at rest) where this view shows it.
+    let board = |p: DVec3| {
+        let s = eye.see_static(p, c, effects.aberration);
+        project(&camera, rect, s.position)
+    };
+    let t_now = state.view_time;
+    let t_from = (t_now - super::state::TRAIL_S).max(t_now.min(0.0));
+    const SAMPLES: usize = 90;
+    let times: Vec<f64> = (0..=SAMPLES)
+        .map(|k| t_from + (t_now - t_from) * k as f64 / SAMPLES as f64)
+        .collect();
+    let seen_view = kind == ViewKind::Seen && effects.light_delay;
+    for (i, spec) in state.scene.pucks.iter().enumerate() {
+        let w = state.billiard.worldline(i);
+        let colour = ring_colour(spec.color);
+        let lift = DVec3::new(0.0, 0.0, spec.height / 2.0);
+        if show.trails && t_now > t_from {
+            // Where it was: dotted.
+            let truth: Vec<Option<DVec2>> = times
+                .iter()
+                .map(|&t| board(w.position_at(t) + lift))
+                .collect();
+            for (k, pair) in truth.windows(2).enumerate() {
+                if let (Some(a), Some(b)) = (pair[0], pair[1])
+                    && k % 2 == 0
+                {
+                    painter
+                        .line_segment([pt(a), pt(b)], egui::Stroke::new(1.5, faded(colour, 150)));
+                }
+            }
+            // Where it was seen: solid (light delay on).
+            if seen_view {
+                let v_eye = eye.u.velocity(c);
+                let seen: Vec<Option<DVec2>> = times
+                    .iter()
+                    .map(|&t| {
+                        let then = lightcone_engine::optics::Eye {
+                            event: lightcone_engine::spacetime::Event::new(
+                                t,
+                                eye.event.position - v_eye * (t_now - t),
+                            ),
+                            u: eye.u,
+                        };
+                        let (_, s) = state.apparent_centre(&then, &effects, i);
+                        project(
+                            &camera,
+                            rect,
+                            s.position + (then.event.position - eye.event.position),
+                        )
+                    })
+                    .collect();
+                for pair in seen.windows(2) {
+                    if let (Some(a), Some(b)) = (pair[0], pair[1]) {
+                        painter.line_segment(
+                            [pt(a), pt(b)],
+                            egui::Stroke::new(2.0, faded(colour, 210)),
+                        );
+                    }
+                }
+            }
+        }
+        let segment = w.segment_at(t_now);
+        if show.ghost && seen_view {
+            // The truth now, contracted: a faint outline and fill.
+            let centre = w.position_at(t_now) + lift;
+            let rim: Vec<egui::Pos2> = (0..24)
+                .filter_map(|k| {
+                    let a = std::f64::consts::TAU * f64::from(k) / 24.0;
+                    let r = segment.contract(DVec3::new(a.cos(), a.sin(), 0.0) * spec.radius);
+                    board(centre + r).map(pt)
+                })
+                .collect();
+            if rim.len() == 24 {
+                painter.add(egui::Shape::convex_polygon(
+                    rim,
+                    faded(colour, 45),
+                    egui::Stroke::new(1.2, faded(colour, 170)),
+                ));
+            }
+        }
+        if show.arrows {
+            // The velocity: now (truth) or when the light left (seen). A
+            // board point is drawn where light from it shows it, so the
+            // emission event's position is where the seen puck is drawn.
+            let (from, v) = if seen_view {
+                let (e, _) = state.apparent_centre(&eye, &effects, i);
+                (e.event.position, e.u.velocity(c))
+            } else {
+                (w.position_at(t_now) + lift, segment.velocity())
+            };
+            if v.length() > 1e-9
+                && let (Some(a), Some(b)) = (board(from), board(from + v * 0.5))
+            {
+                painter.arrow(
+                    pt(a),
+                    pt(b) - pt(a),
+                    egui::Stroke::new(2.0, faded(colour, 230)),
+                );
+            }
+        }
+    }
+}
+
+/// The Doppler colour key, in the panel.
+pub fn doppler_legend(ui: &mut egui::Ui) {
+    ui.horizontal_wrapped(|ui| {
+        ui.small("Doppler:");
+        ui.colored_label(egui::Color32::from_rgb(140, 150, 255), "approaching: bluer");
+        ui.colored_label(egui::Color32::from_rgb(255, 130, 110), "receding: redder");
+    });
+    ui.small("hue shifted, brightness kept; the ring keeps each puck's own colour");
+}
+
+/// The live space-time diagram (see [`crate::render::diagram`]): board x
+/// across, board time up, for the eye looked through at the time shown.
+pub fn diagram_panel(ui: &mut egui::Ui, state: &GameState) {
+    use crate::render::diagram::{Mark, plot};
+    let p = plot(&state.scene, &state.billiard, state.eye().event);
+    let size = egui::vec2(ui.available_width().max(300.0), 260.0);
+    let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 0.0, egui::Color32::from_rgb(18, 18, 24));
+    let map = |(x, t): (f64, f64)| {
+        egui::pos2(
+            rect.left() + 6.0 + ((x - p.x.0) / (p.x.1 - p.x.0)) as f32 * (rect.width() - 12.0),
+            rect.bottom() - 6.0 - ((t - p.t.0) / (p.t.1 - p.t.0)) as f32 * (rect.height() - 12.0),
+        )
+    };
+    let rgb = |c: [u8; 3], a: f64| {
+        egui::Color32::from_rgba_unmultiplied(c[0], c[1], c[2], (a * 255.0) as u8)
+    };
+    for mark in &p.marks {
+        match mark {
+            Mark::Line {
+                points,
+                rgb: c,
+                width,
+                alpha,
+                dashed,
+            } => {
+                let stroke = egui::Stroke::new(*width as f32 * 0.7, rgb(*c, *alpha));
+                // Every fourth sample is plenty at this size.
+                let pts: Vec<egui::Pos2> = points.iter().step_by(4).map(|&q| map(q)).collect();
+                for (k, pair) in pts.windows(2).enumerate() {
+                    if !dashed || (k / 3) % 2 == 0 {
+                        painter.line_segment([pair[0], pair[1]], stroke);
+                    }
+                }
+            }
+            Mark::Cross { at } => {
+                let q = map(*at);
+                let s = egui::Stroke::new(1.5, egui::Color32::WHITE);
+                painter.line_segment([q - egui::vec2(4.0, 4.0), q + egui::vec2(4.0, 4.0)], s);
+                painter.line_segment([q + egui::vec2(-4.0, 4.0), q + egui::vec2(4.0, -4.0)], s);
+            }
+            Mark::Event { at, rgb: c } => {
+                painter.circle_filled(map(*at), 5.0, egui::Color32::WHITE);
+                painter.circle_filled(map(*at), 3.5, rgb(*c, 1.0));
+            }
+        }
+    }
+    ui.small(
+        "board x across, board time up (grid 0.5 m, 0.5 s; green: cushions). \
+         Dashed: the eye's past light cone along each puck's path; dots: the \
+         events seen now (top: the eye); crosses: collisions.",
+    );
+}
