@@ -113,6 +113,21 @@ fn check_invariants(b: &Billiard, until: f64, samples: usize) -> f64 {
     worst
 }
 
+/// The overlap bound of the next recorded contact of `i` and `j` whose first
+/// kick is after `t` and within 0.1 s of it; 0 if none.
+fn next_contact_bound(b: &Billiard, i: usize, j: usize, t: f64) -> f64 {
+    b.collisions()
+        .iter()
+        .filter(|c| pair_of(c) == Some((i, j)))
+        .map(|c| {
+            let first = c.pucks.iter().map(|p| p.t).fold(f64::INFINITY, f64::min);
+            (first, c.overlap_bound)
+        })
+        .filter(|&(first, _)| first > t && first < t + 0.1)
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+        .map_or(0.0, |(_, bound)| bound)
+}
+
 /// The segment of `w` in force just before board time `t`.
 fn before(w: &Worldline, t: f64) -> &Segment {
     let k = w.segment_index_at(t);
@@ -195,15 +210,26 @@ fn check_pair(b: &Billiard, i: usize, j: usize, samples: &[f64]) -> f64 {
             }
             continue;
         }
-        // Towards the next predicted contact: the early slice.
+        // Towards the next contact: the early slice. Its recorded bound if
+        // it happened (its first kick within 0.1 s, light crossing 3 radii);
+        // else (a third body changed one of them first, so it never did)
+        // the unperturbed depth at the first kick the pair frame predicts,
+        // if that is still ahead (a pair overlapping and closing now must
+        // meet now, and gets no allowance from its own prediction).
         let mover = |s| puck_puck::Mover {
             segment: s,
             radius: R,
         };
-        let early = puck_puck::predict(mover(si), mover(sj), 1.0, t).map_or(0.0, |hit| {
-            let first = hit.kicks[0].t.min(hit.kicks[1].t).max(t);
-            overlap::depth(si, R, sj, R, first)
+        let recorded = next_contact_bound(b, i, j, t);
+        let predicted = puck_puck::predict(mover(si), mover(sj), 1.0, t).map_or(0.0, |hit| {
+            let first = hit.kicks[0].t.min(hit.kicks[1].t);
+            if first > t {
+                overlap::depth(si, R, sj, R, first)
+            } else {
+                0.0
+            }
         });
+        let early = recorded.max(predicted);
         assert!(
             d <= allow.max(early) + 1e-9,
             "pucks {} and {} overlap by {d} m at t = {t}, allowed {allow} (early {early})",
@@ -440,7 +466,7 @@ fn crowded_inelastic_box_collapses_without_overlap_beyond_the_bound() {
         }
         contacts = b.stats().contacts();
     }
-    assert!(contacts >= 100_000 || t >= 50.0, "{contacts}");
+    assert!(contacts >= 100_000, "only {contacts} contacts by t = {t}");
     for i in 0..b.len() {
         assert!(b.worldline(i).last().u.is_finite());
     }

@@ -390,8 +390,9 @@ impl Billiard {
         &self.puck(i).worldline
     }
 
-    /// The kept collision records, in the order resolved (contact time
-    /// order). A puck–puck collision's second velocity change stays
+    /// The kept collision records, in the order processed (that of each
+    /// collision's first velocity change, which for a puck–puck contact can
+    /// come slightly before the contact itself). A puck–puck collision's second velocity change stays
     /// `pending` until its board time. With a history horizon the oldest
     /// records are dropped: the first one kept has global index
     /// [`Self::collisions_forgotten`].

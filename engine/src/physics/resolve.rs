@@ -146,7 +146,10 @@ pub fn puck_puck(
 /// `vₙ` alone), so "closing along `normal`" means the same there and on the
 /// board. There the normal momenta `±p` become `∓e p` with the energies
 /// unchanged (the lost kinetic energy stays as rest mass, as in
-/// [`puck_puck`]); 4-momentum is conserved exactly, and an elastic pair
+/// [`puck_puck`]). Here `e` is Newton's coefficient on the normal momentum
+/// (a fraction `e²` of the normal part of the kinetic energy is kept), not
+/// the energy fraction of [`puck_puck`]; the two agree for `e = 1` and
+/// `e = 0`; 4-momentum is conserved exactly, and an elastic pair
 /// leaves opening along `normal` on the board. Not closing: unchanged.
 pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Body; 2] {
     // In closed form on the board: an impulse `J n` to `a` (`−J n` to `b`)

@@ -81,8 +81,9 @@ enum Finish {
     Interrupted(f64),
 }
 
-/// Runs to `until`, writing each finished collision as soon as it is known
-/// and in contact-time order, then the state line.
+/// Runs to `until`, writing each finished collision as soon as it is known,
+/// in the order processed (that of each collision's first velocity change),
+/// then the state line.
 fn stream(billiard: &mut Billiard, until: f64, mut w: impl Write) -> std::io::Result<Finish> {
     let progress = crate::progress::bar(until, "board s");
     let mut next = 0u64; // global index of the next record to write
