@@ -59,9 +59,14 @@ pub fn run(paths: &[PathBuf], options: Options) -> ExitCode {
             _ => ExitCode::FAILURE,
         };
     }
+    // Ctrl-C stops the lesson running, shows what it did, and ends the run.
+    crate::interrupt::watch();
     let mut worst = 0u8;
     for path in paths {
         worst = worst.max(one(path, limits, options.json));
+        if crate::interrupt::interrupted() {
+            return crate::interrupt::exit_code(&format!("{} stopped", path.display()));
+        }
     }
     ExitCode::from(worst)
 }

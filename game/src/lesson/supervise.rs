@@ -86,6 +86,15 @@ fn hook_event(name: Option<&'static str>) {
 /// moves standard output to the event channel (the lesson's prints go to
 /// standard error), runs the lesson and reports. Returns the exit status.
 pub fn child(path: &Path, limits: Limits) -> u8 {
+    // Die with the parent: a `lesson` run killed from outside (or ended by
+    // Ctrl-C) must not leave its lesson running.
+    // SAFETY: a plain system call on this process.
+    unsafe {
+        libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL);
+    }
+    if std::os::unix::process::parent_id() == 1 {
+        return 1; // the parent is already gone
+    }
     let bytes = limits.memory_mb.saturating_mul(1 << 20);
     // SAFETY: plain system calls on this process's own descriptors and
     // limits; `dup` returns a fresh descriptor we own.
@@ -191,6 +200,21 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
             Ok(Event::Failed(e)) => failed = Some(e),
             Err(mpsc::RecvTimeoutError::Timeout) => {}
             Err(mpsc::RecvTimeoutError::Disconnected) => break,
+        }
+        if crate::interrupt::interrupted() {
+            // Ctrl-C: stop the lesson; what it did so far is reported.
+            kill_group();
+            let _ = child.wait();
+            return Ok(Outcome {
+                file: path.display().to_string(),
+                t: partial.t,
+                frames: partial.frames,
+                finished: None,
+                error: None,
+                stopped: None,
+                claims: partial.claims,
+                answers: partial.answers,
+            });
         }
         if let Some((_, since)) = &hook
             && since.elapsed() > limits.hook + KILL_AFTER
