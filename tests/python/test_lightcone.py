@@ -273,9 +273,10 @@ def test_history_horizon_bounds_what_is_kept_and_says_so():
     assert sim.forgotten_before is None
     sim.run_until(30.0)
     assert sim.forgotten_before is not None and 25.0 < sim.forgotten_before <= 28.0
-    # The kept collisions reach back no further than the horizon (give or
-    # take the record still completing when it was cut).
-    assert all(max(p["t"] for p in c["pucks"]) > 27.0 for c in sim.collisions()[:1])
+    # The kept collisions reach back no further than the horizon (records
+    # are dropped as each chunk of the run starts, so give or take a chunk).
+    first = sim.collisions()[0]
+    assert max(p["t"] for p in first["pucks"]) > 25.0
     everything = lightcone.Simulation(scene("ten_pucks.toml"))
     everything.run_until(30.0)
     assert len(sim.collisions()) < len(everything.collisions())

@@ -941,6 +941,13 @@ impl Billiard {
         self.compact();
     }
 
+    /// Applies the history horizon to the collision records now (it is
+    /// otherwise applied as each [`Self::step_until`] starts): for a caller
+    /// that wants `collisions()` to hold only the horizon after a long call.
+    pub fn forget_old_records(&mut self) {
+        self.trim_records();
+    }
+
     /// Drops the finished collision records older than the history horizon:
     /// those whose every velocity change is before `time − h`, from the
     /// front (records are in the order their first kick was processed; a

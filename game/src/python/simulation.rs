@@ -122,6 +122,8 @@ impl Simulation {
             });
             py.check_signals()?;
             if next >= t {
+                // `collisions()` then holds only the history horizon.
+                self.lock(py).billiard.forget_old_records();
                 return Ok(());
             }
             if took < CHUNK / 2 {
