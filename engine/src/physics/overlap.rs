@@ -133,11 +133,29 @@ pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> 
         }
     }
     // Golden-section refinement around the best candidate.
-    let (mut lo, mut hi) = (best.1 - step, best.1 + step);
+    let refined = golden_min(f, best.1 - step, best.1 + step, 80, |_| false);
+    let (value, theta) = if refined.0 < best.0 { refined } else { best };
+    (value, DVec3::new(theta.cos(), theta.sin(), 0.0))
+}
+
+/// Golden-section search for the minimum of `f` on `[lo, hi]` (unimodal
+/// there): at most `steps` steps, stopping early once `done` holds for a
+/// value visited or the interval is down to rounding. Returns the best
+/// `(value, x)` of the last two points.
+fn golden_min(
+    f: impl Fn(f64) -> f64,
+    mut lo: f64,
+    mut hi: f64,
+    steps: usize,
+    done: impl Fn(f64) -> bool,
+) -> (f64, f64) {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
     let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..80 {
+    for _ in 0..steps {
+        if done(f1) || done(f2) || hi - lo <= 1e-15 * hi.abs().max(1.0) {
+            break;
+        }
         if f1 < f2 {
             hi = x2;
             x2 = x1;
@@ -152,10 +170,7 @@ pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> 
             f2 = f(x2);
         }
     }
-    let (value, theta) = [best, (f1, x1), (f2, x2)]
-        .into_iter()
-        .fold((f64::INFINITY, 0.0), |m, c| if c.0 < m.0 { c } else { m });
-    (value, DVec3::new(theta.cos(), theta.sin(), 0.0))
+    if f1 <= f2 { (f1, x1) } else { (f2, x2) }
 }
 
 /// The first board time in `[t0, t1]` at which two uniformly moving pucks
@@ -187,38 +202,10 @@ pub fn first_touch(
     if t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
-    // Maximum of the concave gap on [t0, t1].
-    let golden = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut lo, mut hi) = (t0, t1);
-    let (mut x1, mut x2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-    let (mut f1, mut f2) = (g(x1), g(x2));
-    let mut peak = (f64::NEG_INFINITY, t0);
-    for _ in 0..100 {
-        if f1 > 0.0 {
-            peak = (f1, x1);
-            break;
-        }
-        if f2 > 0.0 {
-            peak = (f2, x2);
-            break;
-        }
-        if f1 > f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - golden * (hi - lo);
-            f1 = g(x1);
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + golden * (hi - lo);
-            f2 = g(x2);
-        }
-        if hi - lo <= 1e-15 * hi.abs().max(1.0) {
-            break;
-        }
-    }
+    // Maximum of the concave gap on [t0, t1] (stopping at any point where
+    // the shapes already overlap).
+    let (value, at) = golden_min(|t| -g(t), t0, t1, 100, |v| v < 0.0);
+    let mut peak = (-value, at);
     if peak.0 <= 0.0 {
         let end = g(t1);
         if end > 0.0 {
