@@ -47,8 +47,9 @@ pub struct PuckLine {
     /// Rest mass after, kg: only when an inelastic collision changed it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mass_after: Option<f64>,
-    /// Present and true when light from the contact had not yet reached
-    /// the centre at the end of the run: `t` and `u_after` are scheduled.
+    /// Present and true when this puck's velocity change was still ahead
+    /// at the end of the run (the second kick of a contact): `t` and
+    /// `u_after` are the scheduled ones.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub pending: bool,
 }

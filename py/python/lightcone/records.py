@@ -35,7 +35,7 @@ class CollisionPuck(TypedDict):
 
     name: str
     t: float
-    """Board time of this puck's velocity change, s (light from the contact reaches its centre)."""
+    """Board time of this puck's velocity change, s (simultaneous with the contact in the pair frame)."""
     position: List[float]
     """Its centre then, (x, y) m."""
     u_before: List[float]
@@ -51,7 +51,7 @@ class CollisionPuck(TypedDict):
     mass_after: NotRequired[float]
     """Rest mass after, kg: only when an inelastic collision changed it."""
     pending: NotRequired[bool]
-    """Present and True when light from the contact had not reached this centre yet."""
+    """Present and True when this puck's velocity change was still ahead (the second kick of a contact)."""
 
 
 class Collision(TypedDict):
