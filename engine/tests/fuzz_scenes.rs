@@ -197,7 +197,13 @@ fn every_shipped_scene_loads_and_runs() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+    // A fixed seed keeps CI reproducible; explore others locally with a
+    // different seed here (every failure proptest finds is saved and re-run).
+    #![proptest_config(ProptestConfig {
+        cases: 400,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(7),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn mutated_scenes_never_panic_and_never_write_nan(
