@@ -555,11 +555,12 @@ fn bounded_history_forgets_and_says_so() {
 }
 
 proptest! {
-    // A fixed seed: CI runs the same 1 000 scenes every time (set
-    // PROPTEST_RNG_SEED to explore others). A random seed once found a
-    // case this engine does not yet hold: a contact found on the board
-    // whose kick reshapes a γ ≈ 8·10⁴ puck can leave the pair closing along
-    // the new penetration direction (0.2 mm for 10 ms); see README.
+    // A fixed seed: CI runs the same 1 000 scenes every time. Other seeds
+    // find two cases this engine does not yet hold at γ ≳ 10⁴ (a board
+    // push that reshapes a puck can leave the pair closing; a very fast
+    // puck crossing a slow one can overlap it on the board before the
+    // pair frame's first kick, until the next prediction): see README,
+    // "Collision convention".
     #![proptest_config(ProptestConfig {
         cases: 1000,
         rng_seed: proptest::test_runner::RngSeed::Fixed(11),
