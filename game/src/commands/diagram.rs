@@ -28,19 +28,9 @@ pub fn run(path: &Path, at: f64, observer: Option<&str>, out: &Path, size: &str)
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
-    let index = match observer {
-        None => 0,
-        Some(name) => match scene.observers.iter().position(|o| o.name == name) {
-            Some(i) => i,
-            None => {
-                let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
-                return fail(format!(
-                    "{}: no observer named \"{name}\"; the scene has: {}",
-                    path.display(),
-                    names.join(", ")
-                ));
-            }
-        },
+    let index = match super::render::observer_index(&scene, path, observer) {
+        Ok(i) => i,
+        Err(e) => return fail(e),
     };
     let mut billiard = Billiard::from_scene(&scene);
     billiard.advance_to(at);

@@ -110,14 +110,12 @@ pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) 
             return ExitCode::FAILURE;
         }
     };
-    let Some(index) = scene.observers.iter().position(|o| o.name == observer) else {
-        let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
-        crate::errln!(
-            "{}: no observer named \"{observer}\"; the scene has: {}",
-            path.display(),
-            names.join(", ")
-        );
-        return ExitCode::FAILURE;
+    let index = match super::render::observer_index(&scene, path, Some(observer)) {
+        Ok(i) => i,
+        Err(e) => {
+            crate::errln!("{e}");
+            return ExitCode::FAILURE;
+        }
     };
     let mut billiard = Billiard::from_scene(&scene);
     billiard.advance_to(at);

@@ -52,19 +52,9 @@ pub fn run(
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
-    let index = match observer {
-        None => 0,
-        Some(name) => match scene.observers.iter().position(|o| o.name == name) {
-            Some(i) => i,
-            None => {
-                let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
-                return fail(format!(
-                    "{}: no observer named \"{name}\"; the scene has: {}",
-                    path.display(),
-                    names.join(", ")
-                ));
-            }
-        },
+    let index = match observer_index(&scene, path, observer) {
+        Ok(i) => i,
+        Err(e) => return fail(e),
     };
     let gpu = match gpu::headless() {
         Ok(g) => g,
@@ -76,4 +66,28 @@ pub fn run(
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => fail(e),
     }
+}
+
+/// Index of the observer `name` in `scene` (the first when `None`), or a
+/// message naming the file and the observers it has.
+pub fn observer_index(
+    scene: &lightcone_engine::scene::Scene,
+    path: &Path,
+    name: Option<&str>,
+) -> Result<usize, String> {
+    let Some(name) = name else {
+        return Ok(0);
+    };
+    scene
+        .observers
+        .iter()
+        .position(|o| o.name == name)
+        .ok_or_else(|| {
+            let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
+            format!(
+                "{}: no observer named \"{name}\"; the scene has: {}",
+                path.display(),
+                names.join(", ")
+            )
+        })
 }
