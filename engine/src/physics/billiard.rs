@@ -1045,22 +1045,16 @@ impl Billiard {
         } else {
             // An endless window: a moving puck can be anywhere ahead.
             let v = s.velocity().truncate();
-            DVec2::new(
-                if v.x > 0.0 {
-                    hi.x
-                } else if v.x < 0.0 {
-                    lo.x
+            let ahead = |v: f64, lo: f64, hi: f64, p: f64| {
+                if v > 0.0 {
+                    hi
+                } else if v < 0.0 {
+                    lo
                 } else {
-                    p0.x
-                },
-                if v.y > 0.0 {
-                    hi.y
-                } else if v.y < 0.0 {
-                    lo.y
-                } else {
-                    p0.y
-                },
-            )
+                    p
+                }
+            };
+            DVec2::new(ahead(v.x, lo.x, hi.x, p0.x), ahead(v.y, lo.y, hi.y, p0.y))
         };
         (
             (p0.min(p1) - r).clamp(lo, hi),
