@@ -514,6 +514,14 @@ impl LessonHost {
 mod tests {
     use super::*;
 
+    /// The embedded interpreter and its printed-lines tee are one per
+    /// process: tests that run lessons take turns, so one test's drain of
+    /// what lessons printed never takes another's lines.
+    fn one_lesson_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+        static LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+        LOCK.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
     fn fallback() -> GameState {
         placeholder()
     }
@@ -546,6 +554,7 @@ mod tests {
 
     #[test]
     fn an_edited_lesson_reloads_and_a_broken_edit_keeps_the_game() {
+        let _one = one_lesson_at_a_time();
         let path = temp("reload.py");
         write(&path, &lesson("v1", ""), 0);
         let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
@@ -579,6 +588,7 @@ mod tests {
 
     #[test]
     fn after_finish_no_hook_runs_again() {
+        let _one = one_lesson_at_a_time();
         let path = temp("finish.py");
         let extra = "def on_frame(world, t):\n\
                      \x20   world.check('frame', True, str(t))\n\
@@ -611,6 +621,7 @@ mod tests {
     /// reads the board time: the figure in BENCHMARKS.md.
     #[test]
     fn a_hook_call_costs_well_under_a_frame() {
+        let _one = one_lesson_at_a_time();
         let path = temp("cost.py");
         let extra = "def on_frame(world, t):\n\
                      \x20   world.n = getattr(world, 'n', 0) + (world.t == t)\n";
@@ -647,6 +658,7 @@ mod tests {
 
     #[test]
     fn a_question_pauses_until_answered_and_on_answer_runs() {
+        let _one = one_lesson_at_a_time();
         let path = temp("ask.py");
         let extra = "    world.ask('which?', ['a', 'b'], answer=1)\n\
                      def on_answer(world, question, choice):\n\
@@ -686,6 +698,7 @@ mod tests {
 
     #[test]
     fn hooks_see_the_lent_game_and_a_world_outside_a_hook_says_so() {
+        let _one = one_lesson_at_a_time();
         let path = temp("lend.py");
         let extra = "    world.kept = world\n\
                      def on_frame(world, t):\n\
