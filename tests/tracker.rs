@@ -312,7 +312,7 @@ fn every_cave_wall_renders_for_both_eyes() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let load = |name: &str| lightcone::render::headless::Image::load_png(&dir.join(name)).unwrap();
+    let load = |name: &str| lightcone_render::headless::Image::load_png(&dir.join(name)).unwrap();
     for wall in ["front", "left", "right", "floor"] {
         for eye in ["left", "right"] {
             let img = load(&format!("{wall}_{eye}.png"));

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use lightcone::commands::args;
-use lightcone::{commands, interrupt, play, render};
+use lightcone::{commands, interrupt, play};
 
 #[derive(Parser)]
 #[command(
@@ -288,8 +288,8 @@ fn main() -> ExitCode {
             view,
         }) => {
             let kind = match view {
-                ViewArg::Seen => render::frame::ViewKind::Seen,
-                ViewArg::Truth => render::frame::ViewKind::Truth,
+                ViewArg::Seen => lightcone_render::frame::ViewKind::Seen,
+                ViewArg::Truth => lightcone_render::frame::ViewKind::Truth,
             };
             commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
         }

@@ -3,9 +3,12 @@
 //! results (collision and observation records as the same dictionaries
 //! that `lightcone simulate` and `lightcone observe` print as JSON).
 //!
-//! The classes live here, in the game crate, and not in the wheel's crate
-//! (`py/`), because the game embeds the same module for its lessons
-//! ([`crate::lesson`]): one set of classes, two ways in.
+//! This crate (`lightcone-py`) is the wheel's extension module
+//! (`lightcone._lightcone`, built with maturin) and depends on the engine
+//! and the renderer only. The game depends on it and embeds the same
+//! classes for its lessons ([`register`]): one set of classes, two ways in.
+//! The game lends its running state to a lesson's [`World`] through
+//! [`LessonGame`].
 
 mod convert;
 pub mod errors;
@@ -25,10 +28,10 @@ pub use errors::{NoAdapterError, NotComputedError, SceneError, SpeedOfLightError
 pub use frame::Frame;
 pub use scene::Scene;
 pub use simulation::Simulation;
-pub use world::{Bars, Claim, LessonUi, Question, World};
+pub use world::{Bars, Claim, LessonGame, LessonUi, Pictures, Question, World};
 
 /// Adds the module's classes to `m`: used by the wheel's `_lightcone` and
-/// by the embedded [`embedded`] module alike.
+/// by the module the game embeds alike.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Simulation>()?;
@@ -37,12 +40,9 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)
 }
 
-/// The module as the game embeds it (registered with `append_to_inittab`
-/// before the interpreter starts). Its own name keeps its `PyInit_` symbol
-/// apart from the wheel's; the lesson host installs it as
-/// `lightcone._lightcone`.
+/// The Lightcone engine from Python (`import lightcone`).
 #[pymodule]
-pub fn lightcone_embedded(m: &Bound<'_, PyModule>) -> PyResult<()> {
+fn _lightcone(m: &Bound<'_, PyModule>) -> PyResult<()> {
     register(m)
 }
 
@@ -173,15 +173,15 @@ fn observation<'py>(
     effects: Effects,
 ) -> PyResult<Bound<'py, PyAny>> {
     let index = observer_index(scene, observer)?;
-    let report = crate::commands::observe::report(scene, billiard, index, t, effects, vertices);
+    let report = lightcone_render::observe::report(scene, billiard, index, t, effects, vertices);
     to_python(py, &report)
 }
 
 /// The headless graphics device, opened once per process.
-fn gpu() -> Result<&'static crate::render::gpu::Gpu, String> {
-    static GPU: std::sync::OnceLock<Result<crate::render::gpu::Gpu, String>> =
+fn gpu() -> Result<&'static lightcone_render::gpu::Gpu, String> {
+    static GPU: std::sync::OnceLock<Result<lightcone_render::gpu::Gpu, String>> =
         std::sync::OnceLock::new();
-    GPU.get_or_init(crate::render::gpu::headless)
+    GPU.get_or_init(lightcone_render::gpu::headless)
         .as_ref()
         .map_err(Clone::clone)
 }
@@ -196,7 +196,7 @@ fn render_frame(
     size: (u32, u32),
     view: &str,
 ) -> PyResult<Frame> {
-    use crate::render::frame::ViewKind;
+    use lightcone_render::frame::ViewKind;
     let kind = match view {
         "seen" => ViewKind::Seen,
         "truth" => ViewKind::Truth,
@@ -214,7 +214,7 @@ fn render_frame(
     let index = observer_index(scene, observer)?;
     let image = py.detach(|| {
         let gpu = gpu().map_err(NoAdapterError::new_err)?;
-        crate::render::headless::render_billiard(
+        lightcone_render::headless::render_billiard(
             gpu, scene, billiard, t, index, kind, size.0, size.1,
         )
         .map_err(PyRuntimeError::new_err)

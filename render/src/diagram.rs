@@ -392,7 +392,7 @@ mod tests {
                 // `observe` reports the centre at mid-height, found by the
                 // optics' closed form on the worldline's segments.
                 let report =
-                    crate::commands::observe::report(&scene, &billiard, 0, t, scene.effects, false);
+                    crate::observe::report(&scene, &billiard, 0, t, scene.effects, false);
                 for (i, e) in drawn.emissions.iter().enumerate() {
                     let r = &report.pucks[i].centre.emission;
                     let reported = Event::new(r.t, DVec3::from(r.position));

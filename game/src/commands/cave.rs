@@ -63,7 +63,7 @@ pub fn run(
     };
     let mut game = GameState::new(scene);
     game.step(at);
-    let gpu = match crate::render::gpu::headless() {
+    let gpu = match lightcone_render::gpu::headless() {
         Ok(g) => g,
         Err(e) => return fail(e),
     };

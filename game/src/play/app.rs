@@ -19,10 +19,10 @@ use super::overlay::{aspect, markers, overlays, project, ring_colour};
 use super::state::{GameState, ViewMode};
 use crate::cave::{self, Side, TrackedHead};
 use crate::lesson::LessonHost;
-use crate::render::frame::{self, FrameVertex, ViewKind};
-use crate::render::gpu::{self, Gpu};
-use crate::render::headless::BACKGROUND;
-use crate::render::pipeline::{Draw, Renderer};
+use lightcone_render::frame::{self, FrameVertex, ViewKind};
+use lightcone_render::gpu::{self, Gpu};
+use lightcone_render::headless::BACKGROUND;
+use lightcone_render::pipeline::{Draw, Renderer};
 use lightcone_tracker::cave::CaveConfig;
 use lightcone_tracker::follow::TrackerStatus;
 
@@ -1035,7 +1035,7 @@ fn save(
     path: &std::path::Path,
 ) -> Result<(), String> {
     let (w, h) = (gfx.config.width, gfx.config.height);
-    let mut rgba = crate::render::headless::read_rows(&gfx.gpu, buffer, padded, w, h)?;
+    let mut rgba = lightcone_render::headless::read_rows(&gfx.gpu, buffer, padded, w, h)?;
     let bgra = matches!(
         gfx.config.format,
         wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
@@ -1046,7 +1046,7 @@ fn save(
         }
         px[3] = 255;
     }
-    crate::render::headless::Image {
+    lightcone_render::headless::Image {
         width: w,
         height: h,
         rgba,
