@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use common::{cloth_pixels as cloth, lightcone, play_under_xvfb, repo};
 use glam::DVec3;
 use lightcone::cave::TrackedHead;
-use lightcone::play::state::GameState;
+use lightcone::model::GameState;
 use lightcone_tracker::follow::TrackerStatus;
 
 /// A service name no other test (or run) uses.

@@ -26,7 +26,7 @@ use lightcone_tracker::cave::{CaveConfig, TrackerToBoard, Wall};
 use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus, Verdict};
 use lightcone_tracker::{Subscriber, TrackerSample, unix_now_ns};
 
-use crate::play::state::GameState;
+use crate::model::GameState;
 use lightcone_render::frame::{self, FrameVertex};
 use lightcone_render::gpu::Gpu;
 use lightcone_render::headless::{Image, Offscreen};

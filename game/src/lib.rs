@@ -8,6 +8,7 @@ pub mod cave;
 pub mod commands;
 pub mod interrupt;
 pub mod lesson;
+pub mod model;
 pub mod output;
 pub mod play;
 pub mod progress;

@@ -345,9 +345,9 @@ fn main() -> ExitCode {
                 cave,
                 at,
                 view: view.map(|v| match v {
-                    PlayView::Seen => play::state::ViewMode::Seen,
-                    PlayView::Truth => play::state::ViewMode::Truth,
-                    PlayView::Split => play::state::ViewMode::Split,
+                    PlayView::Seen => lightcone::model::ViewMode::Seen,
+                    PlayView::Truth => lightcone::model::ViewMode::Truth,
+                    PlayView::Split => lightcone::model::ViewMode::Split,
                 }),
                 top,
                 effects,

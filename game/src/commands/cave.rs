@@ -8,7 +8,7 @@ use glam::{DQuat, DVec3};
 use lightcone_engine::scene;
 
 use crate::cave::{self, DEFAULT_HEAD};
-use crate::play::state::GameState;
+use crate::model::GameState;
 
 /// Parses `x,y,z`.
 pub fn parse_head(text: &str) -> Result<DVec3, String> {

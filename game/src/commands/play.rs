@@ -7,7 +7,7 @@ use lightcone_engine::scene;
 
 use crate::lesson::LessonHost;
 use crate::play::app::{self, Options};
-use crate::play::state::{GameState, ViewMode};
+use crate::model::{GameState, ViewMode};
 
 /// The options of `play` beyond the scene.
 #[derive(Default)]

@@ -7,7 +7,7 @@ use lightcone_engine::scene::{Effects, Scene};
 use lightcone_python::{LessonGame, Pictures};
 use pyo3::prelude::*;
 
-use crate::play::state::{GameState, ViewMode};
+use crate::model::{GameState, ViewMode};
 
 /// The module as the game embeds it (registered with `append_to_inittab`
 /// before the interpreter starts). Its own name keeps its `PyInit_` symbol

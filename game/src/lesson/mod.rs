@@ -39,7 +39,7 @@ use lightcone_engine::scene::Scene;
 use pyo3::prelude::*;
 use pyo3::types::{PyModule, PyTuple};
 
-use crate::play::state::GameState;
+use crate::model::GameState;
 use lightcone_python::{LessonUi, World};
 
 /// The `lightcone` package's Python side, installed in the embedded

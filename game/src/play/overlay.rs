@@ -6,7 +6,7 @@
 
 use glam::{DVec2, DVec3, Vec4};
 
-use super::state::GameState;
+use crate::model::GameState;
 use lightcone_render::frame::{Camera, ViewKind};
 
 /// Width / height of a rectangle `[x, y, w, h]`.
@@ -225,7 +225,7 @@ fn physics_marks(
         project(&camera, rect, s.position)
     };
     let t_now = state.view_time;
-    let t_from = (t_now - super::state::TRAIL_S).max(t_now.min(0.0));
+    let t_from = (t_now - crate::model::TRAIL_S).max(t_now.min(0.0));
     const SAMPLES: usize = 90;
     let times: Vec<f64> = (0..=SAMPLES)
         .map(|k| t_from + (t_now - t_from) * k as f64 / SAMPLES as f64)
