@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use lightcone::commands::args;
-use lightcone::{commands, interrupt, play};
+use lightcone::{commands, interrupt};
 
 #[derive(Parser)]
 #[command(

@@ -16,9 +16,9 @@ use winit::window::{Window, WindowId};
 
 use super::lesson_panel::{self, LessonAction};
 use super::overlay::{aspect, markers, overlays, project, ring_colour};
-use crate::model::{GameState, ViewMode};
 use crate::cave::{self, Side, TrackedHead};
 use crate::lesson::LessonHost;
+use crate::model::{GameState, ViewMode};
 use lightcone_render::frame::{self, FrameVertex, ViewKind};
 use lightcone_render::gpu::{self, Gpu};
 use lightcone_render::headless::BACKGROUND;
