@@ -11,6 +11,7 @@ pub mod play;
 pub mod progress;
 pub mod python;
 pub mod render;
+pub mod tracker_bridge;
 
 /// The scene used when none is named.
 pub const DEFAULT_SCENE: &str = "assets/scenes/paper_carom.toml";
