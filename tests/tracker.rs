@@ -546,7 +546,10 @@ fn bench_tracker_quick_shows_the_filter_cutting_jitter() {
     // β, jitter raw, jitter filtered, error raw, error filtered.
     let (raw, filtered) = (cells[1], cells[2]);
     assert!(filtered * 5.0 < raw, "raw {raw} px, filtered {filtered} px");
-    assert!(text.contains("| bridge child | 1000 Hz | 50 µs |"), "{text}");
+    assert!(
+        text.contains("| bridge child | 1000 Hz | 50 µs |"),
+        "{text}"
+    );
 }
 
 #[test]
