@@ -549,11 +549,15 @@ mod tests {
 
     #[test]
     fn a_silent_reader_is_killed_after_the_limit() {
-        let mut bridge = Bridge::new("x", shell("exec sleep 30"));
         let start = Instant::now();
-        assert!(wait_for(&mut bridge, Duration::from_secs(5), |b| b.deaths >= 1));
+        let mut bridge = Bridge::new("x", shell("exec sleep 30"));
+        assert!(wait_for(&mut bridge, Duration::from_secs(6), |b| b.deaths >= 1));
         let waited = start.elapsed();
-        assert!(waited >= SILENCE_LIMIT && waited < SILENCE_LIMIT + Duration::from_secs(1));
+        // Not before the limit; the bound above is loose for a loaded machine.
+        assert!(
+            waited >= SILENCE_LIMIT && waited < SILENCE_LIMIT + Duration::from_secs(3),
+            "{waited:?}"
+        );
         match bridge.state() {
             BridgeState::Restarting { reason } => {
                 assert!(reason.contains("stopped answering"), "{reason}")
