@@ -71,6 +71,13 @@ enum Command {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
+    /// Internal: read a tracker service in a child of `play --tracker`
+    /// (see tracker_bridge).
+    #[command(hide = true, disable_help_flag = true)]
+    TrackerBridge {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
     /// Render every wall of a CAVE, both eyes, headless to PNG.
     Cave {
         /// Scene file (TOML); the built-in default scene when not given.
@@ -355,6 +362,7 @@ fn main() -> ExitCode {
             },
         ),
         Some(Command::Tracker { args }) => commands::tracker::run(args),
+        Some(Command::TrackerBridge { args }) => lightcone::tracker_bridge::child_main(&args),
         Some(Command::Cave {
             scene,
             config,

@@ -102,6 +102,17 @@ def test_build_a_scene_in_code_and_check_the_head_on_exchange():
         s.c = -1.0
 
 
+@pytest.mark.parametrize("c", [0.0, -1.0, 5e-7, 2e9, 1e308, math.inf, math.nan])
+def test_setting_c_outside_the_scene_files_range_is_a_located_scene_error(c):
+    s = lightcone.Scene(size=(4.0, 2.0), c=2.0)
+    with pytest.raises(lightcone.SceneError, match=r"Scene\.c: .* from 1e-6 to 1e9 m/s"):
+        s.c = c
+    assert s.c == 2.0  # unchanged
+    s.c = 1e9  # both ends of the range are accepted
+    s.c = 1e-6
+    assert s.c == 1e-6
+
+
 def test_render_writes_a_png(tmp_path):
     sim = lightcone.Simulation(scene("paper_carom.toml"))
     sim.run_until(1.0)

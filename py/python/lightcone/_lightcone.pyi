@@ -133,8 +133,10 @@ class Simulation:
         """Advances by `dt` s of board time."""
     def impulse(self, name: str, du: _Vector) -> None:
         """Adds `du` to the proper velocity γβ of puck `name` now."""
-    def collisions(self) -> list[Collision]: ...
-    def state(self) -> State: ...
+    def collisions(self) -> list[Collision]:
+        """Every collision so far, oldest first (records: `c.t`, `c.pucks[0].u_after`, or `c["t"]`)."""
+    def state(self) -> State:
+        """Every puck now (a record: `s.pucks[0].position`, or `s["pucks"][0]["position"]`)."""
     def observe(
         self,
         observer: Optional[str] = None,
