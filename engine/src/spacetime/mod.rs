@@ -16,9 +16,11 @@
 mod boost;
 mod event;
 mod momentum;
+mod simultaneity;
 mod velocity;
 
 pub use boost::{Boost, compose};
 pub use event::{Event, FourVector};
 pub use momentum::FourMomentum;
+pub use simultaneity::{simultaneity_slope, simultaneous_board_time};
 pub use velocity::{ProperVelocity, SpeedError};
