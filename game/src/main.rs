@@ -162,6 +162,14 @@ enum Command {
         /// Observer name (default: the scene's first).
         #[arg(long)]
         observer: Option<String>,
+        /// Also draw the lines of simultaneity of this puck's rest frame
+        /// (its "now" through its event at T). Default: none (only the
+        /// board's "now").
+        #[arg(long)]
+        frame: Option<String>,
+        /// The board axis across: x (default) or y.
+        #[arg(long, value_enum, default_value = "x")]
+        axis: AxisArg,
         /// Output PNG.
         #[arg(short, long)]
         out: PathBuf,
@@ -218,6 +226,14 @@ enum ViewArg {
     Seen,
     /// The board-frame truth.
     Truth,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum AxisArg {
+    /// Board x (the long side).
+    X,
+    /// Board y.
+    Y,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -297,9 +313,22 @@ fn main() -> ExitCode {
             scene,
             at,
             observer,
+            frame,
+            axis,
             out,
             size,
-        }) => commands::diagram::run(&scene, at, observer.as_deref(), &out, &size),
+        }) => commands::diagram::run(
+            &scene,
+            at,
+            observer.as_deref(),
+            frame.as_deref(),
+            match axis {
+                AxisArg::X => render::diagram::Axis::X,
+                AxisArg::Y => render::diagram::Axis::Y,
+            },
+            &out,
+            &size,
+        ),
         Some(Command::Lesson {
             lessons,
             until,

@@ -680,7 +680,10 @@ fn panels(
             .open(&mut open)
             .default_pos(egui::pos2(left / ppp + 12.0, size.1 as f32 / ppp - 340.0))
             .default_width(420.0)
-            .show(ctx, |ui| super::overlay::diagram_panel(ui, state));
+            .show(ctx, |ui| {
+                super::diagram_controls::frame_and_axis(ui, state);
+                super::overlay::diagram_panel(ui, state);
+            });
         state.show.diagram = open;
     }
     if state.intro {

@@ -71,6 +71,11 @@ pub struct Overlays {
     pub arrows: bool,
     /// The live space-time diagram, in its own window (key Y).
     pub diagram: bool,
+    /// The diagram's frame: the puck whose lines of simultaneity it draws
+    /// (`None`: only the board's).
+    pub diagram_frame: Option<usize>,
+    /// The diagram's board axis across.
+    pub diagram_axis: crate::render::diagram::Axis,
 }
 
 impl Default for Overlays {
@@ -80,6 +85,8 @@ impl Default for Overlays {
             ghost: true,
             arrows: true,
             diagram: false,
+            diagram_frame: None,
+            diagram_axis: crate::render::diagram::Axis::X,
         }
     }
 }
