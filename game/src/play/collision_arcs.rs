@@ -118,7 +118,7 @@ pub fn draw(state: &GameState, painter: &egui::Painter, rect: [f32; 4], kind: Vi
     };
     // Lengths on the board, m: a fraction of the table.
     let size = state.scene.table.size;
-    let reach = 0.12 * size.x.min(size.y).max(1e-6) * 2.0;
+    let reach = 0.3 * size.x.min(size.y).max(1e-6);
     for (k, &d) in arc.directions.iter().enumerate() {
         let colour = ring_colour(state.scene.pucks[arc.pucks[k]].color);
         if let Some(tip) = board(arc.contact + d * reach) {
@@ -148,7 +148,7 @@ pub fn draw(state: &GameState, painter: &egui::Painter, rect: [f32; 4], kind: Vi
         let (sin, cos) = phi.sin_cos();
         DVec3::new(a.x * cos - a.y * sin, a.x * sin + a.y * cos, 0.0)
     };
-    if let Some(at) = board(arc.contact + mid * radius * 1.6) {
+    if let Some(at) = board(arc.contact + mid * radius * 2.0) {
         painter.text(
             at,
             egui::Align2::CENTER_CENTER,
