@@ -8,6 +8,7 @@
 //! ([`crate::lesson`]): one set of classes, two ways in.
 
 mod convert;
+mod diagram;
 pub mod errors;
 mod frame;
 mod scene;
