@@ -177,6 +177,31 @@ enum Command {
         #[arg(long, default_value = "1000x700")]
         size: String,
     },
+    /// Record what an observer sees from board time 0 to T, headless, as
+    /// an animated GIF, an MP4 (through ffmpeg) or a directory of PNGs.
+    Record {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Last board time, s (0 to 1e9).
+        #[arg(long, allow_negative_numbers = true, value_parser = args::time_from_zero)]
+        until: f64,
+        /// Frames per second of board time (1 to 120).
+        #[arg(long, default_value_t = 25.0, allow_negative_numbers = true, value_parser = commands::record::fps)]
+        fps: f64,
+        /// Observer name (default: the scene's first).
+        #[arg(long)]
+        observer: Option<String>,
+        /// `out.gif`, `out.mp4` (needs ffmpeg), or `DIR/` for
+        /// `DIR/frame_00000.png`, ….
+        #[arg(short, long, value_parser = commands::record::output)]
+        out: commands::record::Output,
+        /// Frame size, WIDTHxHEIGHT (each 1 to 16384).
+        #[arg(long, default_value = "640x360", value_parser = args::size)]
+        size: String,
+        /// `seen` (the scene's effects) or `truth` (board-simultaneous).
+        #[arg(long, value_enum, default_value = "seen")]
+        view: ViewArg,
+    },
     /// Run a Python lesson headless: its hooks, questions answered with
     /// the lesson's answer, and its claims checked. Fails if the lesson
     /// raises or a claim does not hold.
@@ -329,6 +354,26 @@ fn main() -> ExitCode {
             &out,
             &size,
         ),
+        Some(Command::Record {
+            scene,
+            until,
+            fps,
+            observer,
+            out,
+            size,
+            view,
+        }) => commands::record::run(commands::record::Request {
+            scene: &scene,
+            until,
+            fps,
+            size: &size,
+            observer: observer.as_deref(),
+            view: match view {
+                ViewArg::Seen => render::frame::ViewKind::Seen,
+                ViewArg::Truth => render::frame::ViewKind::Truth,
+            },
+            out,
+        }),
         Some(Command::Lesson {
             lessons,
             until,
