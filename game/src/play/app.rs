@@ -300,6 +300,9 @@ impl App {
     }
 
     fn key(&mut self, code: KeyCode) {
+        if super::scene_menu::key(&mut self.state, code, self.lesson.is_some()) {
+            return;
+        }
         let s = &mut self.state;
         match code {
             KeyCode::KeyP | KeyCode::Space => {
@@ -500,6 +503,9 @@ fn panels(
             .show(ui, |ui| {
                 ui.heading("Lightcone");
                 ui.label(&s.scene.title);
+                if ui.small_button("other scenes… (M)").clicked() {
+                    s.scene_menu.open = !s.scene_menu.open;
+                }
                 ui.separator();
                 ui.horizontal(|ui| {
                     if ui
@@ -686,6 +692,7 @@ fn panels(
             });
         state.show.diagram = open;
     }
+    super::scene_menu::window(ctx, state, hud.lesson);
     if state.intro {
         intro(state, ctx, (left + right) / 2.0 / ppp, 12.0);
     }

@@ -7,4 +7,5 @@ pub mod collision_arcs;
 pub mod diagram_controls;
 pub mod lesson_panel;
 pub mod overlay;
+pub mod scene_menu;
 pub mod state;

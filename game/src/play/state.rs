@@ -159,6 +159,8 @@ pub struct GameState {
     /// The scene's title and description are shown over the table until
     /// the player starts (a scene opened with `play` starts paused on it).
     pub intro: bool,
+    /// The scene menu (key M).
+    pub scene_menu: super::scene_menu::SceneMenu,
 }
 
 /// Largest cue stroke, as a proper-velocity change (γβ): β ≈ 0.995.
@@ -188,6 +190,7 @@ impl GameState {
             follow: None,
             intro: false,
             show: Overlays::default(),
+            scene_menu: Default::default(),
         }
     }
 
