@@ -45,15 +45,12 @@ pub struct Arc {
 pub fn showing(billiard: &Billiard, t: f64, delay: impl Fn(DVec3) -> f64) -> Option<Arc> {
     let records = billiard.collisions();
     for (index, k) in records.iter().enumerate().rev() {
-        if k.kind != CollisionKind::PuckPuck || k.pucks.len() != 2 {
-            continue;
-        }
         let then = t - delay(k.contact);
-        if k.t > then {
-            continue; // not yet (seen)
-        }
         if then > k.t + ARC_S {
             return None; // older ones are older still
+        }
+        if k.t > then || k.kind != CollisionKind::PuckPuck || k.pucks.len() != 2 {
+            continue; // not yet (seen), or not a pair
         }
         let last_kick = k.pucks[0].t.max(k.pucks[1].t);
         if last_kick > then {
