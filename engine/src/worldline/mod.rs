@@ -3,6 +3,7 @@
 
 mod linear;
 mod shape;
+pub mod sliding;
 
 pub use linear::{BodyState, Segment, Worldline, WorldlineError};
 pub use shape::{RestShape, contract};
