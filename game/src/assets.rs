@@ -36,6 +36,10 @@ pub const SCENES: &[(&str, &str)] = &[
         include_str!("../../assets/scenes/newton.toml"),
     ),
     ("ultra.toml", include_str!("../../assets/scenes/ultra.toml")),
+    (
+        "wigner_box.toml",
+        include_str!("../../assets/scenes/wigner_box.toml"),
+    ),
 ];
 
 /// The built-in scene `name` (a file name of [`SCENES`]).
