@@ -11,6 +11,7 @@
 //! [`LessonGame`].
 
 mod convert;
+mod diagram;
 pub mod errors;
 mod frame;
 mod scene;

@@ -239,25 +239,6 @@ pub fn run(quick: bool) -> ExitCode {
         &[0.0005, 0.001, 0.002]
     };
     let betas: &[f64] = if quick { &[0.5] } else { &[0.0, 0.5, 0.9] };
-    for &sigma in sigmas {
-        for &beta in betas {
-            let raw = jitter(beta, sigma, 120.0, seconds, false);
-            let filtered = jitter(beta, sigma, 120.0, seconds, true);
-            crate::sayln!(
-                "| {:.1} mm | {beta:.1} | {:.2} | {:.3} | {:.2} | {:.2} |",
-                sigma * 1e3,
-                raw.jitter_px,
-                filtered.jitter_px,
-                raw.error_px,
-                filtered.error_px
-            );
-        }
-    }
-    crate::sayln!();
-    crate::sayln!("## Publish → observer update, two processes (µs)");
-    crate::sayln!();
-    crate::sayln!("| reader | tracker rate | poll period | samples | p50 | p99 | max |");
-    crate::sayln!("| --- | --- | --- | --- | --- | --- | --- |");
     let runs: &[(f64, u64)] = if quick {
         &[(1000.0, 50)]
     } else {
@@ -268,32 +249,68 @@ pub fn run(quick: bool) -> ExitCode {
     } else {
         &[Reader::Bridge, Reader::InProcess]
     };
+    let progress = crate::progress::steps(
+        (sigmas.len() * betas.len() + runs.len() * readers.len()) as u64,
+        "bench tracker",
+    );
+    for &sigma in sigmas {
+        for &beta in betas {
+            progress.step(&format!("jitter at σ = {:.1} mm, β = {beta}", sigma * 1e3));
+            let raw = jitter(beta, sigma, 120.0, seconds, false);
+            let filtered = jitter(beta, sigma, 120.0, seconds, true);
+            progress.inc();
+            progress.suspend(|| {
+                crate::sayln!(
+                    "| {:.1} mm | {beta:.1} | {:.2} | {:.3} | {:.2} | {:.2} |",
+                    sigma * 1e3,
+                    raw.jitter_px,
+                    filtered.jitter_px,
+                    raw.error_px,
+                    filtered.error_px
+                )
+            });
+        }
+    }
+    progress.suspend(|| {
+        crate::sayln!();
+        crate::sayln!("## Publish → observer update, two processes (µs)");
+        crate::sayln!();
+        crate::sayln!("| reader | tracker rate | poll period | samples | p50 | p99 | max |");
+        crate::sayln!("| --- | --- | --- | --- | --- | --- | --- |");
+    });
     for &reader in readers {
         for &(rate, poll_us) in runs {
-            match latency(
+            progress.step(&format!("latency at {rate:.0} Hz"));
+            let measured = latency(
                 rate,
                 seconds.min(10.0),
                 Duration::from_micros(poll_us),
                 reader,
-            ) {
-                Ok((p50, p99, max, n)) => crate::sayln!(
-                    "| {} | {rate:.0} Hz | {} | {n} | {p50:.0} | {p99:.0} | {max:.0} |",
-                    match reader {
-                        Reader::Bridge => "bridge child",
-                        Reader::InProcess => "in-process (before)",
-                    },
-                    if poll_us == 0 {
-                        "busy spin".to_owned()
-                    } else {
-                        format!("{poll_us} µs")
-                    }
-                ),
+            );
+            progress.inc();
+            match measured {
+                Ok((p50, p99, max, n)) => progress.suspend(|| {
+                    crate::sayln!(
+                        "| {} | {rate:.0} Hz | {} | {n} | {p50:.0} | {p99:.0} | {max:.0} |",
+                        match reader {
+                            Reader::Bridge => "bridge child",
+                            Reader::InProcess => "in-process (before)",
+                        },
+                        if poll_us == 0 {
+                            "busy spin".to_owned()
+                        } else {
+                            format!("{poll_us} µs")
+                        }
+                    )
+                }),
                 Err(e) => {
+                    progress.finish();
                     crate::errln!("latency: {e}");
                     return ExitCode::FAILURE;
                 }
             }
         }
     }
+    progress.finish();
     ExitCode::SUCCESS
 }

@@ -34,6 +34,8 @@ __all__ = [
     "SeenPoint",
     "SeenPuck",
     "Observation",
+    "BoardEvent",
+    "Simultaneity",
 ]
 
 
@@ -244,3 +246,22 @@ State._children = {"pucks": PuckState}
 SeenPoint._children = {"emission": Emission}
 SeenPuck._children = {"emission": Emission, "vertices": SeenPoint}
 Observation._children = {"observer": ObserverState, "pucks": SeenPuck}
+
+
+class BoardEvent(TypedDict):
+    """An event on the board: board time t (s), position (x, y) m."""
+
+    t: float
+    position: List[float]
+
+
+class Simultaneity(TypedDict):
+    """A puck frame's line of simultaneity (what the space-time diagram
+    draws): the board events its rest frame calls simultaneous with `event`
+    are those with t = event.t + slope · (position − event.position)."""
+
+    puck: str
+    event: BoardEvent
+    """The puck's centre at the board time asked for."""
+    slope: List[float]
+    """(dt/dx, dt/dy), s/m: the puck's velocity / c²."""
