@@ -1,12 +1,14 @@
-//! Broad phase: rapier2d's BVH prunes which puck pairs need a prediction.
+//! Broad phase: rapier2d's BVH finds which puck pairs need a prediction.
 //!
 //! rapier's solver is not used at all. Each puck is a collider without a
-//! rigid body; its AABB is *swept*: it covers everywhere the puck can be
-//! from now to the end of the current look-ahead window. Two pucks whose
-//! swept AABBs do not overlap cannot meet within the window, so only
+//! rigid body; its AABB is a *position shell*: the puck's rest disc about a
+//! fixed centre, grown by a margin. A contracted puck always lies inside its
+//! rest disc, so while every puck's centre stays within the margin of its
+//! shell's centre, two pucks whose shells' AABBs do not overlap cannot touch,
+//! whatever their velocities: a velocity change touches no AABB. Only
 //! overlapping pairs (rapier's `AddPair` events, kept in our own adjacency
-//! lists until `DeletePair`) get a closed-form prediction. When the window
-//! ends every AABB is swept anew.
+//! lists until `DeletePair`) get predictions. A puck's AABB changes only
+//! when its centre leaves its shell (an event on the calendar).
 
 use glam::DVec2;
 use rapier2d_f64::prelude::*;
@@ -52,10 +54,15 @@ impl BroadPhase {
         }
     }
 
-    /// Sets puck `i`'s swept AABB (board frame, m).
-    pub fn set_swept(&mut self, i: usize, mins: DVec2, maxs: DVec2) {
-        self.bvh
-            .set_aabb(&self.params, self.handles[i], Aabb::new(mins, maxs));
+    /// Sets puck `i`'s shell: a square of half-width `half` (m, its rest
+    /// radius plus the margin) about `centre` (board frame, m).
+    pub fn set_shell(&mut self, i: usize, centre: DVec2, half: f64) {
+        let h = DVec2::splat(half);
+        self.bvh.set_aabb(
+            &self.params,
+            self.handles[i],
+            Aabb::new(centre - h, centre + h),
+        );
     }
 
     /// Applies the AABBs set since the last call; returns the pairs that
