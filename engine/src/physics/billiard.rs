@@ -208,6 +208,35 @@ struct Next {
     predicted_at: f64,
 }
 
+/// What the cheap lower bound reads of a puck, packed together so that
+/// scanning a puck's partners touches one small record each: its current
+/// segment's start (board time s, centre m), board velocity (m/s) and rest
+/// radius (m).
+#[derive(Clone, Copy, Debug, Default)]
+struct Hot {
+    t0: f64,
+    x0: DVec2,
+    v: DVec2,
+    radius: f64,
+}
+
+impl Hot {
+    fn of(puck: &Puck) -> Self {
+        let s = puck.worldline.last();
+        Self {
+            t0: s.start.t,
+            x0: s.start.position.truncate(),
+            v: s.velocity().truncate(),
+            radius: puck.radius,
+        }
+    }
+
+    #[inline]
+    fn position_at(&self, t: f64) -> DVec2 {
+        self.x0 + self.v * (t - self.t0)
+    }
+}
+
 /// Width of a broad-phase shell's margin, in mean rest radii: a puck's AABB
 /// is its rest disc about the shell's centre grown by this, and moves when
 /// the centre has gone that far. Measured best among 0.25 to 4 radii
@@ -239,6 +268,8 @@ pub struct Billiard {
     exits: Vec<f64>,
     /// Shell margin, m.
     margin: f64,
+    /// Each puck's current motion, for the cheap bound.
+    hot: Vec<Hot>,
     /// The slow reference path (tests): every pair a candidate, no cheap
     /// bound, each contact computed again when it happens.
     reference: bool,
@@ -251,7 +282,6 @@ pub struct Billiard {
     forgotten_before: Option<f64>,
     warnings: Vec<String>,
     stats: Stats,
-    scratch: Vec<(u32, u32)>,
 }
 
 // ## Building
@@ -317,10 +347,15 @@ impl Billiard {
             kicks: Vec::new(),
             free_kicks: Vec::new(),
             contacts_made: 0,
-            broad: BroadPhase::new(n, mean_radius),
+            broad: BroadPhase::new(&[], &[]),
             shells: vec![DVec2::ZERO; n],
             exits: vec![f64::INFINITY; n],
-            margin: SHELL_MARGIN * mean_radius,
+            hot: vec![Hot::default(); n],
+            margin: std::env::var("LC_MARGIN")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+                .unwrap_or(SHELL_MARGIN)
+                * mean_radius,
             reference: false,
             collisions: Vec::new(),
             collisions_dropped: 0,
@@ -329,7 +364,6 @@ impl Billiard {
             forgotten_before: None,
             warnings: Vec::new(),
             stats: Stats::default(),
-            scratch: Vec::new(),
         };
         billiard.start();
         billiard
@@ -344,13 +378,10 @@ impl Billiard {
                 .last()
                 .position_at(self.time)
                 .truncate();
-            self.broad
-                .set_shell(i, self.shells[i], self.pucks[i].radius + self.margin);
         }
-        let mut added = std::mem::take(&mut self.scratch);
-        added.clear();
-        self.broad.flush(&mut added);
-        self.scratch = added;
+        self.hot = self.pucks.iter().map(Hot::of).collect();
+        let half: Vec<f64> = self.pucks.iter().map(|p| p.radius + self.margin).collect();
+        self.broad = BroadPhase::new(&self.shells, &half);
         for i in 0..self.pucks.len() {
             self.exits[i] = self.shell_exit(i);
         }
@@ -656,10 +687,6 @@ impl Billiard {
             .truncate();
         self.broad
             .set_shell(i, self.shells[i], self.pucks[i].radius + self.margin);
-        let mut added = std::mem::take(&mut self.scratch);
-        added.clear();
-        self.broad.flush(&mut added);
-        self.scratch = added;
     }
 
     /// A puck about to meet something while the second kick of an earlier
@@ -1057,6 +1084,7 @@ impl Billiard {
                     Some(self.forgotten_before.map_or(cutoff, |f| f.max(cutoff)));
             }
         }
+        self.hot[i] = Hot::of(&self.pucks[i]);
         self.predict(i);
     }
 
@@ -1168,14 +1196,7 @@ impl Billiard {
             let (a, b) = (i.min(j), i.max(j));
             let limit = best.t.min(self.exits[j]);
             if !self.reference {
-                let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
-                match disc_touch(
-                    pa.worldline.last(),
-                    pa.radius,
-                    pb.worldline.last(),
-                    pb.radius,
-                    now,
-                ) {
+                match disc_touch(&self.hot[a], &self.hot[b], now) {
                     Some(t) if t <= limit => {}
                     _ => {
                         self.stats.pruned += 1;
@@ -1249,8 +1270,7 @@ impl Billiard {
     }
 }
 
-/// A lower bound on when two pucks, moving uniformly along `a` and `b` (rest
-/// radii `ra`, `rb`), can next have a contact event or a velocity change of
+/// A lower bound on when two pucks, moving uniformly as `a` and `b` say, can next have a contact event or a velocity change of
 /// it, from board time `now`: the board time at which their rest discs
 /// first touch (`now` if they overlap), or `None` if they never do (they
 /// miss or recede). Classical and cheap: a quadratic on the board.
@@ -1265,20 +1285,15 @@ impl Billiard {
 /// kick, is then at interval `S² − (u′p − λ)² ≤ S²` from it, and board
 /// simultaneous events' interval is their board distance squared.) The
 /// reach is grown by 1e-9 so rounding never makes the bound late.
-pub(crate) fn disc_touch(
-    a: &crate::worldline::Segment,
-    ra: f64,
-    b: &crate::worldline::Segment,
-    rb: f64,
-    now: f64,
-) -> Option<f64> {
-    let d = (b.position_at(now) - a.position_at(now)).truncate();
-    let reach = (ra + rb) * (1.0 + 1e-9);
+#[inline]
+fn disc_touch(a: &Hot, b: &Hot, now: f64) -> Option<f64> {
+    let d = b.position_at(now) - a.position_at(now);
+    let reach = (a.radius + b.radius) * (1.0 + 1e-9);
     let q = d.length_squared() - reach * reach;
     if q <= 0.0 {
         return Some(now);
     }
-    let v = (b.velocity() - a.velocity()).truncate();
+    let v = b.v - a.v;
     let p = d.dot(v);
     if p >= 0.0 {
         return None; // receding or parallel
