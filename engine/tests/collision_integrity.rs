@@ -554,6 +554,15 @@ fn bounded_history_forgets_and_says_so() {
     }
 }
 
+/// The random scenes' seed: 11, or `LIGHTCONE_SCENE_SEED` (to try others
+/// locally).
+fn random_scene_seed() -> u64 {
+    std::env::var("LIGHTCONE_SCENE_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(11)
+}
+
 proptest! {
     // A fixed seed: CI runs the same 1 000 scenes every time. Other seeds
     // find two cases this engine does not yet hold at γ ≳ 10⁴ (a board
@@ -563,7 +572,7 @@ proptest! {
     // "Collision convention".
     #![proptest_config(ProptestConfig {
         cases: 1000,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(11),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(random_scene_seed()),
         ..ProptestConfig::default()
     })]
 
@@ -589,6 +598,7 @@ proptest! {
         prop_assume!(list.len() >= 2);
         let mut b = Billiard::new(1.0, DVec2::new(2.0, 1.0), restitution, 1.0, list);
         b.advance_to(2.0);
+        if b.stats().contacts() > 2000 { eprintln!("MANY {} {:?} {restitution}", b.stats().contacts(), pucks); }
         prop_assert!(b.stats().contacts() < 200_000);
         check_invariants(&b, 2.0, 40);
     }
@@ -600,7 +610,94 @@ type RandomPuck = (f64, f64, f64, f64);
 /// Cases proptest found, kept as plain tests.
 #[test]
 fn found_cases_hold_the_invariants() {
-    let cases: [(f64, &[RandomPuck]); 4] = [
+    let cases: [(f64, &[RandomPuck]); 9] = [
+        // A γ ≈ 2·10⁴ puck crossing a slow one's path (restitution 0): the
+        // board shapes meet before the pair frame's first kick.
+        (
+            0.0,
+            &[
+                (
+                    1.4835426794757411,
+                    0.10149507167655569,
+                    4.3508804641747885,
+                    1.5604157139537165,
+                ),
+                (
+                    1.5464576567498427,
+                    0.15670027082633176,
+                    0.6236182208084808,
+                    3.0700707497072335,
+                ),
+            ],
+        ),
+        (
+            0.0,
+            &[
+                (
+                    0.13282056959579547,
+                    0.7088045377767644,
+                    2.932801672348051,
+                    6.162237636458212,
+                ),
+                (
+                    0.1250039969350767,
+                    0.5091693098745469,
+                    3.305500352483935,
+                    0.04344773190301386,
+                ),
+            ],
+        ),
+        (
+            0.5,
+            &[
+                (
+                    0.9254903156341419,
+                    0.27874569996869225,
+                    0.29662097740116555,
+                    3.7429073467012435,
+                ),
+                (
+                    0.4466965612044838,
+                    0.6601571860615952,
+                    5.218236845949514,
+                    4.4838877826926815,
+                ),
+            ],
+        ),
+        (
+            0.5,
+            &[
+                (
+                    1.48044744721648,
+                    0.2628464060483128,
+                    5.796757150093374,
+                    2.67149844335425,
+                ),
+                (
+                    1.0103641972043778,
+                    0.20153514709831322,
+                    1.1494918563133758,
+                    4.303611443497425,
+                ),
+            ],
+        ),
+        (
+            0.0,
+            &[
+                (
+                    1.3983290838543379,
+                    0.2312789043998876,
+                    0.8586342808125688,
+                    4.679569545507608,
+                ),
+                (
+                    1.6412487825434414,
+                    0.5967806148433024,
+                    4.521432820813968,
+                    1.0379849112668913,
+                ),
+            ],
+        ),
         // A jam of three at a cushion: a γ ≈ 300 puck crushes two slow ones.
         (
             0.5,
@@ -686,7 +783,10 @@ fn found_cases_hold_the_invariants() {
             ],
         ),
     ];
-    for (restitution, raw) in cases {
+    for (k, (restitution, raw)) in cases.into_iter().enumerate() {
+        if std::env::var("LIGHTCONE_CASE").is_ok_and(|c| c != k.to_string()) {
+            continue;
+        }
         let pucks = raw
             .iter()
             .enumerate()

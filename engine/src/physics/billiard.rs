@@ -770,7 +770,7 @@ impl Billiard {
         let before = [body(&self.pucks[a]), body(&self.pucks[b])];
         let restitution = self.zeno_restitution(a, b, hit.contact.t);
         let after = if hit.on_board {
-            resolve::puck_puck_board(before[0], before[1], hit.normal, restitution)
+            self.board_push(a, b, before, hit.normal, restitution)
         } else {
             resolve::puck_puck(
                 before[0],
@@ -882,6 +882,99 @@ impl Billiard {
             };
             self.calendar.set(i as u32, key);
         }
+    }
+
+    /// The outcome of a contact found on the board (pucks `a`, `b` touching
+    /// or overlapping there now, closing along `normal`), both kicks now.
+    ///
+    /// An impulse along the board's penetration direction
+    /// ([`resolve::puck_puck_board`]);
+    /// that kick changes both pucks' contraction at once, so the new shapes
+    /// can still overlap and close along a new penetration direction: the
+    /// push is repeated along it, at the same instant, until they open (at
+    /// most 16 times). Each push conserves 4-momentum exactly, and the whole
+    /// is one contact.
+    fn board_push(
+        &self,
+        a: usize,
+        b: usize,
+        before: [Body; 2],
+        normal: DVec3,
+        restitution: f64,
+    ) -> [Body; 2] {
+        let mut after = resolve::puck_puck_board(before[0], before[1], normal, restitution);
+        let t = self.time;
+        let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
+        let xa = Event::new(t, self.pucks[a].worldline.last().position_at(t));
+        let xb = Event::new(t, self.pucks[b].worldline.last().position_at(t));
+        for _ in 0..16 {
+            let wa = Worldline::new(xa, after[0].u, self.c);
+            let wb = Worldline::new(xb, after[1].u, self.c);
+            let (sa, sb) = (wa.last(), wb.last());
+            let Some((_, m)) = overlap::penetration(sa, ra, sb, rb, t) else {
+                break;
+            };
+            let v_rel = sb.velocity() - sa.velocity();
+            let still = 1e-12 * (sa.velocity().length() + sb.velocity().length());
+            if m.dot(v_rel) >= -still {
+                break;
+            }
+            after = resolve::puck_puck_board(after[0], after[1], m, restitution);
+        }
+        if restitution <= 0.0 && self.touch_again(xa, ra, after[0].u, xb, rb, after[1].u) {
+            // Restitution 0 and the shapes, sliding along each other, would
+            // meet again: the pair moves together instead (at rest in its
+            // centre-of-momentum frame, as a pair-frame contact with
+            // restitution 0 leaves it), which keeps the overlap as it is.
+            let together = resolve::puck_puck(
+                before[0],
+                before[1],
+                normal,
+                ProperVelocity::ZERO,
+                0.0,
+            );
+            if together != before {
+                return together;
+            }
+        }
+        after
+    }
+
+    /// Whether two pucks leaving the board events `xa`, `xb` (m, s) with
+    /// proper velocities `ua`, `ub` will overlap on the board again while
+    /// their centres are within reach.
+    fn touch_again(
+        &self,
+        xa: Event,
+        ra: f64,
+        ua: ProperVelocity,
+        xb: Event,
+        rb: f64,
+        ub: ProperVelocity,
+    ) -> bool {
+        let (wa, wb) = (
+            Worldline::new(xa, ua, self.c),
+            Worldline::new(xb, ub, self.c),
+        );
+        let (sa, sb) = (wa.last(), wb.last());
+        let d0 = xb.position - xa.position;
+        let v = sb.velocity() - sa.velocity();
+        let vv = v.length_squared();
+        let reach = ra + rb;
+        let (p, q) = (d0.dot(v), d0.length_squared() - reach * reach);
+        let disc = p * p - vv * q;
+        if vv == 0.0 || disc < 0.0 {
+            return false;
+        }
+        let leave = (-p + disc.sqrt()) / vv;
+        if leave <= 0.0 {
+            return false;
+        }
+        // From just after the push (a touching pair is at 0 depth there).
+        let t0 = xa.t;
+        let start = t0 + 1e-6 * leave;
+        overlap::depth(sa, ra, sb, rb, start) == 0.0
+            && overlap::first_touch(sa, ra, sb, rb, start, t0 + leave).is_some()
     }
 
     fn land_kick(&mut self, id: usize) {
@@ -1038,6 +1131,21 @@ impl Billiard {
             return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
         }
         if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now) {
+            // The board shapes can meet well before the pair frame's first
+            // kick (a very fast puck crossing a slower one's path: the
+            // pair frame's slice is far from the board's). Then the board
+            // decides, at its first touch. Checked only when the unperturbed
+            // shapes overlap on the board at that kick (one support test).
+            let first = hit.kicks[0].t.min(hit.kicks[1].t);
+            if first > now
+                && overlap::depth(sa, pa.radius, sb, pb.radius, first) > 0.0
+                && let Some(t) = overlap::first_touch(sa, pa.radius, sb, pb.radius, now, first)
+                && t < first
+            {
+                let d = sb.position_at(t) - sa.position_at(t);
+                let (_, normal) = overlap::gap(sa, pa.radius, sb, pb.radius, d);
+                return Some(on_board(t.max(now), normal, 0.0));
+            }
             return Some(hit);
         }
         // Apart now, and the pair frame sees nothing ahead: will the board
