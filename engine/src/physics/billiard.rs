@@ -907,25 +907,36 @@ impl Billiard {
         let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
         let xa = Event::new(t, self.pucks[a].worldline.last().position_at(t));
         let xb = Event::new(t, self.pucks[b].worldline.last().position_at(t));
+        let mut open = false;
         for _ in 0..16 {
             let wa = Worldline::new(xa, after[0].u, self.c);
             let wb = Worldline::new(xb, after[1].u, self.c);
             let (sa, sb) = (wa.last(), wb.last());
-            let Some((_, m)) = overlap::penetration(sa, ra, sb, rb, t) else {
-                break;
-            };
             let v_rel = sb.velocity() - sa.velocity();
             let still = 1e-12 * (sa.velocity().length() + sb.velocity().length());
-            if m.dot(v_rel) >= -still {
-                break;
-            }
+            let m = match overlap::penetration(sa, ra, sb, rb, t) {
+                // Still overlapping: closing along the new direction?
+                Some((_, m)) if m.dot(v_rel) < -still => m,
+                Some(_) => {
+                    open = true;
+                    break;
+                }
+                // Apart: would sliding bring them together again?
+                None => match self.touch_again(xa, ra, after[0].u, xb, rb, after[1].u) {
+                    Some(m) if m.dot(v_rel) < -still => m,
+                    _ => {
+                        open = true;
+                        break;
+                    }
+                },
+            };
             after = resolve::puck_puck_board(after[0], after[1], m, restitution);
         }
-        if restitution <= 0.0 && self.touch_again(xa, ra, after[0].u, xb, rb, after[1].u) {
-            // Restitution 0 and the shapes, sliding along each other, would
-            // meet again: the pair moves together instead (at rest in its
-            // centre-of-momentum frame, as a pair-frame contact with
-            // restitution 0 leaves it), which keeps the overlap as it is.
+        if !open && restitution <= 0.0 {
+            // Restitution 0 and still closing: the pair moves together
+            // instead (at rest in its centre-of-momentum frame, as a
+            // pair-frame contact with restitution 0 leaves it), which keeps
+            // the overlap as it is.
             let together = resolve::puck_puck(
                 before[0],
                 before[1],
@@ -942,7 +953,8 @@ impl Billiard {
 
     /// Whether two pucks leaving the board events `xa`, `xb` (m, s) with
     /// proper velocities `ua`, `ub` will overlap on the board again while
-    /// their centres are within reach.
+    /// their centres are within reach: the direction (from `a` towards `b`)
+    /// along which they then meet, if they do.
     fn touch_again(
         &self,
         xa: Event,
@@ -951,7 +963,7 @@ impl Billiard {
         xb: Event,
         rb: f64,
         ub: ProperVelocity,
-    ) -> bool {
+    ) -> Option<DVec3> {
         let (wa, wb) = (
             Worldline::new(xa, ua, self.c),
             Worldline::new(xb, ub, self.c),
@@ -964,17 +976,16 @@ impl Billiard {
         let (p, q) = (d0.dot(v), d0.length_squared() - reach * reach);
         let disc = p * p - vv * q;
         if vv == 0.0 || disc < 0.0 {
-            return false;
+            return None;
         }
         let leave = (-p + disc.sqrt()) / vv;
         if leave <= 0.0 {
-            return false;
+            return None;
         }
-        // From just after the push (a touching pair is at 0 depth there).
         let t0 = xa.t;
-        let start = t0 + 1e-6 * leave;
-        overlap::depth(sa, ra, sb, rb, start) == 0.0
-            && overlap::first_touch(sa, ra, sb, rb, start, t0 + leave).is_some()
+        let t = overlap::first_touch(sa, ra, sb, rb, t0, t0 + leave)?;
+        let d = sb.position_at(t) - sa.position_at(t);
+        Some(overlap::gap(sa, ra, sb, rb, d).1)
     }
 
     fn land_kick(&mut self, id: usize) {
