@@ -239,9 +239,10 @@ impl Hot {
 
 /// Width of a broad-phase shell's margin, in mean rest radii: a puck's AABB
 /// is its rest disc about the shell's centre grown by this, and moves when
-/// the centre has gone that far. Measured best among 0.25 to 4 radii
-/// (BENCHMARKS.md).
-const SHELL_MARGIN: f64 = 1.0;
+/// the centre has gone that far. Measured best among 0.5 to 3 radii
+/// (BENCHMARKS.md): smaller moves shells more often, larger gives each puck
+/// more partners to bound.
+const SHELL_MARGIN: f64 = 1.5;
 
 /// The relativistic billiard's physics: pucks, their worldlines, and the
 /// calendar of what happens next.
@@ -351,11 +352,7 @@ impl Billiard {
             shells: vec![DVec2::ZERO; n],
             exits: vec![f64::INFINITY; n],
             hot: vec![Hot::default(); n],
-            margin: std::env::var("LC_MARGIN")
-                .ok()
-                .and_then(|s| s.parse::<f64>().ok())
-                .unwrap_or(SHELL_MARGIN)
-                * mean_radius,
+            margin: SHELL_MARGIN * mean_radius,
             reference: false,
             collisions: Vec::new(),
             collisions_dropped: 0,
@@ -937,13 +934,8 @@ impl Billiard {
             // instead (at rest in its centre-of-momentum frame, as a
             // pair-frame contact with restitution 0 leaves it), which keeps
             // the overlap as it is.
-            let together = resolve::puck_puck(
-                before[0],
-                before[1],
-                normal,
-                ProperVelocity::ZERO,
-                0.0,
-            );
+            let together =
+                resolve::puck_puck(before[0], before[1], normal, ProperVelocity::ZERO, 0.0);
             if together != before {
                 return together;
             }
