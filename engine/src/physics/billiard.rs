@@ -244,6 +244,10 @@ impl Hot {
 /// more partners to bound.
 const SHELL_MARGIN: f64 = 1.5;
 
+/// Proper speed of the pair frame on the board above which a pair-frame
+/// contact is checked against the board's first touch (see `contact_of`).
+const BOARD_FIRST_U: f64 = 3.0;
+
 /// The relativistic billiard's physics: pucks, their worldlines, and the
 /// calendar of what happens next.
 pub struct Billiard {
@@ -1135,12 +1139,16 @@ impl Billiard {
         }
         if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now) {
             // The board shapes can meet well before the pair frame's first
-            // kick (a very fast puck crossing a slower one's path: the
-            // pair frame's slice is far from the board's). Then the board
-            // decides, at its first touch. Checked only when the unperturbed
-            // shapes overlap on the board at that kick (one support test).
+            // kick when the pair frame moves fast on the board (a very fast
+            // puck crossing a slower one's path: the pair frame's slice is
+            // far from the board's). Then the board decides, at its first
+            // touch. Checked only for a pair frame faster than
+            // `BOARD_FIRST_U` (proper speed; below it the slices differ by
+            // a fraction of a contact and the pair frame keeps the contact)
+            // whose unperturbed shapes overlap on the board at that kick.
             let first = hit.kicks[0].t.min(hit.kicks[1].t);
             if first > now
+                && hit.pair_frame.0.length_squared() > BOARD_FIRST_U * BOARD_FIRST_U
                 && overlap::depth(sa, pa.radius, sb, pb.radius, first) > 0.0
                 && let Some(t) = overlap::first_touch(sa, pa.radius, sb, pb.radius, now, first)
                 && t < first
