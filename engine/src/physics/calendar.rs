@@ -222,7 +222,7 @@ mod tests {
             state ^= state >> 7;
             state ^= state << 17;
             let i = (state % 64) as u32;
-            let t = if state % 7 == 0 {
+            let t = if state.is_multiple_of(7) {
                 f64::INFINITY
             } else {
                 (state >> 20) as f64 % 1000.0
@@ -235,7 +235,7 @@ mod tests {
                     rank: Rank::shell(i),
                 },
             );
-            if step % 50 == 0 {
+            if step.is_multiple_of(50) {
                 let best = (0..64u32)
                     .filter(|&j| keys[j as usize].is_finite())
                     .min_by(|&a, &b| {
