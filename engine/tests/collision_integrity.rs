@@ -554,16 +554,25 @@ fn bounded_history_forgets_and_says_so() {
     }
 }
 
+/// The random scenes' seed: 3, or `LIGHTCONE_SCENE_SEED` (to try others
+/// locally: 42 of the 43 seeds 1–40, 100, 1000 and 12345 pass; 15 finds
+/// the case of `known_unfixed_cases`).
+fn random_scene_seed() -> u64 {
+    std::env::var("LIGHTCONE_SCENE_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3)
+}
+
 proptest! {
-    // A fixed seed: CI runs the same 1 000 scenes every time. Other seeds
-    // find two cases this engine does not yet hold at γ ≳ 10⁴ (a board
-    // push that reshapes a puck can leave the pair closing; a very fast
-    // puck crossing a slow one can overlap it on the board before the
-    // pair frame's first kick, until the next prediction): see README,
-    // "Collision convention".
+    // A fixed seed: CI runs the same 1 000 scenes every time. Another seed
+    // can find the case this engine does not yet hold at γ ≳ 10³
+    // (restitution 0: after a board push the reshaped pucks slide back into
+    // each other, see `known_unfixed_cases` and README, "Collision
+    // convention").
     #![proptest_config(ProptestConfig {
         cases: 1000,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(11),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(random_scene_seed()),
         ..ProptestConfig::default()
     })]
 
@@ -597,10 +606,161 @@ proptest! {
 /// A random puck: x, y (m), log₁₀ of its proper speed, direction (rad).
 type RandomPuck = (f64, f64, f64, f64);
 
+fn random_scene(restitution: f64, raw: &[RandomPuck]) -> Billiard {
+    let pucks = raw
+        .iter()
+        .enumerate()
+        .map(|(k, &(x, y, log_u, angle))| {
+            let speed = 10f64.powf(log_u);
+            puck(
+                &format!("p{k}"),
+                x,
+                y,
+                u(speed * angle.cos(), speed * angle.sin()),
+            )
+        })
+        .collect();
+    Billiard::new(1.0, DVec2::new(2.0, 1.0), restitution, 1.0, pucks)
+}
+
+/// Found by seed 15, not yet held: restitution 0, a γ ≈ 5·10³ puck meets a
+/// slower one (γ ≈ 4) near a cushion; after the board push the shapes,
+/// reshaped by it, slide back into each other (4 mm) while the pair is
+/// settled. `cargo test -- --ignored` runs it.
+#[test]
+#[ignore = "known unfixed: see the doc comment and README, Collision convention"]
+fn known_unfixed_cases() {
+    let cases: [&[RandomPuck]; 1] = [&[
+        (
+            0.17217586743589933,
+            0.9331471554419596,
+            0.5926550063091633,
+            5.762626948216999,
+        ),
+        (
+            0.15446066146866852,
+            0.8729566053179851,
+            3.6782072282796165,
+            6.168007227709471,
+        ),
+    ]];
+    for raw in cases {
+        let mut b = random_scene(0.0, raw);
+        b.advance_to(2.0);
+        check_invariants(&b, 2.0, 40);
+    }
+}
+
 /// Cases proptest found, kept as plain tests.
 #[test]
 fn found_cases_hold_the_invariants() {
-    let cases: [(f64, &[RandomPuck]); 4] = [
+    let cases: [(f64, &[RandomPuck]); 10] = [
+        // Seed 11: restitution 0, γ ≈ 190 onto γ ≈ 39; the board push
+        // leaves them sliding back into each other unless they move together.
+        (
+            0.0,
+            &[
+                (
+                    0.40128556657662523,
+                    0.3141412350387423,
+                    1.5907910702061323,
+                    5.828855354252207,
+                ),
+                (
+                    0.759070051602169,
+                    0.598227380331025,
+                    2.284040345146608,
+                    0.8973839873728007,
+                ),
+            ],
+        ),
+        // A γ ≈ 2·10⁴ puck crossing a slow one's path (restitution 0): the
+        // board shapes meet before the pair frame's first kick.
+        (
+            0.0,
+            &[
+                (
+                    1.4835426794757411,
+                    0.10149507167655569,
+                    4.3508804641747885,
+                    1.5604157139537165,
+                ),
+                (
+                    1.5464576567498427,
+                    0.15670027082633176,
+                    0.6236182208084808,
+                    3.0700707497072335,
+                ),
+            ],
+        ),
+        (
+            0.0,
+            &[
+                (
+                    0.13282056959579547,
+                    0.7088045377767644,
+                    2.932801672348051,
+                    6.162237636458212,
+                ),
+                (
+                    0.1250039969350767,
+                    0.5091693098745469,
+                    3.305500352483935,
+                    0.04344773190301386,
+                ),
+            ],
+        ),
+        (
+            0.5,
+            &[
+                (
+                    0.9254903156341419,
+                    0.27874569996869225,
+                    0.29662097740116555,
+                    3.7429073467012435,
+                ),
+                (
+                    0.4466965612044838,
+                    0.6601571860615952,
+                    5.218236845949514,
+                    4.4838877826926815,
+                ),
+            ],
+        ),
+        (
+            0.5,
+            &[
+                (
+                    1.48044744721648,
+                    0.2628464060483128,
+                    5.796757150093374,
+                    2.67149844335425,
+                ),
+                (
+                    1.0103641972043778,
+                    0.20153514709831322,
+                    1.1494918563133758,
+                    4.303611443497425,
+                ),
+            ],
+        ),
+        (
+            0.0,
+            &[
+                (
+                    1.3983290838543379,
+                    0.2312789043998876,
+                    0.8586342808125688,
+                    4.679569545507608,
+                ),
+                (
+                    1.6412487825434414,
+                    0.5967806148433024,
+                    4.521432820813968,
+                    1.0379849112668913,
+                ),
+            ],
+        ),
         // A jam of three at a cushion: a γ ≈ 300 puck crushes two slow ones.
         (
             0.5,
@@ -686,21 +846,11 @@ fn found_cases_hold_the_invariants() {
             ],
         ),
     ];
-    for (restitution, raw) in cases {
-        let pucks = raw
-            .iter()
-            .enumerate()
-            .map(|(k, &(x, y, log_u, angle))| {
-                let speed = 10f64.powf(log_u);
-                puck(
-                    &format!("p{k}"),
-                    x,
-                    y,
-                    u(speed * angle.cos(), speed * angle.sin()),
-                )
-            })
-            .collect();
-        let mut b = Billiard::new(1.0, DVec2::new(2.0, 1.0), restitution, 1.0, pucks);
+    for (k, (restitution, raw)) in cases.into_iter().enumerate() {
+        if std::env::var("LIGHTCONE_CASE").is_ok_and(|c| c != k.to_string()) {
+            continue;
+        }
+        let mut b = random_scene(restitution, raw);
         b.advance_to(2.0);
         check_invariants(&b, 2.0, 40);
     }

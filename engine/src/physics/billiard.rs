@@ -8,7 +8,7 @@
 use glam::{DVec2, DVec3};
 
 use super::broadphase::BroadPhase;
-use super::calendar::{Calendar, Entry, Slot};
+use super::calendar::{Calendar, Key, Rank};
 use super::overlap;
 use super::predict::puck_puck::PairContact;
 use super::predict::{Cushion, puck_cushion, puck_puck};
@@ -105,12 +105,17 @@ pub struct Stats {
     pub cushion_contacts: u64,
     /// Velocity changes applied.
     pub kicks: u64,
-    /// Calendar entries dropped as stale.
+    /// Calendar entries found stale (a partner changed since the
+    /// prediction): the puck was predicted again instead.
     pub stale: u64,
-    /// Closed-form predictions made.
+    /// Exact pair predictions made (pair frame, and the board where it
+    /// decides).
     pub predictions: u64,
-    /// Look-ahead windows started.
-    pub windows: u64,
+    /// Candidate pairs dismissed by the cheap lower bound on their contact
+    /// time (rest discs on the board) without an exact prediction.
+    pub pruned: u64,
+    /// Times a puck left its broad-phase shell (its AABB moved).
+    pub shell_moves: u64,
     /// Collisions resolved as perfectly inelastic to end a Zeno sequence.
     pub zeno_merges: u64,
     /// Velocity changes that reached a puck already changed since their
@@ -147,7 +152,6 @@ struct Kick {
     /// Global index of the collision record to complete, if recorded.
     record: Option<u64>,
     slot: usize,
-    generation: u32,
     /// Which contact it belongs to (a running count of pair contacts).
     contact: u64,
 }
@@ -181,6 +185,73 @@ const ZENO_GAP: f64 = 1e-9;
 /// the sequence: its next collision is perfectly inelastic.
 const ZENO_COUNT: u32 = 64;
 
+/// What a puck's one pending event is about.
+#[derive(Clone, Copy, Debug)]
+enum What {
+    /// A pending velocity change (index into the kick table).
+    Kick(usize),
+    /// The puck meets a cushion.
+    Cushion(Cushion),
+    /// Pucks `a` < `b` meet (one of them is this puck); `partner_version` is
+    /// the other's version when predicted.
+    Pair {
+        a: u32,
+        b: u32,
+        partner_version: u32,
+    },
+    /// The puck's centre leaves its broad-phase shell.
+    Shell,
+}
+
+/// A puck's pending event: what, and for a pair the winning prediction,
+/// kept so that it is not computed again when it happens.
+#[derive(Clone, Copy, Debug)]
+struct Next {
+    what: What,
+    hit: Option<PairContact>,
+    predicted_at: f64,
+}
+
+/// What the cheap lower bound reads of a puck, packed together so that
+/// scanning a puck's partners touches one small record each: its current
+/// segment's start (board time s, centre m), board velocity (m/s) and rest
+/// radius (m).
+#[derive(Clone, Copy, Debug, Default)]
+struct Hot {
+    t0: f64,
+    x0: DVec2,
+    v: DVec2,
+    radius: f64,
+}
+
+impl Hot {
+    fn of(puck: &Puck) -> Self {
+        let s = puck.worldline.last();
+        Self {
+            t0: s.start.t,
+            x0: s.start.position.truncate(),
+            v: s.velocity().truncate(),
+            radius: puck.radius,
+        }
+    }
+
+    #[inline]
+    fn position_at(&self, t: f64) -> DVec2 {
+        self.x0 + self.v * (t - self.t0)
+    }
+}
+
+/// Width of a broad-phase shell's margin, in mean rest radii: a puck's AABB
+/// is its rest disc about the shell's centre grown by this, and moves when
+/// the centre has gone that far. Measured best among 0.5 to 3 radii
+/// (BENCHMARKS.md): smaller moves shells more often, larger gives each puck
+/// more partners to bound.
+const SHELL_MARGIN: f64 = 1.5;
+
+/// Proper speed of the pair frame on the board above which a pair-frame
+/// contact is checked against the board's first touch (see `contact_of`).
+const BOARD_FIRST_U: f64 = 3.0;
+
 /// The relativistic billiard's physics: pucks, their worldlines, and the
 /// calendar of what happens next.
 pub struct Billiard {
@@ -192,13 +263,25 @@ pub struct Billiard {
     pucks: Vec<Puck>,
     internal: Vec<u32>,
     time: f64,
+    /// One entry per puck: its earliest event.
     calendar: Calendar,
+    /// What each puck's entry is about.
+    next: Vec<Next>,
     kicks: Vec<Option<Kick>>,
     free_kicks: Vec<usize>,
-    kick_generation: u32,
     contacts_made: u64,
     broad: BroadPhase,
-    window_end: f64,
+    /// Each puck's shell: centre (m) and the board time its centre leaves
+    /// it (s, infinite at rest).
+    shells: Vec<DVec2>,
+    exits: Vec<f64>,
+    /// Shell margin, m.
+    margin: f64,
+    /// Each puck's current motion, for the cheap bound.
+    hot: Vec<Hot>,
+    /// The slow reference path (tests): every pair a candidate, no cheap
+    /// bound, each contact computed again when it happens.
+    reference: bool,
     /// Kept collision records; `collisions[0]` has global index
     /// `collisions_dropped`.
     collisions: Vec<Collision>,
@@ -208,7 +291,6 @@ pub struct Billiard {
     forgotten_before: Option<f64>,
     warnings: Vec<String>,
     stats: Stats,
-    scratch: Vec<(u32, u32)>,
 }
 
 // ## Building
@@ -262,13 +344,24 @@ impl Billiard {
             pucks,
             internal,
             time: 0.0,
-            calendar: Calendar::default(),
+            calendar: Calendar::new(n),
+            next: vec![
+                Next {
+                    what: What::Shell,
+                    hit: None,
+                    predicted_at: 0.0,
+                };
+                n
+            ],
             kicks: Vec::new(),
             free_kicks: Vec::new(),
-            kick_generation: 0,
             contacts_made: 0,
-            broad: BroadPhase::new(n, mean_radius),
-            window_end: 0.0,
+            broad: BroadPhase::new(&[], &[]),
+            shells: vec![DVec2::ZERO; n],
+            exits: vec![f64::INFINITY; n],
+            hot: vec![Hot::default(); n],
+            margin: SHELL_MARGIN * mean_radius,
+            reference: false,
             collisions: Vec::new(),
             collisions_dropped: 0,
             record: true,
@@ -276,10 +369,40 @@ impl Billiard {
             forgotten_before: None,
             warnings: Vec::new(),
             stats: Stats::default(),
-            scratch: Vec::new(),
         };
-        billiard.start_window(0.0);
+        billiard.start();
         billiard
+    }
+
+    /// Every shell about its puck's centre and every puck predicted, at the
+    /// current time.
+    fn start(&mut self) {
+        for i in 0..self.pucks.len() {
+            self.shells[i] = self.pucks[i]
+                .worldline
+                .last()
+                .position_at(self.time)
+                .truncate();
+        }
+        self.hot = self.pucks.iter().map(Hot::of).collect();
+        let half: Vec<f64> = self.pucks.iter().map(|p| p.radius + self.margin).collect();
+        self.broad = BroadPhase::new(&self.shells, &half);
+        for i in 0..self.pucks.len() {
+            self.exits[i] = self.shell_exit(i);
+        }
+        for i in 0..self.pucks.len() {
+            self.predict(i);
+        }
+    }
+
+    /// Switches to the slow reference path, kept for tests: every pair of
+    /// pucks is a candidate (no broad phase), no cheap bound prunes any, and
+    /// each pair contact is predicted again when it happens instead of kept.
+    /// The physics is the same; a test checks that the fast loop gives the
+    /// same contacts. Call before running.
+    pub fn set_reference_loop(&mut self, on: bool) {
+        self.reference = on;
+        self.start();
     }
 
     /// The billiard of a validated scene.
@@ -474,15 +597,14 @@ impl Billiard {
             return true;
         }
         let mut done = 0usize;
-        while let Some(entry) = self.calendar.peek().copied() {
-            if entry.t > t {
+        while let Some((key, i)) = self.calendar.peek() {
+            if key.t > t {
                 break;
             }
             if done >= max_events {
                 return false;
             }
-            self.calendar.pop();
-            self.handle(entry);
+            self.handle(i as usize, key.t);
             done += 1;
         }
         self.time = t;
@@ -511,50 +633,65 @@ impl Billiard {
         puck.worldline
             .push(t.max(puck.worldline.last().start.t), u)?;
         self.bump(i);
-        // The look-ahead window was sized for the old speeds.
-        self.start_window(self.time);
         Ok(())
     }
 
-    fn handle(&mut self, entry: Entry) {
-        match entry.slot {
-            Slot::Kick(k) => {
-                if self.kicks[k].is_some_and(|kick| kick.generation == entry.versions[0]) {
-                    self.time = self.time.max(entry.t);
+    /// Handles puck `i`'s pending event, due at board time `t`.
+    fn handle(&mut self, i: usize, t: f64) {
+        let next = self.next[i];
+        self.calendar.remove(i as u32);
+        self.time = self.time.max(t);
+        let version = self.pucks[i].version;
+        match next.what {
+            What::Kick(k) => {
+                if self.kicks[k].is_some_and(|kick| kick.puck as usize == i) {
                     self.land_kick(k);
                 }
             }
-            Slot::Cushion(i, cushion) => {
-                let i = i as usize;
-                if self.pucks[i].version != entry.versions[0] {
-                    self.stats.stale += 1;
-                    return;
+            What::Cushion(cushion) => {
+                // A pending kick lands first: re-predicted with its news.
+                if !self.flush_pending(i) {
+                    self.cushion_contact(i, cushion, t);
                 }
-                self.time = self.time.max(entry.t);
-                if self.flush_pending(i) {
-                    return; // re-predicted with the news the puck carried
-                }
-                self.cushion_contact(i, cushion, entry.t);
             }
-            Slot::Pair(a, b) => {
-                let (ia, ib) = (a as usize, b as usize);
-                if self.pucks[ia].version != entry.versions[0]
-                    || self.pucks[ib].version != entry.versions[1]
-                    || self.pending_with(ia, ib)
-                {
+            What::Pair {
+                a,
+                b,
+                partner_version,
+            } => {
+                let (a, b) = (a as usize, b as usize);
+                let j = if a == i { b } else { a };
+                if self.pucks[j].version != partner_version || self.pending_with(a, b) {
                     self.stats.stale += 1;
-                    return;
+                } else {
+                    let flushed_a = self.flush_pending(a);
+                    let flushed_b = self.flush_pending(b);
+                    // Else re-predicted with the news they carried.
+                    if !(flushed_a || flushed_b) {
+                        self.pair_contact(a, b, next);
+                    }
                 }
-                self.time = self.time.max(entry.t);
-                let flushed_a = self.flush_pending(ia);
-                let flushed_b = self.flush_pending(ib);
-                if flushed_a || flushed_b {
-                    return; // re-predicted with the news they carried
-                }
-                self.pair_contact(ia, ib, entry.predicted_at);
             }
-            Slot::Horizon => self.start_window(entry.t),
+            What::Shell => self.move_shell(i),
         }
+        // Unchanged (a stale entry, a shell move): predicted again; changed
+        // pucks were predicted as they changed.
+        if self.pucks[i].version == version {
+            self.predict(i);
+        }
+    }
+
+    /// Puck `i` left its shell: a new shell about its centre now, and the
+    /// candidate pairs that brings (it is then predicted again).
+    fn move_shell(&mut self, i: usize) {
+        self.stats.shell_moves += 1;
+        self.shells[i] = self.pucks[i]
+            .worldline
+            .last()
+            .position_at(self.time)
+            .truncate();
+        self.broad
+            .set_shell(i, self.shells[i], self.pucks[i].radius + self.margin);
     }
 
     /// A puck about to meet something while the second kick of an earlier
@@ -617,8 +754,16 @@ impl Billiard {
         self.bump(i);
     }
 
-    fn pair_contact(&mut self, a: usize, b: usize, predicted_at: f64) {
-        let Some(hit) = self.contact_of(a, b, predicted_at) else {
+    /// Resolves the contact of pucks `a` < `b` that `next` predicted: kept
+    /// from the prediction, or (the reference path) computed again from the
+    /// same state, bit for bit.
+    fn pair_contact(&mut self, a: usize, b: usize, next: Next) {
+        let hit = if self.reference {
+            self.contact_of(a, b, next.predicted_at)
+        } else {
+            next.hit
+        };
+        let Some(hit) = hit else {
             return;
         };
         self.stats.pair_contacts += 1;
@@ -631,7 +776,7 @@ impl Billiard {
         let before = [body(&self.pucks[a]), body(&self.pucks[b])];
         let restitution = self.zeno_restitution(a, b, hit.contact.t);
         let after = if hit.on_board {
-            resolve::puck_puck_board(before[0], before[1], hit.normal, restitution)
+            self.board_push(a, b, before, hit.normal, restitution)
         } else {
             resolve::puck_puck(
                 before[0],
@@ -693,7 +838,6 @@ impl Billiard {
         });
         let mut ids = [0usize; 2];
         for (k, (&i, &j)) in [a, b].iter().zip([b, a].iter()).enumerate() {
-            self.kick_generation = self.kick_generation.wrapping_add(1);
             let kick = Kick {
                 puck: i as u32,
                 partner: j as u32,
@@ -703,7 +847,6 @@ impl Billiard {
                 version_at_contact: self.pucks[i].version,
                 record,
                 slot: k,
-                generation: self.kick_generation,
                 contact: contact_id,
             };
             let id = match self.free_kicks.pop() {
@@ -719,22 +862,134 @@ impl Billiard {
             self.pucks[i].pending.push(id);
             ids[k] = id;
         }
-        // The kicks that are due land now, earliest first; a later one is
-        // put on the calendar.
+        // The kicks that are due land now, earliest first; a later one
+        // becomes its puck's pending event if it is the earliest.
         let order = if times[0] <= times[1] { [0, 1] } else { [1, 0] };
         for k in order {
             let id = ids[k];
             if times[k] <= self.time {
                 self.land_kick(id);
             } else {
-                self.calendar.push(Entry {
-                    t: times[k],
-                    slot: Slot::Kick(id),
-                    versions: [self.kicks[id].map_or(0, |kick| kick.generation), 0],
-                    predicted_at: times[k],
-                });
+                self.offer_kick([a, b][k], id, times[k]);
             }
         }
+    }
+
+    /// A kick of puck `i` at board time `t` has been scheduled and nothing
+    /// else about the puck changed: it becomes the puck's pending event if
+    /// it comes first.
+    fn offer_kick(&mut self, i: usize, id: usize, t: f64) {
+        let key = Key {
+            t,
+            rank: Rank::kick(i as u32),
+        };
+        if self.calendar.key(i as u32).is_none_or(|k| key.before(&k)) {
+            self.next[i] = Next {
+                what: What::Kick(id),
+                hit: None,
+                predicted_at: self.time,
+            };
+            self.calendar.set(i as u32, key);
+        }
+    }
+
+    /// The outcome of a contact found on the board (pucks `a`, `b` touching
+    /// or overlapping there now, closing along `normal`), both kicks now.
+    ///
+    /// An impulse along the board's penetration direction
+    /// ([`resolve::puck_puck_board`]);
+    /// that kick changes both pucks' contraction at once, so the new shapes
+    /// can still overlap and close along a new penetration direction: the
+    /// push is repeated along it, at the same instant, until they open (at
+    /// most 16 times). Each push conserves 4-momentum exactly, and the whole
+    /// is one contact.
+    fn board_push(
+        &self,
+        a: usize,
+        b: usize,
+        before: [Body; 2],
+        normal: DVec3,
+        restitution: f64,
+    ) -> [Body; 2] {
+        let mut after = resolve::puck_puck_board(before[0], before[1], normal, restitution);
+        let t = self.time;
+        let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
+        let xa = Event::new(t, self.pucks[a].worldline.last().position_at(t));
+        let xb = Event::new(t, self.pucks[b].worldline.last().position_at(t));
+        let mut open = false;
+        for _ in 0..16 {
+            let wa = Worldline::new(xa, after[0].u, self.c);
+            let wb = Worldline::new(xb, after[1].u, self.c);
+            let (sa, sb) = (wa.last(), wb.last());
+            let v_rel = sb.velocity() - sa.velocity();
+            let still = 1e-12 * (sa.velocity().length() + sb.velocity().length());
+            let m = match overlap::penetration(sa, ra, sb, rb, t) {
+                // Still overlapping: closing along the new direction?
+                Some((_, m)) if m.dot(v_rel) < -still => m,
+                Some(_) => {
+                    open = true;
+                    break;
+                }
+                // Apart: would sliding bring them together again?
+                None => match self.touch_again(xa, ra, after[0].u, xb, rb, after[1].u) {
+                    Some(m) if m.dot(v_rel) < -still => m,
+                    _ => {
+                        open = true;
+                        break;
+                    }
+                },
+            };
+            after = resolve::puck_puck_board(after[0], after[1], m, restitution);
+        }
+        if !open && restitution <= 0.0 {
+            // Restitution 0 and still closing: the pair moves together
+            // instead (at rest in its centre-of-momentum frame, as a
+            // pair-frame contact with restitution 0 leaves it), which keeps
+            // the overlap as it is.
+            let together =
+                resolve::puck_puck(before[0], before[1], normal, ProperVelocity::ZERO, 0.0);
+            if together != before {
+                return together;
+            }
+        }
+        after
+    }
+
+    /// Whether two pucks leaving the board events `xa`, `xb` (m, s) with
+    /// proper velocities `ua`, `ub` will overlap on the board again while
+    /// their centres are within reach: the direction (from `a` towards `b`)
+    /// along which they then meet, if they do.
+    fn touch_again(
+        &self,
+        xa: Event,
+        ra: f64,
+        ua: ProperVelocity,
+        xb: Event,
+        rb: f64,
+        ub: ProperVelocity,
+    ) -> Option<DVec3> {
+        let (wa, wb) = (
+            Worldline::new(xa, ua, self.c),
+            Worldline::new(xb, ub, self.c),
+        );
+        let (sa, sb) = (wa.last(), wb.last());
+        let d0 = xb.position - xa.position;
+        let v = sb.velocity() - sa.velocity();
+        let vv = v.length_squared();
+        let reach = ra + rb;
+        let (p, q) = (d0.dot(v), d0.length_squared() - reach * reach);
+        let disc = p * p - vv * q;
+        if vv == 0.0 || disc < 0.0 {
+            return None;
+        }
+        let leave = (-p + disc.sqrt()) / vv;
+        if leave <= 0.0 {
+            return None;
+        }
+        let t0 = xa.t;
+        let t = overlap::first_touch(sa, ra, sb, rb, t0, t0 + leave)?;
+        let d = sb.position_at(t) - sa.position_at(t);
+        Some(overlap::gap(sa, ra, sb, rb, d).1)
     }
 
     fn land_kick(&mut self, id: usize) {
@@ -892,6 +1147,25 @@ impl Billiard {
             return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
         }
         if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now) {
+            // The board shapes can meet well before the pair frame's first
+            // kick when the pair frame moves fast on the board (a very fast
+            // puck crossing a slower one's path: the pair frame's slice is
+            // far from the board's). Then the board decides, at its first
+            // touch. Checked only for a pair frame faster than
+            // `BOARD_FIRST_U` (proper speed; below it the slices differ by
+            // a fraction of a contact and the pair frame keeps the contact)
+            // whose unperturbed shapes overlap on the board at that kick.
+            let first = hit.kicks[0].t.min(hit.kicks[1].t);
+            if first > now
+                && hit.pair_frame.0.length_squared() > BOARD_FIRST_U * BOARD_FIRST_U
+                && overlap::depth(sa, pa.radius, sb, pb.radius, first) > 0.0
+                && let Some(t) = overlap::first_touch(sa, pa.radius, sb, pb.radius, now, first)
+                && t < first
+            {
+                let d = sb.position_at(t) - sa.position_at(t);
+                let (_, normal) = overlap::gap(sa, pa.radius, sb, pb.radius, d);
+                return Some(on_board(t.max(now), normal, 0.0));
+            }
             return Some(hit);
         }
         // Apart now, and the pair frame sees nothing ahead: will the board
@@ -912,7 +1186,7 @@ impl Billiard {
         if leave <= 0.0 {
             return None;
         }
-        let end = (now + leave).min(self.window_end);
+        let end = now + leave;
         // A separating axis along which they do not close: never.
         let (g, m) = overlap::gap(sa, pa.radius, sb, pb.radius, d0);
         if g <= 0.0 && m.dot(v_rel) >= 0.0 {
@@ -923,9 +1197,9 @@ impl Billiard {
         Some(on_board(t, normal, 0.0))
     }
 
-    /// Puck `i`'s worldline changed: it gets a new version (its old
-    /// predictions go stale), its history is trimmed to the horizon, and it
-    /// gets a new swept AABB and new predictions.
+    /// Puck `i`'s worldline changed: it gets a new version (predictions
+    /// made with the old one go stale), its history is trimmed to the
+    /// horizon, and it is predicted again.
     fn bump(&mut self, i: usize) {
         let puck = &mut self.pucks[i];
         puck.version = puck.version.wrapping_add(1);
@@ -938,16 +1212,8 @@ impl Billiard {
                     Some(self.forgotten_before.map_or(cutoff, |f| f.max(cutoff)));
             }
         }
-        self.predict_cushions(i);
-        let (mins, maxs) = self.swept(i, self.time, self.window_end);
-        self.broad.set_swept(i, mins, maxs);
-        self.scratch.clear();
-        self.broad.flush(&mut self.scratch);
-        for k in 0..self.broad.partners(i).len() {
-            let j = self.broad.partners(i)[k] as usize;
-            self.predict_pair(i.min(j), i.max(j));
-        }
-        self.compact();
+        self.hot[i] = Hot::of(&self.pucks[i]);
+        self.predict(i);
     }
 
     /// Applies the history horizon to the collision records now (it is
@@ -979,28 +1245,6 @@ impl Billiard {
         }
     }
 
-    fn predict_cushions(&mut self, i: usize) {
-        let puck = &self.pucks[i];
-        for cushion in Cushion::ALL {
-            self.stats.predictions += 1;
-            if let Some(hit) = puck_cushion::predict(
-                puck.worldline.last(),
-                puck.radius,
-                self.table,
-                cushion,
-                self.time,
-            ) && hit.t <= self.window_end
-            {
-                self.calendar.push(Entry {
-                    t: hit.t,
-                    slot: Slot::Cushion(i as u32, cushion),
-                    versions: [puck.version, 0],
-                    predicted_at: self.time,
-                });
-            }
-        }
-    }
-
     fn pending_with(&self, a: usize, b: usize) -> bool {
         let waits = |x: usize, y: usize| {
             self.pucks[x]
@@ -1011,138 +1255,182 @@ impl Billiard {
         waits(a, b) || waits(b, a)
     }
 
-    fn predict_pair(&mut self, a: usize, b: usize) {
-        if self.pending_with(a, b) {
-            return; // the second kick of their last contact is still ahead
+    /// Puck `i`'s pending event from now on: the earliest of its pending
+    /// velocity changes, its cushion contacts, its shell exit and its
+    /// contacts with its candidate partners. A pair's exact prediction is
+    /// made only if a cheap lower bound on its time ([`disc_touch`]) can
+    /// beat the earliest found so far; a pair contact later than either
+    /// puck's shell exit is left for the shell move to find (so the outcome
+    /// does not depend on which pairs the broad phase reports beyond what
+    /// the shells guarantee).
+    fn predict(&mut self, i: usize) {
+        let now = self.time;
+        let mut best = Key::NEVER;
+        let mut next = Next {
+            what: What::Shell,
+            hit: None,
+            predicted_at: now,
+        };
+        let puck = &self.pucks[i];
+        for &k in &puck.pending {
+            if let Some(kick) = self.kicks[k] {
+                let key = Key {
+                    t: kick.t.max(now),
+                    rank: Rank::kick(i as u32),
+                };
+                if key.before(&best) {
+                    best = key;
+                    next.what = What::Kick(k);
+                }
+            }
         }
-        let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
-        if pa.settled == Some((b as u32, pa.version, pb.version)) {
-            return; // they collided and nothing has touched them since
+        let segment = puck.worldline.last();
+        for (k, cushion) in Cushion::ALL.into_iter().enumerate() {
+            if let Some(hit) = puck_cushion::predict(segment, puck.radius, self.table, cushion, now)
+            {
+                let key = Key {
+                    t: hit.t,
+                    rank: Rank::cushion(i as u32, k as u32),
+                };
+                if key.before(&best) {
+                    best = key;
+                    next.what = What::Cushion(cushion);
+                }
+            }
         }
-        self.stats.predictions += 1;
-        if let Some(hit) = self.contact_of(a, b, self.time) {
+        self.exits[i] = self.shell_exit(i);
+        let key = Key {
+            t: self.exits[i],
+            rank: Rank::shell(i as u32),
+        };
+        if key.before(&best) {
+            best = key;
+            next.what = What::Shell;
+        }
+        let partners = if self.reference {
+            self.pucks.len()
+        } else {
+            self.broad.partners(i).len()
+        };
+        for k in 0..partners {
+            let j = if self.reference {
+                if k == i {
+                    continue;
+                }
+                k
+            } else {
+                self.broad.partners(i)[k] as usize
+            };
+            let (a, b) = (i.min(j), i.max(j));
+            let limit = best.t.min(self.exits[j]);
+            if !self.reference {
+                match disc_touch(&self.hot[a], &self.hot[b], now) {
+                    Some(t) if t <= limit => {}
+                    _ => {
+                        self.stats.pruned += 1;
+                        continue;
+                    }
+                }
+            }
+            if self.pending_with(a, b) {
+                continue; // the second kick of their last contact is still ahead
+            }
+            let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
+            if pa.settled == Some((b as u32, pa.version, pb.version)) {
+                continue; // they collided and nothing has touched them since
+            }
+            self.stats.predictions += 1;
+            let Some(hit) = self.contact_of(a, b, now) else {
+                continue;
+            };
             // Processed at the earliest of the two kicks (the contact lies
             // between them in board time).
             let t = hit.kicks[0]
                 .t
                 .min(hit.kicks[1].t)
                 .min(hit.contact.t)
-                .max(self.time);
-            if t <= self.window_end {
-                self.calendar.push(Entry {
-                    t,
-                    slot: Slot::Pair(a as u32, b as u32),
-                    versions: [self.pucks[a].version, self.pucks[b].version],
-                    predicted_at: self.time,
-                });
-            }
-        }
-    }
-
-    /// Everywhere puck `i` can be between board times `t0` and `t1` on its
-    /// current segment, as an AABB (clipped to the table: a puck meets a
-    /// cushion before its centre can leave it).
-    fn swept(&self, i: usize, t0: f64, t1: f64) -> (DVec2, DVec2) {
-        let puck = &self.pucks[i];
-        let s = puck.worldline.last();
-        let r = DVec2::splat(puck.radius);
-        let lo = DVec2::ZERO - r;
-        let hi = self.table + r;
-        let p0 = s.position_at(t0).truncate();
-        let p1 = if t1.is_finite() {
-            s.position_at(t1).truncate()
-        } else {
-            // An endless window: a moving puck can be anywhere ahead.
-            let v = s.velocity().truncate();
-            let ahead = |v: f64, lo: f64, hi: f64, p: f64| {
-                if v > 0.0 {
-                    hi
-                } else if v < 0.0 {
-                    lo
-                } else {
-                    p
-                }
+                .max(now);
+            let key = Key {
+                t,
+                rank: Rank::pair(a as u32, b as u32),
             };
-            DVec2::new(ahead(v.x, lo.x, hi.x, p0.x), ahead(v.y, lo.y, hi.y, p0.y))
-        };
-        (
-            (p0.min(p1) - r).clamp(lo, hi),
-            (p0.max(p1) + r).clamp(lo, hi),
-        )
-    }
-
-    /// Starts a new look-ahead window at board time `t`: every swept AABB
-    /// anew, and every prediction. Only events inside the window are put on
-    /// the calendar, which keeps it short; the next window predicts again.
-    fn start_window(&mut self, t: f64) {
-        self.stats.windows += 1;
-        self.time = self.time.max(t);
-        let horizon = self.horizon();
-        self.window_end = t + horizon;
-        for i in 0..self.pucks.len() {
-            let (mins, maxs) = self.swept(i, t, self.window_end);
-            self.broad.set_swept(i, mins, maxs);
-        }
-        let mut added = std::mem::take(&mut self.scratch);
-        added.clear();
-        self.broad.flush(&mut added);
-        self.scratch = added;
-        for i in 0..self.pucks.len() {
-            self.predict_cushions(i);
-            for k in 0..self.broad.partners(i).len() {
-                let j = self.broad.partners(i)[k] as usize;
-                if j > i {
-                    self.predict_pair(i, j);
-                }
+            if t <= limit && key.before(&best) {
+                best = key;
+                next.what = What::Pair {
+                    a: a as u32,
+                    b: b as u32,
+                    partner_version: self.pucks[j].version,
+                };
+                next.hit = Some(hit);
             }
         }
-        if self.window_end.is_finite() {
-            self.calendar.push(Entry {
-                t: self.window_end,
-                slot: Slot::Horizon,
-                versions: [0, 0],
-                predicted_at: t,
-            });
+        if !matches!(next.what, What::Pair { .. }) {
+            next.hit = None;
         }
+        self.next[i] = next;
+        self.calendar.set(i as u32, best);
     }
 
-    /// Length of a look-ahead window: the time a typical (RMS-speed) puck
-    /// takes to move one radius. Swept AABBs then stay small, and windows
-    /// are not too many; measured best among 0.25 to 8 radii (BENCHMARKS.md).
-    /// With nothing moving, the window is endless: an idle table costs
-    /// nothing however long it is watched, whatever `c` is.
-    fn horizon(&self) -> f64 {
-        let n = self.pucks.len().max(1) as f64;
-        let mean_sq: f64 = self
-            .pucks
-            .iter()
-            .map(|p| p.worldline.last().velocity().length_squared())
-            .sum::<f64>()
-            / n;
-        let mean_radius = self.pucks.iter().map(|p| p.radius).sum::<f64>() / n;
-        if mean_sq > 0.0 {
-            (mean_radius / mean_sq.sqrt()).max(1e-9 * self.table.length() / self.c)
+    /// The board time at which puck `i`'s centre, on its current segment,
+    /// leaves its shell (infinite if it never does).
+    fn shell_exit(&self, i: usize) -> f64 {
+        let s = self.pucks[i].worldline.last();
+        let v = s.velocity().truncate();
+        let vv = v.length_squared();
+        if vv == 0.0 {
+            return f64::INFINITY;
+        }
+        let d = s.position_at(self.time).truncate() - self.shells[i];
+        let q = d.length_squared() - self.margin * self.margin;
+        if q >= 0.0 {
+            return self.time; // already out (rounding)
+        }
+        // |d + v τ|² = margin²: the positive root, in a form without
+        // cancellation (q < 0).
+        let p = d.dot(v);
+        let root = (p * p - vv * q).sqrt();
+        let tau = if p >= 0.0 {
+            -q / (p + root)
         } else {
-            f64::INFINITY
-        }
+            (root - p) / vv
+        };
+        self.time + tau
     }
+}
 
-    /// Drops stale entries once they outnumber live ones.
-    fn compact(&mut self) {
-        let live_bound = 16 * self.pucks.len() + 1024;
-        if self.calendar.len() <= 4 * live_bound {
-            return;
-        }
-        let pucks = &self.pucks;
-        let kicks = &self.kicks;
-        self.calendar.retain(|e| match e.slot {
-            Slot::Horizon => true,
-            Slot::Kick(k) => kicks[k].is_some_and(|kick| kick.generation == e.versions[0]),
-            Slot::Cushion(i, _) => pucks[i as usize].version == e.versions[0],
-            Slot::Pair(a, b) => {
-                pucks[a as usize].version == e.versions[0]
-                    && pucks[b as usize].version == e.versions[1]
-            }
-        });
+/// A lower bound on when two pucks, moving uniformly as `a` and `b` say, can next have a contact event or a velocity change of
+/// it, from board time `now`: the board time at which their rest discs
+/// first touch (`now` if they overlap), or `None` if they never do (they
+/// miss or recede). Classical and cheap: a quadratic on the board.
+///
+/// Why it bounds: a contracted puck lies inside its rest disc, so the board
+/// shapes cannot meet before the rest discs do; and at the earlier of the
+/// two kicks of a pair-frame contact the board distance of the centres is
+/// at most `R_a + R_b`. (In the pair frame let the kicks `K_a`, `K_b` be
+/// `Δx′` apart, `p = Δx′·n` along the approach; the contact of the similar
+/// ellipses gives `|Δx′|² = S² − u′²p²`. The event on the later puck's
+/// worldline a proper time `λ` earlier, on the board slice of the first
+/// kick, is then at interval `S² − (u′p − λ)² ≤ S²` from it, and board
+/// simultaneous events' interval is their board distance squared.) The
+/// reach is grown by 1e-9 so rounding never makes the bound late.
+#[inline]
+fn disc_touch(a: &Hot, b: &Hot, now: f64) -> Option<f64> {
+    let d = b.position_at(now) - a.position_at(now);
+    let reach = (a.radius + b.radius) * (1.0 + 1e-9);
+    let q = d.length_squared() - reach * reach;
+    if q <= 0.0 {
+        return Some(now);
     }
+    let v = b.v - a.v;
+    let p = d.dot(v);
+    if p >= 0.0 {
+        return None; // receding or parallel
+    }
+    let vv = v.length_squared();
+    let disc = p * p - vv * q;
+    if disc < 0.0 {
+        return None; // they pass wide
+    }
+    // The earlier root of |d + v τ|² = reach², without cancellation.
+    Some(now + q / (disc.sqrt() - p))
 }

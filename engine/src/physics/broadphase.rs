@@ -1,90 +1,99 @@
-//! Broad phase: rapier2d's BVH prunes which puck pairs need a prediction.
+//! Broad phase: rapier2d's broad-phase BVH finds which puck pairs need a
+//! prediction.
 //!
-//! rapier's solver is not used at all. Each puck is a collider without a
-//! rigid body; its AABB is *swept*: it covers everywhere the puck can be
-//! from now to the end of the current look-ahead window. Two pucks whose
-//! swept AABBs do not overlap cannot meet within the window, so only
-//! overlapping pairs (rapier's `AddPair` events, kept in our own adjacency
-//! lists until `DeletePair`) get a closed-form prediction. When the window
-//! ends every AABB is swept anew.
+//! rapier's solver is not used at all, only the bounding-volume tree its
+//! broad phase is built on (`parry`'s `Bvh`, which `rapier`'s
+//! `BroadPhaseBvh` wraps). Each puck is a leaf whose AABB is a *position
+//! shell*: the puck's rest disc about a fixed centre, grown by a margin. A
+//! contracted puck always lies inside its rest disc, so while every puck's
+//! centre stays within the margin of its shell's centre, two pucks whose
+//! AABBs do not overlap cannot touch, whatever their velocities: a velocity
+//! change touches no AABB. A puck's AABB changes only when its centre
+//! leaves its shell (an event on the calendar); its leaf is then re-inserted
+//! and the tree is asked which AABBs overlap the new one (O(log N) plus the
+//! partners). `BroadPhaseBvh::update` is not used for that: it walks the
+//! whole tree on every call, O(N) per shell move (measured: a third of the
+//! time at N = 10⁴).
 
 use glam::DVec2;
-use rapier2d_f64::prelude::*;
+use rapier2d_f64::parry::bounding_volume::Aabb;
+use rapier2d_f64::parry::partitioning::{Bvh, BvhBuildStrategy};
 
-/// The BVH and the candidate pairs it has reported.
+/// The tree and the candidate pairs: for each puck, the pucks whose shells'
+/// AABBs overlap its own.
 pub struct BroadPhase {
-    bvh: BroadPhaseBvh,
-    params: IntegrationParameters,
-    colliders: ColliderSet,
-    bodies: RigidBodySet,
-    handles: Vec<ColliderHandle>,
-    /// For each puck, its current candidate partners.
+    tree: Bvh,
+    aabbs: Vec<Aabb>,
     partners: Vec<Vec<u32>>,
-    events: Vec<BroadPhasePairEvent>,
+    /// Scratch: which pucks were partners of the moving one (by index).
+    mark: Vec<bool>,
+    found: Vec<u32>,
 }
 
 impl BroadPhase {
-    /// A broad phase for `n` pucks; `length_unit` (m) sets rapier's AABB
-    /// skin, 4 % of it, so it should be about a puck radius.
-    pub fn new(n: usize, length_unit: f64) -> Self {
-        let mut colliders = ColliderSet::new();
-        let handles = (0..n)
-            .map(|_| {
-                colliders.insert(
-                    ColliderBuilder::ball(length_unit)
-                        .active_collision_types(ActiveCollisionTypes::all())
-                        .build(),
-                )
-            })
+    /// A broad phase of shells: puck `i`'s is a square of half-width
+    /// `half[i]` (m, its rest radius plus the margin) about `centres[i]`
+    /// (board frame, m).
+    pub fn new(centres: &[DVec2], half: &[f64]) -> Self {
+        let aabbs: Vec<Aabb> = centres
+            .iter()
+            .zip(half)
+            .map(|(&c, &h)| square(c, h))
             .collect();
-        let params = IntegrationParameters {
-            length_unit,
-            ..IntegrationParameters::default()
-        };
-        Self {
-            bvh: BroadPhaseBvh::new(),
-            params,
-            colliders,
-            bodies: RigidBodySet::new(),
-            handles,
+        let tree = Bvh::from_leaves(BvhBuildStrategy::Binned, &aabbs);
+        let n = aabbs.len();
+        let mut broad = Self {
+            tree,
+            aabbs,
             partners: vec![Vec::new(); n],
-            events: Vec::new(),
+            mark: vec![false; n],
+            found: Vec::new(),
+        };
+        for i in 0..n {
+            let list: Vec<u32> = broad
+                .tree
+                .intersect_aabb(&broad.aabbs[i])
+                .filter(|&j| j as usize != i)
+                .collect();
+            broad.partners[i] = list;
         }
+        broad
     }
 
-    /// Sets puck `i`'s swept AABB (board frame, m).
-    pub fn set_swept(&mut self, i: usize, mins: DVec2, maxs: DVec2) {
-        self.bvh
-            .set_aabb(&self.params, self.handles[i], Aabb::new(mins, maxs));
-    }
-
-    /// Applies the AABBs set since the last call; returns the pairs that
-    /// became candidates (lower index first).
-    pub fn flush(&mut self, added: &mut Vec<(u32, u32)>) {
-        self.events.clear();
-        self.bvh.update(
-            &self.params,
-            &self.colliders,
-            &self.bodies,
-            &[],
-            &[],
-            &mut self.events,
-        );
-        for event in &self.events {
-            match event {
-                BroadPhasePairEvent::AddPair(pair) => {
-                    let (a, b) = ordered(pair);
-                    self.partners[a as usize].push(b);
-                    self.partners[b as usize].push(a);
-                    added.push((a, b));
-                }
-                BroadPhasePairEvent::DeletePair(pair) => {
-                    let (a, b) = ordered(pair);
-                    self.partners[a as usize].retain(|&x| x != b);
-                    self.partners[b as usize].retain(|&x| x != a);
+    /// Moves puck `i`'s shell to `centre` (half-width `half`, m) and updates
+    /// the candidate pairs it is in.
+    pub fn set_shell(&mut self, i: usize, centre: DVec2, half: f64) {
+        let aabb = square(centre, half);
+        self.aabbs[i] = aabb;
+        self.tree
+            .reinsert_or_update_with_change_detection(aabb, i as u32, 0.0);
+        self.found.clear();
+        self.found
+            .extend(self.tree.intersect_aabb(&aabb).filter(|&j| j as usize != i));
+        let old = std::mem::take(&mut self.partners[i]);
+        for &j in &old {
+            self.mark[j as usize] = true;
+        }
+        for &j in &self.found {
+            if self.mark[j as usize] {
+                self.mark[j as usize] = false; // still a partner
+            } else {
+                self.partners[j as usize].push(i as u32); // new
+            }
+        }
+        for &j in &old {
+            if self.mark[j as usize] {
+                self.mark[j as usize] = false; // gone
+                let list = &mut self.partners[j as usize];
+                if let Some(k) = list.iter().position(|&x| x as usize == i) {
+                    list.swap_remove(k);
                 }
             }
         }
+        let mut list = old;
+        list.clear();
+        list.extend_from_slice(&self.found);
+        self.partners[i] = list;
     }
 
     /// Current candidate partners of puck `i`.
@@ -93,8 +102,7 @@ impl BroadPhase {
     }
 }
 
-fn ordered(pair: &ColliderPair) -> (u32, u32) {
-    let a = pair.collider1.into_raw_parts().0;
-    let b = pair.collider2.into_raw_parts().0;
-    (a.min(b), a.max(b))
+fn square(centre: DVec2, half: f64) -> Aabb {
+    let h = DVec2::splat(half);
+    Aabb::new(centre - h, centre + h)
 }

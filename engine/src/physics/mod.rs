@@ -4,8 +4,10 @@
 //!
 //! * [`predict`]: when and where two pucks, or a puck and a cushion, meet;
 //! * [`resolve`]: what comes out of a collision (4-momentum conserved);
-//! * `calendar`: the time-ordered event queue with lazy invalidation;
-//! * `broadphase`: rapier's BVH used only to prune candidate pairs;
+//! * `calendar`: one pending event per puck, in time order, invalidated
+//!   lazily by the partner's version;
+//! * `broadphase`: rapier's broad-phase BVH on position shells, used only
+//!   to find candidate pairs;
 //! * [`Billiard`]: the event loop tying them together.
 //!
 //! Conventions (the paper's §3.3.1): pucks are rigid about their centres.

@@ -116,15 +116,28 @@ pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> 
     const SAMPLES: usize = 90;
     let step = std::f64::consts::TAU / SAMPLES as f64;
     let mut best = (f64::INFINITY, 0.0);
+    // The scan's directions, computed once (the same values as computing
+    // them here).
+    static SCAN: std::sync::OnceLock<[(f64, f64); SAMPLES]> = std::sync::OnceLock::new();
+    let scan = SCAN.get_or_init(|| {
+        std::array::from_fn(|k| {
+            let theta = k as f64 * (std::f64::consts::TAU / SAMPLES as f64);
+            (theta.cos(), theta.sin())
+        })
+    });
+    for (k, &(cos, sin)) in scan.iter().enumerate() {
+        let m = DVec3::new(cos, sin, 0.0);
+        let v = support(a, radius_a, m) + support(b, radius_b, m) - m.dot(d);
+        if v < best.0 {
+            best = (v, k as f64 * step);
+        }
+    }
     let mut consider = |theta: f64| {
         let v = f(theta);
         if v < best.0 {
             best = (v, theta);
         }
     };
-    for k in 0..SAMPLES {
-        consider(k as f64 * step);
-    }
     for axis in [a.velocity(), b.velocity(), d] {
         if axis.length_squared() > 0.0 {
             let theta = axis.y.atan2(axis.x);

@@ -105,7 +105,7 @@ fn gas_rates(quick: bool) -> String {
     let sizes: &[usize] = if quick {
         &[100, 1000]
     } else {
-        &[100, 1000, 10_000]
+        &[100, 1000, 10_000, 100_000]
     };
     let target = if quick { 20_000 } else { 1_000_000 };
     let mut rates = Vec::new();

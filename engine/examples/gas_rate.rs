@@ -1,0 +1,56 @@
+//! Contacts per second of the event loop in a dense gas, one thread:
+//! `cargo run --release -p lightcone-engine --example gas_rate -- N [CONTACTS]`
+//! (β < 0.8, pucks 3R apart, elastic, c = 1.42: the gas of BENCHMARKS.md).
+
+use std::time::Instant;
+
+use lightcone_engine::physics::gas::dense_box;
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let n: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(10_000);
+    let target: u64 = args
+        .next()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1_000_000);
+    let r = 0.0305;
+    let build = Instant::now();
+    let mut b = dense_box(n, r, 3.0 * r, 0.8, 1.42, 7);
+    b.set_recording(false);
+    b.set_keep_history(false);
+    let built = build.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let cpu0 = cpu_seconds();
+    let mut t = 0.0;
+    while b.stats().contacts() < target {
+        t += 0.01;
+        b.advance_to(t);
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let cpu = cpu_seconds() - cpu0;
+    let c = b.stats().contacts();
+    println!(
+        "N = {n}: {c} contacts in {wall:.2} s wall, {cpu:.2} s CPU (build {built:.2} s): \
+         {:.0} contacts/s ({:.0} per CPU second), {:.3} µs/contact; {:?}",
+        c as f64 / wall,
+        c as f64 / cpu,
+        wall / c as f64 * 1e6,
+        b.stats()
+    );
+}
+
+/// This process's user + system CPU time, s (Linux; 0 elsewhere): on a
+/// shared machine it is steadier than the wall clock.
+fn cpu_seconds() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // Fields after the command name (which is in parentheses).
+    let Some(rest) = stat.rsplit(')').next() else {
+        return 0.0;
+    };
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = |k: usize| f.get(k).and_then(|s| s.parse::<f64>().ok()).unwrap_or(0.0);
+    // utime and stime are fields 14 and 15 of the file, 12 and 13 here.
+    (ticks(11) + ticks(12)) / 100.0
+}
