@@ -12,7 +12,7 @@
 use std::time::Instant;
 
 use glam::{DVec2, DVec3};
-use lightcone_engine::ecs::{Camera, Simulation, Vantage};
+use lightcone_engine::ecs::{Simulation, Vantage};
 use lightcone_engine::scene::{
     self, Color, Effect, Effects, ObserverSpec, PuckSpec, Scene, TableSpec,
 };
@@ -117,7 +117,7 @@ fn with_views(scene: &Scene, views: usize) -> Simulation {
     let mut sim = Simulation::new(scene);
     let first = sim.views()[0];
     let observer = sim.observer_of(first).expect("the scene's view");
-    let camera = sim.camera(first).unwrap_or(Camera::looking(DVec3::Y));
+    let framing = sim.framing(first).unwrap_or_default();
     let truth = Effects {
         contraction: true,
         ..Effects::NONE
@@ -128,7 +128,7 @@ fn with_views(scene: &Scene, views: usize) -> Simulation {
         } else {
             (format!("seen {k}"), scene.effects)
         };
-        sim.add_view(&name, observer, fx, camera, Vantage::OnWorldline);
+        sim.add_view(&name, observer, fx, framing, Vantage::OnWorldline);
     }
     sim
 }

@@ -4,6 +4,7 @@
 //! and no GPU. The world is a set of **worldlines** in the board's rest
 //! frame; everything else is a view of them:
 //!
+//! * [`camera`]: the one camera model (pinhole, fitted framing);
 //! * [`spacetime`]: events, 4-vectors, proper velocities, boosts;
 //! * [`worldline`]: each body's history as analytic segments, and its
 //!   contracted shape at any board time;
@@ -18,6 +19,7 @@
 //! Units: SI metres and seconds on the board; `c` is a scene parameter;
 //! velocities are proper velocities `u = γβ` (dimensionless).
 
+pub mod camera;
 pub mod ecs;
 pub mod optics;
 pub mod physics;

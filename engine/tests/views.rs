@@ -4,12 +4,14 @@
 //! schedule's output equal to the composed optics to 1e-12.
 
 use glam::DVec3;
+use lightcone_engine::camera::{self, FIT_MARGIN};
 use lightcone_engine::ecs::components::{BoardShape, Mesh, ProperTime};
-use lightcone_engine::ecs::{Apparent, BodyRef, Camera, Simulation, Vantage};
+use lightcone_engine::ecs::{Apparent, BodyRef, Framing, Simulation, Vantage};
 use lightcone_engine::optics::view::{Method, observe};
 use lightcone_engine::report::ObserveReport;
 use lightcone_engine::scene::{self, Effect, Effects, Scene};
 use lightcone_engine::spacetime::ProperVelocity;
+use lightcone_engine::worldline::mesh::{CUSHION_HEIGHT, CUSHION_WIDTH};
 
 /// Two fast pucks that collide, a moving observer.
 const SCENE: &str = r#"
@@ -51,7 +53,7 @@ fn all() -> Effects {
 fn pair(effect: Effect) -> (Simulation, Apparent, Apparent) {
     let mut sim = Simulation::new(&scene());
     let eye = sim.entity("eye").unwrap();
-    let camera = Camera::looking(DVec3::Y);
+    let camera = Framing::default();
     let on = sim.add_view("on", eye, all(), camera, Vantage::OnWorldline);
     let mut fx = all();
     fx.set(effect, false);
@@ -152,7 +154,7 @@ fn contraction_runs_only_for_views_with_it() {
     // Measured on board-simultaneous views (no light delay): the extent of
     // puck "a" along its motion, from its centre.
     let eye = sim.entity("eye").unwrap();
-    let camera = Camera::looking(DVec3::Y);
+    let camera = Framing::default();
     let rigid = sim.add_view("rigid", eye, Effects::NONE, camera, Vantage::OnWorldline);
     let contracted = sim.add_view(
         "contracted",
@@ -293,7 +295,7 @@ fn the_table_is_seen_like_any_resting_body() {
         .iter()
         .filter(|b| matches!(b.body, BodyRef::Fixture(_)))
         .collect();
-    assert_eq!(fixtures.len(), 5);
+    assert_eq!(fixtures.len(), 6); // cloth, four cushions, framing marks
     for b in fixtures {
         for (e, s) in b.emissions.iter().zip(&b.seen) {
             let expected = eye.see_static(e.event.position, c, true);
@@ -310,7 +312,7 @@ fn two_views_of_one_frame_seen_and_truth() {
         "eye: truth",
         eye,
         with(&[Effect::Contraction]),
-        Camera::looking(DVec3::Y),
+        Framing::default(),
         Vantage::OnWorldline,
     );
     sim.advance_to(1.0);
@@ -403,4 +405,48 @@ fn the_sampled_history_is_recorded_only_when_the_scene_asks() {
     {
         assert!((a.event.position - b.event.position).length() < 1e-3);
     }
+}
+
+/// The fitted camera of a view is the window's: the table's corners as the
+/// eye sees them (`see_static`, with or without aberration), fitted.
+#[test]
+fn a_fitted_view_frames_the_table_as_the_window_does() {
+    let mut sim = Simulation::new(&scene());
+    let view = sim.view("eye").unwrap();
+    for (aberration, aspect, zoom) in [(true, 1.6, 1.0), (false, 0.8, 2.0)] {
+        sim.set_view_effect(view, Effect::Aberration, aberration);
+        sim.set_framing(
+            view,
+            Framing::Fit {
+                aspect,
+                zoom,
+                follow: None,
+            },
+        );
+        sim.advance_to(0.9);
+        let eye = sim.apparent(view).unwrap().eye.unwrap();
+        let size = sim.table_size();
+        let points: Vec<DVec3> = camera::table_corners(size, CUSHION_HEIGHT, CUSHION_WIDTH)
+            .into_iter()
+            .map(|p| eye.see_static(p, sim.c(), aberration).position)
+            .collect();
+        let expected = camera::fit(&points, aspect, FIT_MARGIN, zoom);
+        let got = sim.camera(view).unwrap();
+        assert!((got.forward - expected.forward).length() < 1e-12);
+        assert!((got.fovy - expected.fovy).abs() < 1e-12);
+    }
+    // Following puck "b": its apparent centre in the middle.
+    sim.set_framing(
+        view,
+        Framing::Fit {
+            aspect: 1.0,
+            zoom: 1.0,
+            follow: Some(1),
+        },
+    );
+    sim.advance_to(1.0);
+    let a = sim.apparent(view).unwrap();
+    let b = &a.bodies[1];
+    let dir = b.seen[b.centre()].direction;
+    assert!((sim.camera(view).unwrap().forward - dir).length() < 1e-12);
 }

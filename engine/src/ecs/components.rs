@@ -6,6 +6,7 @@
 use bevy_ecs::prelude::*;
 use glam::DVec3;
 
+use crate::camera::{Camera, Framing};
 use crate::optics::{Emission, Eye, Seen};
 use crate::scene::{Color, Effect, Effects};
 use crate::worldline::{RestShape, Worldline};
@@ -91,8 +92,7 @@ pub struct ProperTime(pub f64);
 
 /// A view: what one observer sees, with its own effect set (one marker
 /// component per effect: [`Contraction`], [`LightDelay`], [`Aberration`],
-/// [`Doppler`], [`Searchlight`], [`TimeDilation`]) and its own
-/// [`Camera`]. Several views run in the same frame; the optics systems
+/// [`Doppler`], [`Searchlight`], [`TimeDilation`]) and its own [`Lens`]. Several views run in the same frame; the optics systems
 /// write each one's [`Apparent`].
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct View {
@@ -102,25 +102,34 @@ pub struct View {
     pub name: String,
 }
 
-/// The pinhole camera of a view, at the eye: the one camera model of the
-/// window, `render`, Python and the CAVE.
+/// The camera of a view: how it is aimed (`framing`, set by the front end)
+/// and the camera that framing gave at the last frame (`camera`, written
+/// by the optics phase from what the view saw): the one camera model of
+/// the window, `render`, Python and the CAVE.
 #[derive(Component, Clone, Copy, Debug, PartialEq)]
-pub struct Camera {
-    /// Viewing direction, observer's frame (axes parallel to the board's).
-    pub forward: DVec3,
-    /// Vertical field of view, radians.
-    pub fovy: f64,
+pub struct Lens {
+    /// How the camera is aimed.
+    pub framing: Framing,
+    /// The camera at the last frame.
+    pub camera: Camera,
 }
 
-impl Camera {
-    /// The scene's camera: looking along `forward`, 60° vertical field.
-    pub fn looking(forward: DVec3) -> Self {
+impl Lens {
+    /// A lens aimed by `framing` (its camera, until the first frame,
+    /// looking along +y with a 60° field).
+    pub fn new(framing: Framing) -> Self {
         Self {
-            forward,
-            fovy: std::f64::consts::FRAC_PI_3,
+            framing,
+            camera: Camera::looking(DVec3::Y),
         }
     }
 }
+
+/// Marks the fixture whose points are what a fitted framing shows (the
+/// corners of the playing area and of the cushions' outer top edges); it
+/// has no triangles, so nothing draws it.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FramingMarks;
 
 /// Where a view puts its eye at the clock's board time `t`.
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq)]

@@ -20,9 +20,10 @@ pub mod schedule;
 pub mod simulation;
 pub mod systems;
 
+pub use crate::camera::{Camera, Framing};
 pub use components::{
-    Aberration, Apparent, ApparentBody, BodyRef, Camera, Contraction, Doppler, LightDelay,
-    Observer, Searchlight, TimeDilation, Vantage, View,
+    Aberration, Apparent, ApparentBody, BodyRef, Contraction, Doppler, Lens, LightDelay, Observer,
+    Searchlight, TimeDilation, Vantage, View,
 };
 pub use phase::Phase;
 pub use schedule::frame_schedule;

@@ -47,6 +47,7 @@ pub fn frame_schedule() -> Schedule {
             optics::doppler.run_if(any_view_with::<Doppler>),
             optics::searchlight.run_if(any_view_with::<Searchlight>),
             optics::time_dilation.run_if(any_view_with::<TimeDilation>),
+            optics::frame_cameras,
         )
             .chain()
             .in_set(Phase::Optics),

@@ -5,14 +5,15 @@ use bevy_ecs::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::components::{
-    Apparent, BoardShape, BodyName, Camera, Fixture, Mesh, Observer, OwnWorldline, ProperTime,
-    Puck, PuckIndex, Tint, Vantage, View, effects_of, set_effect_marker,
+    Apparent, BoardShape, BodyName, Fixture, FramingMarks, Lens, Mesh, Observer, OwnWorldline,
+    ProperTime, Puck, PuckIndex, Tint, Vantage, View, effects_of, set_effect_marker,
 };
 use super::resources::{
     Clock, FrameCollisions, History, OpticsMethod, Physics, SpeedOfLight, Table,
 };
 use super::schedule::frame_schedule;
 use super::systems::input;
+use crate::camera::{self, Camera, Framing};
 use crate::optics::SampledHistory;
 use crate::physics::Billiard;
 use crate::scene::{Effect, Effects, Scene};
@@ -88,6 +89,18 @@ impl Simulation {
                 Mesh::new(part, centre),
             ));
         }
+        let marks = RestShape {
+            vertices: camera::table_corners(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH),
+            triangles: Vec::new(),
+        };
+        let centre = marks.vertices.iter().sum::<DVec3>() / marks.vertices.len() as f64;
+        let n = world.query::<&Fixture>().iter(&world).count();
+        world.spawn((
+            Fixture(n),
+            FramingMarks,
+            OwnWorldline(at_rest),
+            Mesh::new(marks, centre),
+        ));
         let mut sim = Self {
             world,
             schedule: frame_schedule(),
@@ -104,7 +117,7 @@ impl Simulation {
                 &o.name,
                 observer,
                 scene.effects,
-                Camera::looking(o.look_at - o.position),
+                Framing::default(),
                 Vantage::OnWorldline,
             );
         }
@@ -169,14 +182,15 @@ impl Simulation {
             .id()
     }
 
-    /// Adds a view of `observer` with the effect set `effects`, the camera
-    /// `camera` and the vantage `vantage`; it is drawn from the next frame.
+    /// Adds a view of `observer` with the effect set `effects`, its camera
+    /// aimed by `framing`, and the vantage `vantage`; it sees from the next
+    /// frame.
     pub fn add_view(
         &mut self,
         name: &str,
         observer: Entity,
         effects: Effects,
-        camera: Camera,
+        framing: Framing,
         vantage: Vantage,
     ) -> Entity {
         let mut view = self.world.spawn((
@@ -184,7 +198,7 @@ impl Simulation {
                 observer,
                 name: name.to_owned(),
             },
-            camera,
+            Lens::new(framing),
             vantage,
             Apparent::default(),
         ));
@@ -222,15 +236,20 @@ impl Simulation {
         self.world.get::<Apparent>(view)
     }
 
-    /// The camera of `view`.
+    /// The camera of `view` at the last frame.
     pub fn camera(&self, view: Entity) -> Option<Camera> {
-        self.world.get::<Camera>(view).copied()
+        self.world.get::<Lens>(view).map(|l| l.camera)
     }
 
-    /// Sets the camera of `view`.
-    pub fn set_camera(&mut self, view: Entity, camera: Camera) {
-        if let Some(mut c) = self.world.get_mut::<Camera>(view) {
-            *c = camera;
+    /// How `view`'s camera is aimed.
+    pub fn framing(&self, view: Entity) -> Option<Framing> {
+        self.world.get::<Lens>(view).map(|l| l.framing)
+    }
+
+    /// Sets how `view`'s camera is aimed (from the next frame).
+    pub fn set_framing(&mut self, view: Entity, framing: Framing) {
+        if let Some(mut l) = self.world.get_mut::<Lens>(view) {
+            l.framing = framing;
         }
     }
 

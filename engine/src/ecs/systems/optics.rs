@@ -13,9 +13,10 @@ use bevy_ecs::prelude::*;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::camera::{self, FIT_MARGIN, Framing};
 use crate::ecs::components::{
-    Aberration, Apparent, ApparentBody, BodyRef, Contraction, Doppler, Fixture, LightDelay, Mesh,
-    Observer, OwnWorldline, PuckIndex, Searchlight, TimeDilation, Vantage, View,
+    Aberration, Apparent, ApparentBody, BodyRef, Contraction, Doppler, Fixture, FramingMarks, Lens,
+    LightDelay, Mesh, Observer, OwnWorldline, PuckIndex, Searchlight, TimeDilation, Vantage, View,
 };
 use crate::ecs::resources::{Clock, History, OpticsMethod, Physics, SpeedOfLight};
 use crate::optics::Eye;
@@ -272,5 +273,56 @@ pub fn time_dilation(
                 b.seen_proper_time = worldline.proper_time_at(centre.event.t);
             }
         }
+    }
+}
+
+/// Aims every view's camera for this frame: along its direction
+/// ([`Framing::Look`]), or fitted to the table as that view sees it, with
+/// its own effects ([`Framing::Fit`], following a puck's apparent centre if
+/// asked).
+pub fn frame_cameras(
+    marks: Query<&Fixture, With<FramingMarks>>,
+    mut views: Query<(&Apparent, &mut Lens), With<View>>,
+) {
+    let marks = marks.iter().next().map(|f| BodyRef::Fixture(f.0));
+    for (apparent, mut lens) in &mut views {
+        lens.camera = match lens.framing {
+            Framing::Look {
+                forward,
+                fovy,
+                zoom,
+            } => camera::zoomed(forward, fovy, zoom),
+            Framing::Fit {
+                aspect,
+                zoom,
+                follow,
+            } => {
+                let points: Vec<DVec3> = apparent
+                    .bodies
+                    .iter()
+                    .find(|b| Some(b.body) == marks)
+                    .map(|b| {
+                        b.seen[..b.vertex_count()]
+                            .iter()
+                            .map(|s| s.position)
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                let mut fitted = camera::fit(&points, aspect, FIT_MARGIN, zoom);
+                let centre = follow.and_then(|i| {
+                    apparent
+                        .bodies
+                        .iter()
+                        .find(|b| b.body == BodyRef::Puck(i))
+                        .and_then(|b| b.seen.get(b.centre()))
+                });
+                if let Some(s) = centre
+                    && s.position.length() > 1e-9
+                {
+                    fitted.forward = s.position.normalize();
+                }
+                fitted
+            }
+        };
     }
 }
