@@ -47,6 +47,10 @@ pub struct PuckLine {
     /// Rest mass after, kg: only when an inelastic collision changed it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mass_after: Option<f64>,
+    /// Rest-frame orientation after the change, radians counter-clockwise
+    /// from the board's +x (the accumulated Thomas–Wigner rotation; 0 at
+    /// t = 0).
+    pub orientation: f64,
     /// Present and true when this puck's velocity change was still ahead
     /// at the end of the run (the second kick of a contact): `t` and
     /// `u_after` are the scheduled ones.
@@ -78,6 +82,9 @@ pub struct PuckState {
     pub beta: [f64; 2],
     /// Proper time, s.
     pub proper_time: f64,
+    /// Rest-frame orientation, radians counter-clockwise from the board's
+    /// +x (the accumulated Thomas–Wigner rotation; 0 at t = 0).
+    pub orientation: f64,
 }
 
 fn xy(v: glam::DVec3) -> [f64; 2] {
@@ -97,6 +104,7 @@ impl PuckLine {
             beta_after: xy(o.u_after.beta()),
             mass_before: changed.then_some(o.mass_before),
             mass_after: changed.then_some(o.mass_after),
+            orientation: o.orientation_after,
             pending: o.pending,
         }
     }
@@ -138,6 +146,7 @@ impl StateLine {
                         u: xy(s.u.0),
                         beta: xy(s.u.beta()),
                         proper_time: s.proper_time,
+                        orientation: s.orientation,
                     }
                 })
                 .collect(),
@@ -204,6 +213,10 @@ pub struct SeenPuck {
     pub centre: SeenPoint,
     /// The proper time its clock shows in the image, s.
     pub seen_proper_time: f64,
+    /// Its rest-frame orientation in the image (at the centre's emission
+    /// event), radians counter-clockwise from the board's +x: the
+    /// accumulated Thomas–Wigner rotation, 0 at t = 0.
+    pub orientation: f64,
     /// Every mesh vertex, only when asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub vertices: Option<Vec<SeenPoint>>,
@@ -254,6 +267,10 @@ impl ObserveReport {
                     name: billiard.name(b.puck).to_owned(),
                     centre: SeenPoint::new(&b.centre),
                     seen_proper_time: b.seen_proper_time,
+                    orientation: billiard
+                        .worldline(b.puck)
+                        .state_at(b.centre.emission.event.t)
+                        .orientation,
                     vertices: with_vertices
                         .then(|| b.vertices.iter().map(SeenPoint::new).collect()),
                 })

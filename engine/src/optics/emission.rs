@@ -39,9 +39,9 @@ pub struct Emission {
 fn start_position(s: &Segment, offset: DVec3, contracted: bool) -> DVec3 {
     s.start.position
         + if contracted {
-            s.contract(offset)
+            s.place(offset)
         } else {
-            offset
+            s.rotate(offset)
         }
 }
 
@@ -167,9 +167,9 @@ pub fn simultaneous(worldline: &Worldline, offset: DVec3, contracted: bool, t: f
     let k = worldline.segment_index_at(t);
     let s = &worldline.segments()[k];
     let r = if contracted {
-        s.contract(offset)
+        s.place(offset)
     } else {
-        offset
+        s.rotate(offset)
     };
     Emission {
         event: Event::new(t, s.position_at(t) + r),

@@ -13,7 +13,7 @@
 use glam::DVec3;
 
 use super::emission::Emission;
-use crate::spacetime::{Event, ProperVelocity};
+use crate::spacetime::{Event, ProperVelocity, rotate_about_normal};
 use crate::worldline::{Worldline, contract};
 
 /// How the sampled history is searched.
@@ -41,6 +41,8 @@ impl Default for Search {
 struct Track {
     centre: Vec<DVec3>,
     u: Vec<ProperVelocity>,
+    /// Rest-frame orientation (Thomas–Wigner rotation), rad.
+    orientation: Vec<f64>,
 }
 
 /// The history table: one sample per body per recorded frame, the newest
@@ -72,9 +74,9 @@ impl SampledHistory {
         self.times.is_empty()
     }
 
-    /// Bytes of sample data held (times, centres, velocities).
+    /// Bytes of sample data held (times, centres, velocities, orientations).
     pub fn memory_bytes(&self) -> usize {
-        self.times.len() * (8 + self.tracks.len() * (24 + 24))
+        self.times.len() * (8 + self.tracks.len() * (24 + 24 + 8))
     }
 
     /// Records every body's state at board time `t` (later than the last
@@ -93,19 +95,22 @@ impl SampledHistory {
             if full {
                 track.centre.remove(0);
                 track.u.remove(0);
+                track.orientation.remove(0);
             }
             let s = w.state_at(t);
             track.centre.push(s.position);
             track.u.push(s.u);
+            track.orientation.push(s.orientation);
         }
     }
 
     fn position(&self, body: usize, i: usize, offset: DVec3, contracted: bool) -> DVec3 {
         let track = &self.tracks[body];
+        let turned = rotate_about_normal(offset, track.orientation[i]);
         let r = if contracted {
-            contract(offset, track.u[i])
+            contract(turned, track.u[i])
         } else {
-            offset
+            turned
         };
         track.centre[i] + r
     }
@@ -231,6 +236,6 @@ mod tests {
             h.record(f64::from(t), [&w]);
         }
         assert_eq!(h.len(), 3);
-        assert_eq!(h.memory_bytes(), 3 * (8 + 48));
+        assert_eq!(h.memory_bytes(), 3 * (8 + 56));
     }
 }

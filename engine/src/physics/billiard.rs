@@ -14,7 +14,7 @@ use super::predict::puck_puck::PairContact;
 use super::predict::{Cushion, puck_cushion, puck_puck};
 use super::resolve::{self, Body};
 use crate::scene::Scene;
-use crate::spacetime::{Event, ProperVelocity};
+use crate::spacetime::{Event, ProperVelocity, rotation_of_velocity_change};
 use crate::worldline::Worldline;
 
 /// A puck as the physics starts it, at board time 0.
@@ -63,6 +63,10 @@ pub struct PuckOutcome {
     pub mass_after: f64,
     /// True while the velocity change has not yet happened (its board time
     /// is still ahead): the values are the scheduled ones.
+    /// Rest-frame orientation after the change (accumulated Thomas–Wigner
+    /// rotation), radians counter-clockwise about `+z`; see
+    /// [`crate::worldline::Segment::orientation`].
+    pub orientation_after: f64,
     pub pending: bool,
 }
 
@@ -599,6 +603,7 @@ impl Billiard {
                 u_after: after,
                 mass_before: puck.mass,
                 mass_after: puck.mass,
+                orientation_after: puck.worldline.last().orientation,
                 pending: false,
             };
             self.collisions.push(Collision {
@@ -671,6 +676,9 @@ impl Billiard {
                     u_after: after[k].u,
                     mass_before: before[k].mass,
                     mass_after: after[k].mass,
+                    // As scheduled; set again when the kick is taken.
+                    orientation_after: self.pucks[i].worldline.last().orientation
+                        + rotation_of_velocity_change(before[k].u, after[k].u),
                     pending: true,
                 })
                 .collect();
@@ -782,6 +790,7 @@ impl Billiard {
                 u_after: next.u,
                 mass_before: now.mass,
                 mass_after: next.mass,
+                orientation_after: puck.worldline.last().orientation,
                 pending: false,
             };
         }

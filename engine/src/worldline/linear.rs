@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::spacetime::{Event, ProperVelocity};
+use crate::spacetime::{Event, ProperVelocity, rotation_of_velocity_change};
 
 /// Why a kink cannot be appended to a worldline.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
@@ -32,6 +32,13 @@ pub struct Segment {
     pub u: ProperVelocity,
     /// The body's proper time at `start`, seconds.
     pub proper_time: f64,
+    /// Orientation of the body's rest frame along this segment, radians
+    /// counter-clockwise about the board normal `+z`: the angle by which its
+    /// rest-frame axes are turned from those of the pure boost from the
+    /// board to `u`. It is the sum of the Thomas–Wigner rotations of every
+    /// earlier velocity change ([`crate::spacetime::rotation_of_velocity_change`]);
+    /// 0 on the first segment.
+    pub orientation: f64,
     /// Board-frame velocity `c u / γ`, m/s (derived from `u`, cached because
     /// every position query needs it).
     velocity: DVec3,
@@ -41,16 +48,19 @@ pub struct Segment {
     direction: DVec3,
     /// `γ` (cached).
     gamma: f64,
+    /// `(cos, sin)` of `orientation` (cached).
+    turn: (f64, f64),
 }
 
 impl Segment {
-    fn new(start: Event, u: ProperVelocity, proper_time: f64, c: f64) -> Self {
+    fn new(start: Event, u: ProperVelocity, proper_time: f64, orientation: f64, c: f64) -> Self {
         let gamma = u.gamma();
         let speed = u.0.length();
         Self {
             start,
             u,
             proper_time,
+            orientation,
             velocity: u.0 * (c / gamma),
             inverse_gamma: 1.0 / gamma,
             direction: if speed > 0.0 {
@@ -59,6 +69,7 @@ impl Segment {
                 DVec3::ZERO
             },
             gamma,
+            turn: orientation.sin_cos(),
         }
     }
 
@@ -76,6 +87,24 @@ impl Segment {
         let n = self.direction;
         let along = n.dot(r);
         (r - n * along) + n * (along * self.inverse_gamma)
+    }
+
+    /// A rest-frame offset (axes of the body's mesh) turned by this
+    /// segment's [`Self::orientation`] about `+z`: the same offset in the
+    /// axes of the pure boost from the board.
+    #[inline]
+    pub fn rotate(&self, r: DVec3) -> DVec3 {
+        let (s, c) = self.turn;
+        DVec3::new(c * r.x - s * r.y, s * r.x + c * r.y, r.z)
+    }
+
+    /// Where a point of the body at rest-frame offset `r` lies from the
+    /// reference point on the board: turned by the orientation, then
+    /// contracted (`contract(rotate(r))`). For a shape that turning leaves
+    /// alone (a disc) this is [`Self::contract`].
+    #[inline]
+    pub fn place(&self, r: DVec3) -> DVec3 {
+        self.contract(self.rotate(r))
     }
 
     /// Board-frame velocity, m/s.
@@ -107,6 +136,9 @@ pub struct BodyState {
     pub u: ProperVelocity,
     /// Proper time, s.
     pub proper_time: f64,
+    /// Rest-frame orientation (accumulated Wigner rotation), radians
+    /// counter-clockwise about `+z`; see [`Segment::orientation`].
+    pub orientation: f64,
 }
 
 /// The history of one body's reference point (a puck's centre on the board,
@@ -135,7 +167,7 @@ impl Worldline {
     /// `start`, for a speed of light `c` in m/s.
     pub fn new(start: Event, u: ProperVelocity, c: f64) -> Self {
         Self {
-            segments: vec![Segment::new(start, u, 0.0, c)],
+            segments: vec![Segment::new(start, u, 0.0, 0.0, c)],
             c,
         }
     }
@@ -198,6 +230,7 @@ impl Worldline {
             position: s.position_at(t),
             u: s.u,
             proper_time: s.proper_time_at(t),
+            orientation: s.orientation,
         }
     }
 
@@ -219,7 +252,13 @@ impl Worldline {
         if first.u.0 == DVec3::ZERO {
             return;
         }
-        let rest = Segment::new(first.start, ProperVelocity::ZERO, first.proper_time, self.c);
+        let rest = Segment::new(
+            first.start,
+            ProperVelocity::ZERO,
+            first.proper_time,
+            first.orientation,
+            self.c,
+        );
         self.segments.insert(0, rest);
     }
 
@@ -239,13 +278,21 @@ impl Worldline {
                 last: last.start.t,
             });
         }
+        // Torque-free: the new rest frame is the old one boosted within
+        // itself; two changes at one instant compose in turn.
+        let orientation = last.orientation + rotation_of_velocity_change(last.u, u);
         if t == last.start.t {
             let i = self.segments.len() - 1;
-            self.segments[i] = Segment::new(last.start, u, last.proper_time, self.c);
+            self.segments[i] = Segment::new(last.start, u, last.proper_time, orientation, self.c);
         } else {
             let start = Event::new(t, last.position_at(t));
-            self.segments
-                .push(Segment::new(start, u, last.proper_time_at(t), self.c));
+            self.segments.push(Segment::new(
+                start,
+                u,
+                last.proper_time_at(t),
+                orientation,
+                self.c,
+            ));
         }
         Ok(())
     }

@@ -4,6 +4,7 @@
 mod linear;
 pub mod mesh;
 mod shape;
+pub mod sliding;
 
 pub use linear::{BodyState, Segment, Worldline, WorldlineError};
 pub use shape::{RestShape, contract};

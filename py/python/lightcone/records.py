@@ -50,6 +50,8 @@ class CollisionPuck(TypedDict):
     """Rest mass before, kg: only when an inelastic collision changed it."""
     mass_after: NotRequired[float]
     """Rest mass after, kg: only when an inelastic collision changed it."""
+    orientation: float
+    """Rest-frame orientation after the change, rad counter-clockwise from +x (accumulated Thomas–Wigner rotation)."""
     pending: NotRequired[bool]
     """Present and True when this puck's velocity change was still ahead (the second kick of a contact)."""
 
@@ -79,6 +81,8 @@ class PuckState(TypedDict):
     """β = v/c, (x, y)."""
     proper_time: float
     """The puck's own clock, s."""
+    orientation: float
+    """Rest-frame orientation, rad counter-clockwise from +x (accumulated Thomas–Wigner rotation; 0 at t = 0)."""
 
 
 class State(TypedDict):
@@ -128,6 +132,8 @@ class SeenPuck(SeenPoint):
     name: str
     seen_proper_time: float
     """The proper time its clock shows in the picture, s."""
+    orientation: float
+    """Its rest-frame orientation in the picture, rad counter-clockwise from +x (Thomas–Wigner rotation)."""
     vertices: NotRequired[List[SeenPoint]]
     """Every mesh vertex, with `vertices=True`."""
 
