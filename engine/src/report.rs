@@ -334,6 +334,10 @@ impl ObserveReport {
                     name: billiard.name(i).to_owned(),
                     centre: SeenPoint::of_apparent(b, b.centre()),
                     seen_proper_time: b.seen_proper_time,
+                    orientation: billiard
+                        .worldline(i)
+                        .state_at(b.emissions[b.centre()].event.t)
+                        .orientation,
                     vertices: with_vertices.then(|| {
                         (0..b.vertex_count())
                             .map(|k| SeenPoint::of_apparent(b, k))
