@@ -21,6 +21,7 @@ pub mod simulation;
 pub mod systems;
 
 pub use crate::camera::{Camera, Framing};
+pub use bevy_ecs::entity::Entity;
 pub use components::{
     Aberration, Apparent, ApparentBody, BodyRef, Contraction, Doppler, Lens, LightDelay, Observer,
     Searchlight, TimeDilation, Vantage, View,

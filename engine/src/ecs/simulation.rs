@@ -5,8 +5,8 @@ use bevy_ecs::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::components::{
-    Apparent, BoardShape, BodyName, Fixture, FramingMarks, Lens, Mesh, Observer, OwnWorldline,
-    ProperTime, Puck, PuckIndex, Tint, Vantage, View, effects_of, set_effect_marker,
+    Apparent, BoardShape, BodyName, BodyRef, Fixture, FramingMarks, Lens, Mesh, Observer,
+    OwnWorldline, ProperTime, Puck, PuckIndex, Tint, Vantage, View, effects_of, set_effect_marker,
 };
 use super::resources::{
     Clock, FrameCollisions, History, OpticsMethod, Physics, SpeedOfLight, Table,
@@ -16,7 +16,7 @@ use super::systems::input;
 use crate::camera::{self, Camera, Framing};
 use crate::optics::SampledHistory;
 use crate::physics::Billiard;
-use crate::scene::{Effect, Effects, Scene};
+use crate::scene::{Color, Effect, Effects, Scene};
 use crate::spacetime::{Event, ProperVelocity};
 use crate::worldline::mesh::{self, CUSHION_HEIGHT, CUSHION_WIDTH, PUCK_SEGMENTS};
 use crate::worldline::{RestShape, Worldline, WorldlineError};
@@ -284,6 +284,24 @@ impl Simulation {
         for view in self.views.clone() {
             self.set_view_effect(view, effect, on);
         }
+    }
+
+    /// Every drawn body's rest-frame mesh, with its colour for a puck
+    /// (`None` for a fixture), in no particular order.
+    pub fn body_meshes(&mut self) -> Vec<(BodyRef, &Mesh, Option<Color>)> {
+        let mut q = self
+            .world
+            .query::<(Option<&PuckIndex>, Option<&Fixture>, &Mesh, Option<&Tint>)>();
+        q.iter(&self.world)
+            .filter_map(|(p, f, m, tint)| {
+                let body = match (p, f) {
+                    (Some(p), _) => BodyRef::Puck(p.0),
+                    (None, Some(f)) => BodyRef::Fixture(f.0),
+                    (None, None) => return None,
+                };
+                Some((body, m, tint.map(|t| t.0)))
+            })
+            .collect()
     }
 
     /// The worldline of `observer`.
