@@ -259,6 +259,20 @@ pub struct Apparent {
     pub applied: Effects,
 }
 
+impl Apparent {
+    /// Every puck's apparent centre (mid-height): its index, emission
+    /// event and how it is seen, for clocks, labels and picking.
+    pub fn puck_centres(&self) -> impl Iterator<Item = (usize, Emission, Seen)> + '_ {
+        self.bodies.iter().filter_map(|b| match b.body {
+            BodyRef::Puck(i) => {
+                let k = b.centre();
+                Some((i, *b.emissions.get(k)?, *b.seen.get(k)?))
+            }
+            BodyRef::Fixture(_) => None,
+        })
+    }
+}
+
 impl Default for Apparent {
     fn default() -> Self {
         Self {
