@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::Output;
 
 use common::{cloth_pixels, lightcone, play_under_xvfb, play_under_xvfb_with, repo};
-use lightcone::render::headless::Image;
+use lightcone_render::headless::Image;
 
 fn lessons() -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(repo().join("scripts/lessons"))

@@ -7,12 +7,12 @@ mod common;
 use common::repo;
 
 use glam::{DVec2, DVec3};
-use lightcone::render::frame::{self, SceneMeshes, ViewKind};
-use lightcone::render::gpu;
-use lightcone::render::headless::{self, Image};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{self, Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
 use lightcone_engine::spacetime::ProperVelocity;
+use lightcone_render::frame::{self, SceneMeshes, ViewKind};
+use lightcone_render::gpu;
+use lightcone_render::headless::{self, Image};
 
 /// One red puck, seen from `eye` looking at `look_at`.
 fn one_puck(

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use common::{cloth_pixels as cloth, lightcone, play_under_xvfb, repo};
 use glam::DVec3;
 use lightcone::cave::TrackedHead;
-use lightcone::play::state::GameState;
+use lightcone::model::GameState;
 use lightcone_tracker::follow::TrackerStatus;
 
 /// A service name no other test (or run) uses.
@@ -312,7 +312,7 @@ fn every_cave_wall_renders_for_both_eyes() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let load = |name: &str| lightcone::render::headless::Image::load_png(&dir.join(name)).unwrap();
+    let load = |name: &str| lightcone_render::headless::Image::load_png(&dir.join(name)).unwrap();
     for wall in ["front", "left", "right", "floor"] {
         for eye in ["left", "right"] {
             let img = load(&format!("{wall}_{eye}.png"));

@@ -9,7 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{play_under_xvfb, repo};
-use lightcone::render::headless::Image;
+use lightcone_render::headless::Image;
 
 /// Pixels of the cloth or the cushions (dark greens).
 fn table_pixel(p: [u8; 4]) -> bool {

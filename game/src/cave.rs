@@ -26,10 +26,10 @@ use lightcone_tracker::cave::{CaveConfig, TrackerToBoard, Wall};
 use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus, Verdict};
 use lightcone_tracker::{Subscriber, TrackerSample, unix_now_ns};
 
-use crate::play::state::GameState;
-use crate::render::frame::{self, FrameVertex};
-use crate::render::gpu::Gpu;
-use crate::render::headless::{Image, Offscreen};
+use crate::model::GameState;
+use lightcone_render::frame::{self, FrameVertex};
+use lightcone_render::gpu::Gpu;
+use lightcone_render::headless::{Image, Offscreen};
 
 /// Where a head is when nobody is tracked: standing at the CAVE's centre,
 /// eyes 1.7 m above its floor, facing the front wall (tracker space, y up).

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use lightcone::commands::args;
-use lightcone::{commands, interrupt, play, render};
+use lightcone::{commands, interrupt};
 
 #[derive(Parser)]
 #[command(
@@ -288,8 +288,8 @@ fn main() -> ExitCode {
             view,
         }) => {
             let kind = match view {
-                ViewArg::Seen => render::frame::ViewKind::Seen,
-                ViewArg::Truth => render::frame::ViewKind::Truth,
+                ViewArg::Seen => lightcone_render::frame::ViewKind::Seen,
+                ViewArg::Truth => lightcone_render::frame::ViewKind::Truth,
             };
             commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
         }
@@ -345,9 +345,9 @@ fn main() -> ExitCode {
                 cave,
                 at,
                 view: view.map(|v| match v {
-                    PlayView::Seen => play::state::ViewMode::Seen,
-                    PlayView::Truth => play::state::ViewMode::Truth,
-                    PlayView::Split => play::state::ViewMode::Split,
+                    PlayView::Seen => lightcone::model::ViewMode::Seen,
+                    PlayView::Truth => lightcone::model::ViewMode::Truth,
+                    PlayView::Split => lightcone::model::ViewMode::Split,
                 }),
                 top,
                 effects,

@@ -9,7 +9,6 @@
 //! Messages to stderr never fail a command (there is nowhere left to say so).
 
 use std::io::{ErrorKind, Write};
-use std::path::Path;
 use std::process::ExitCode;
 
 /// Why a command stops writing early.
@@ -62,17 +61,6 @@ pub fn eprint_quiet(text: &str) {
     let mut err = std::io::stderr().lock();
     let _ = err.write_all(text.as_bytes());
     let _ = err.flush();
-}
-
-/// Writes `bytes` to the file at `path` (created or truncated), reporting
-/// every failure, including those a buffered writer would drop on close
-/// (a full disk, `/dev/full`).
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let mut f = std::fs::File::create(path)
-        .map_err(|e| format!("{}: cannot create: {e}", path.display()))?;
-    f.write_all(bytes)
-        .and_then(|()| f.flush())
-        .map_err(|e| format!("{}: cannot write: {e}", path.display()))
 }
 
 /// `println!` for commands: writes a line to stdout and evaluates to

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::Mutex;
 
-use lightcone::render::headless::Image;
+use lightcone_render::headless::Image;
 
 /// The repository root.
 pub fn repo() -> PathBuf {

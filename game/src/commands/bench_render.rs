@@ -12,8 +12,8 @@ use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{self, Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
 use lightcone_engine::spacetime::ProperVelocity;
 
-use crate::render::frame::{self, SceneMeshes};
-use crate::render::{gpu, headless};
+use lightcone_render::frame::{self, SceneMeshes};
+use lightcone_render::{gpu, headless};
 
 /// A large scene: `n` pucks on a grid with assorted velocities.
 fn large(n: usize) -> Scene {

@@ -12,7 +12,7 @@ use lightcone_tracker::motion::Prng;
 use lightcone_tracker::{TrackerSample, latency_stats};
 
 use crate::cave::TrackedHead;
-use crate::play::state::GameState;
+use crate::model::GameState;
 
 /// Pixels per radian of a 720-pixel-high picture with a 60° field of view.
 const PX_PER_RAD: f64 = 720.0 / std::f64::consts::FRAC_PI_3;

@@ -8,7 +8,7 @@ use glam::{DQuat, DVec3};
 use lightcone_engine::scene;
 
 use crate::cave::{self, DEFAULT_HEAD};
-use crate::play::state::GameState;
+use crate::model::GameState;
 
 /// Parses `x,y,z`.
 pub fn parse_head(text: &str) -> Result<DVec3, String> {
@@ -63,7 +63,7 @@ pub fn run(
     };
     let mut game = GameState::new(scene);
     game.step(at);
-    let gpu = match crate::render::gpu::headless() {
+    let gpu = match lightcone_render::gpu::headless() {
         Ok(g) => g,
         Err(e) => return fail(e),
     };

@@ -1,6 +1,6 @@
 //! `lightcone diagram SCENE --at T [--observer NAME] [--size WxH] -o out.png`:
 //! the space-time diagram of a scene at board time T (see
-//! [`crate::render::diagram`]).
+//! [`lightcone_render::diagram`]).
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene;
 
-use crate::render::diagram;
+use lightcone_render::diagram;
 
 /// Draws and writes the PNG; prints each puck's emission event (where the
 /// eye's past light cone meets its worldline).

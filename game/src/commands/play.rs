@@ -6,8 +6,8 @@ use std::process::ExitCode;
 use lightcone_engine::scene;
 
 use crate::lesson::LessonHost;
+use crate::model::{GameState, ViewMode};
 use crate::play::app::{self, Options};
-use crate::play::state::{GameState, ViewMode};
 
 /// The options of `play` beyond the scene.
 #[derive(Default)]

@@ -6,8 +6,8 @@ use std::process::ExitCode;
 
 use lightcone_engine::scene;
 
-use crate::render::frame::ViewKind;
-use crate::render::{gpu, headless};
+use lightcone_render::frame::ViewKind;
+use lightcone_render::{gpu, headless};
 
 /// Parses `WxH`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {

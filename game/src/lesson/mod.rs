@@ -23,6 +23,7 @@
 //! ([`supervise`]). After `world.finish()` no hook runs again.
 
 pub mod headless;
+pub mod lend;
 pub mod supervise;
 mod watchdog;
 
@@ -38,8 +39,8 @@ use lightcone_engine::scene::Scene;
 use pyo3::prelude::*;
 use pyo3::types::{PyModule, PyTuple};
 
-use crate::play::state::GameState;
-use crate::python::{LessonUi, World};
+use crate::model::GameState;
+use lightcone_python::{LessonUi, World};
 
 /// The `lightcone` package's Python side, installed in the embedded
 /// interpreter around the embedded extension module.
@@ -55,7 +56,7 @@ const BOOTSTRAP: &str = include_str!("bootstrap.py");
 fn init_python() -> Result<(), String> {
     static INIT: Once = Once::new();
     INIT.call_once(|| {
-        use crate::python::lightcone_embedded;
+        use lend::lightcone_embedded;
         pyo3::append_to_inittab!(lightcone_embedded);
         Python::initialize();
     });
@@ -218,7 +219,7 @@ impl LessonHost {
             .map(Path::to_path_buf)
             .unwrap_or_else(|| PathBuf::from("."));
         init_python()?;
-        let world = Python::attach(|py| Py::new(py, World::new(dir)))
+        let world = Python::attach(|py| Py::new(py, World::new(dir, lend::new_game)))
             .map_err(|e| format!("cannot start the lesson host: {e}"))?;
         let mut host = Self {
             path: path.to_path_buf(),
@@ -286,13 +287,13 @@ impl LessonHost {
             }
             // A fresh world (screen, attributes, no game): setup builds it.
             let dir = self.world.borrow(py).dir.clone();
-            self.world = Py::new(py, World::new(dir))?;
+            self.world = Py::new(py, World::new(dir, lend::new_game))?;
             let world = self.world.bind(py);
             let setup = module.call_method1("setup", (world,));
             drop(running);
             keep_printed(world, drain_printed(py));
             setup?;
-            let game = world.borrow_mut().game.take();
+            let game = world.borrow_mut().game.take().and_then(lend::taken_back);
             if game.is_none() {
                 return Err(pyo3::exceptions::PyRuntimeError::new_err(format!(
                     "{}: setup(world) did not call world.start(scene)",
@@ -382,7 +383,7 @@ impl LessonHost {
         let limit = self.limit;
         let result = Python::attach(|py| {
             let world = self.world.bind(py);
-            world.borrow_mut().game = Some(lent);
+            world.borrow_mut().game = Some(Box::new(lent));
             let result = {
                 // Only the hook itself is timed.
                 let _running = watchdog::Running::start(limit, hook);
@@ -398,7 +399,7 @@ impl LessonHost {
                 }
             };
             keep_printed(world, drain_printed(py));
-            let back = world.borrow_mut().game.take();
+            let back = world.borrow_mut().game.take().and_then(lend::taken_back);
             let generation = world.borrow().generation;
             let finished = world.borrow().ui.finished.is_some();
             (

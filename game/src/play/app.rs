@@ -16,13 +16,13 @@ use winit::window::{Window, WindowId};
 
 use super::lesson_panel::{self, LessonAction};
 use super::overlay::{aspect, markers, overlays, project, ring_colour};
-use super::state::{GameState, ViewMode};
 use crate::cave::{self, Side, TrackedHead};
 use crate::lesson::LessonHost;
-use crate::render::frame::{self, FrameVertex, ViewKind};
-use crate::render::gpu::{self, Gpu};
-use crate::render::headless::BACKGROUND;
-use crate::render::pipeline::{Draw, Renderer};
+use crate::model::{GameState, ViewMode};
+use lightcone_render::frame::{self, FrameVertex, ViewKind};
+use lightcone_render::gpu::{self, Gpu};
+use lightcone_render::headless::BACKGROUND;
+use lightcone_render::pipeline::{Draw, Renderer};
 use lightcone_tracker::cave::CaveConfig;
 use lightcone_tracker::follow::TrackerStatus;
 
@@ -321,7 +321,7 @@ impl App {
                     Some(i) if i + 1 < n => Some(i + 1),
                     _ => None,
                 };
-                s.framing = super::state::Framing::Fit;
+                s.framing = crate::model::Framing::Fit;
             }
             KeyCode::ArrowLeft => s.orbit(-0.1, 0.0),
             KeyCode::ArrowRight => s.orbit(0.1, 0.0),
@@ -452,7 +452,7 @@ impl App {
                 head.poll(now);
                 head.drive(&mut self.state, self.flight, self.flight_v);
                 // The tracked head aims the camera.
-                self.state.framing = super::state::Framing::Look;
+                self.state.framing = crate::model::Framing::Look;
             }
             (None, Some(c)) => {
                 // No tracker: the head stands at the CAVE's centre, carried
@@ -539,7 +539,7 @@ fn panels(
                 }
                 ui.label(format!(
                     "replay window: the last {:.0} min of board time{}",
-                    super::state::REPLAY_WINDOW / 60.0,
+                    crate::model::REPLAY_WINDOW / 60.0,
                     if oldest > 0.0 {
                         format!(" (before {oldest:.0} s is forgotten)")
                     } else {
@@ -612,7 +612,7 @@ fn panels(
                     });
                 if follow != s.follow {
                     s.follow = follow;
-                    s.framing = super::state::Framing::Fit;
+                    s.framing = crate::model::Framing::Fit;
                 }
                 ui.horizontal(|ui| {
                     if ui.button("from above (V)").clicked() {
@@ -1035,7 +1035,7 @@ fn save(
     path: &std::path::Path,
 ) -> Result<(), String> {
     let (w, h) = (gfx.config.width, gfx.config.height);
-    let mut rgba = crate::render::headless::read_rows(&gfx.gpu, buffer, padded, w, h)?;
+    let mut rgba = lightcone_render::headless::read_rows(&gfx.gpu, buffer, padded, w, h)?;
     let bgra = matches!(
         gfx.config.format,
         wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
@@ -1046,7 +1046,7 @@ fn save(
         }
         px[3] = 255;
     }
-    crate::render::headless::Image {
+    lightcone_render::headless::Image {
         width: w,
         height: h,
         rgba,

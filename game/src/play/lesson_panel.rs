@@ -5,7 +5,7 @@
 use egui::{Color32, RichText};
 
 use crate::lesson::LessonHost;
-use crate::python::{Bars, LessonUi};
+use lightcone_python::{Bars, LessonUi};
 
 /// What the student did in the panel (applied after the frame's UI).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

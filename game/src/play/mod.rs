@@ -1,8 +1,7 @@
-//! `lightcone play [SCENE]`: the interactive game. [`state`] holds the
-//! game's logic (time, replay, cue, flight, effects), testable without a
-//! window; [`app`] is the winit + wgpu + egui front end.
+//! `lightcone play [SCENE]`: the interactive game. [`crate::model`] holds
+//! the game's logic (time, replay, cue, flight, effects), testable without
+//! a window; [`app`] is the winit + wgpu + egui front end.
 
 pub mod app;
 pub mod lesson_panel;
 pub mod overlay;
-pub mod state;

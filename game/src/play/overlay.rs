@@ -6,8 +6,8 @@
 
 use glam::{DVec2, DVec3, Vec4};
 
-use super::state::GameState;
-use crate::render::frame::{Camera, ViewKind};
+use crate::model::GameState;
+use lightcone_render::frame::{Camera, ViewKind};
 
 /// Width / height of a rectangle `[x, y, w, h]`.
 pub fn aspect(rect: [f32; 4]) -> f64 {
@@ -67,7 +67,7 @@ pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker>
     for (k, &(rect, kind)) in rects.iter().enumerate() {
         let (_, camera) = state.eye_and_camera(aspect(rect));
         let effects = kind.effects(state.effects);
-        let (right, _) = crate::render::camera::basis(camera.forward.normalize_or(DVec3::Y));
+        let (right, _) = lightcone_render::camera::basis(camera.forward.normalize_or(DVec3::Y));
         for (i, (e, s)) in state.apparent_centres(&effects).iter().enumerate() {
             let Some(p) = project(&camera, rect, s.position) else {
                 continue;
@@ -225,7 +225,7 @@ fn physics_marks(
         project(&camera, rect, s.position)
     };
     let t_now = state.view_time;
-    let t_from = (t_now - super::state::TRAIL_S).max(t_now.min(0.0));
+    let t_from = (t_now - crate::model::TRAIL_S).max(t_now.min(0.0));
     const SAMPLES: usize = 90;
     let times: Vec<f64> = (0..=SAMPLES)
         .map(|k| t_from + (t_now - t_from) * k as f64 / SAMPLES as f64)
@@ -332,10 +332,10 @@ pub fn doppler_legend(ui: &mut egui::Ui) {
     ui.small("hue shifted, brightness kept; the ring keeps each puck's own colour");
 }
 
-/// The live space-time diagram (see [`crate::render::diagram`]): board x
+/// The live space-time diagram (see [`lightcone_render::diagram`]): board x
 /// across, board time up, for the eye looked through at the time shown.
 pub fn diagram_panel(ui: &mut egui::Ui, state: &GameState) {
-    use crate::render::diagram::{Mark, plot};
+    use lightcone_render::diagram::{Mark, plot};
     let p = plot(&state.scene, &state.billiard, state.eye().event);
     let size = egui::vec2(ui.available_width().max(300.0), 260.0);
     let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());

@@ -7,7 +7,7 @@ use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-use crate::render::headless::Image;
+use lightcone_render::headless::Image;
 
 /// A rendered frame: what an observer saw at board time `t`.
 #[pyclass(module = "lightcone._lightcone", frozen)]

@@ -4,18 +4,73 @@
 //! bar charts.
 //!
 //! The game lends its state to the world for the length of one hook call
-//! ([`crate::lesson::LessonHost`]), so a hook acts on exactly what the
-//! student sees; outside a hook the world has no game, and says so.
+//! (the game's lesson host), so a hook acts on exactly what the student
+//! sees; outside a hook the world has no game, and says so. The world
+//! reaches the game only through [`LessonGame`], which the game implements:
+//! this crate does not depend on the game.
 
+use std::any::Any;
 use std::path::PathBuf;
 
-use lightcone_engine::scene::Effect;
+use lightcone_engine::physics::Billiard;
+use lightcone_engine::scene::{Effect, Effects, Scene as SceneModel};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::Scene;
-use crate::play::state::{GameState, ViewMode};
+
+/// Which pictures the game shows: what is seen, the truth, or both side by
+/// side.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pictures {
+    /// What the observer sees.
+    Seen,
+    /// The board as it is at the same board time.
+    Truth,
+    /// Both, side by side.
+    Split,
+}
+
+/// What a lesson may read and change of the running game. The game
+/// implements it on its state and lends that to the [`World`] for the
+/// length of one hook; it takes it back with [`LessonGame::into_any`].
+pub trait LessonGame: Any {
+    /// The scene being played.
+    fn scene(&self) -> &SceneModel;
+    /// The pucks and their worldlines.
+    fn billiard(&self) -> &Billiard;
+    /// The pucks, to strike one.
+    fn billiard_mut(&mut self) -> &mut Billiard;
+    /// Board time the physics has reached, s.
+    fn live_time(&self) -> f64;
+    /// Whether time stands still.
+    fn paused(&self) -> bool;
+    /// Stops or restarts time.
+    fn set_paused(&mut self, paused: bool);
+    /// Board seconds per real second.
+    fn time_scale(&self) -> f64;
+    /// Sets board seconds per real second (checked by the caller).
+    fn set_time_scale(&mut self, scale: f64);
+    /// Which pictures are shown.
+    fn pictures(&self) -> Pictures;
+    /// Chooses the pictures shown.
+    fn set_pictures(&mut self, pictures: Pictures);
+    /// Index of the scene observer whose eye is used (`None`: free eye).
+    fn observer(&self) -> Option<usize>;
+    /// Chooses the eye (an index into the scene's observers, checked by
+    /// the caller).
+    fn set_observer(&mut self, observer: Option<usize>);
+    /// The effects shown.
+    fn effects(&self) -> Effects;
+    /// The effects shown, to turn one on or off.
+    fn effects_mut(&mut self) -> &mut Effects;
+    /// The game itself, for the host to take it back.
+    fn into_any(self: Box<Self>) -> Box<dyn Any>;
+}
+
+/// Makes a new game at board time 0 on a scene (the game's constructor).
+pub type NewGame = fn(SceneModel) -> Box<dyn LessonGame>;
 
 /// A question on screen, waiting for (or answered with) a choice.
 #[derive(Clone, Debug, PartialEq)]
@@ -83,23 +138,27 @@ pub struct LessonUi {
 #[pyclass(module = "lightcone._lightcone", unsendable, dict)]
 pub struct World {
     /// The game, while a hook runs (lent by the host).
-    pub(crate) game: Option<GameState>,
+    pub game: Option<Box<dyn LessonGame>>,
     /// What the lesson shows.
-    pub(crate) ui: LessonUi,
+    pub ui: LessonUi,
     /// Bumped by `start`, so the host knows the collision list restarted.
-    pub(crate) generation: u64,
+    pub generation: u64,
     /// The lesson file, to resolve relative paths.
-    pub(crate) dir: PathBuf,
+    pub dir: PathBuf,
+    /// Makes the game `start` starts.
+    new_game: NewGame,
 }
 
 impl World {
-    /// A world with no game yet, for the lesson in directory `dir`.
-    pub fn new(dir: PathBuf) -> Self {
+    /// A world with no game yet, for the lesson in directory `dir`;
+    /// `world.start(scene)` makes one with `new_game`.
+    pub fn new(dir: PathBuf, new_game: NewGame) -> Self {
         Self {
             game: None,
             ui: LessonUi::default(),
             generation: 0,
             dir,
+            new_game,
         }
     }
 
@@ -108,12 +167,15 @@ impl World {
         &self.ui
     }
 
-    fn game(&self) -> PyResult<&GameState> {
-        self.game.as_ref().ok_or_else(no_game)
+    fn game(&self) -> PyResult<&dyn LessonGame> {
+        self.game.as_deref().ok_or_else(no_game)
     }
 
-    fn game_mut(&mut self) -> PyResult<&mut GameState> {
-        self.game.as_mut().ok_or_else(no_game)
+    fn game_mut(&mut self) -> PyResult<&mut dyn LessonGame> {
+        match self.game.as_deref_mut() {
+            Some(g) => Ok(g),
+            None => Err(no_game()),
+        }
     }
 }
 
@@ -128,12 +190,15 @@ impl World {
     /// Starts (or restarts) the game on `scene` at board time 0. Keeps the
     /// view, eye choice and time scale the student had.
     fn start(&mut self, scene: &Scene) {
-        let mut game = GameState::new(scene.inner.clone());
+        let mut game = (self.new_game)(scene.inner.clone());
         if let Some(old) = &self.game {
-            game.view = old.view;
-            game.time_scale = old.time_scale;
-            if old.observer.is_some_and(|i| i < game.scene.observers.len()) {
-                game.observer = old.observer;
+            game.set_pictures(old.pictures());
+            game.set_time_scale(old.time_scale());
+            if old
+                .observer()
+                .is_some_and(|i| i < game.scene().observers.len())
+            {
+                game.set_observer(old.observer());
             }
         }
         self.game = Some(game);
@@ -157,31 +222,31 @@ impl World {
     #[getter]
     fn scene(&self) -> PyResult<Scene> {
         Ok(Scene {
-            inner: self.game()?.scene.clone(),
+            inner: self.game()?.scene().clone(),
         })
     }
 
     /// Board time the physics has reached, s.
     #[getter]
     fn t(&self) -> PyResult<f64> {
-        Ok(self.game()?.live_time)
+        Ok(self.game()?.live_time())
     }
 
     /// Speed of light, m/s.
     #[getter]
     fn c(&self) -> PyResult<f64> {
-        Ok(self.game()?.scene.c)
+        Ok(self.game()?.scene().c)
     }
 
     /// Whether time stands still.
     #[getter]
     fn paused(&self) -> PyResult<bool> {
-        Ok(self.game()?.paused)
+        Ok(self.game()?.paused())
     }
 
     #[setter]
     fn set_paused(&mut self, paused: bool) -> PyResult<()> {
-        self.game_mut()?.paused = paused;
+        self.game_mut()?.set_paused(paused);
         Ok(())
     }
 
@@ -198,7 +263,7 @@ impl World {
     /// Board seconds per real second.
     #[getter]
     fn time_scale(&self) -> PyResult<f64> {
-        Ok(self.game()?.time_scale)
+        Ok(self.game()?.time_scale())
     }
 
     #[setter]
@@ -208,33 +273,33 @@ impl World {
                 "time_scale = {scale}: give a number in (0, 1e6]"
             )));
         }
-        self.game_mut()?.time_scale = scale;
+        self.game_mut()?.set_time_scale(scale);
         Ok(())
     }
 
     /// Which pictures: "seen", "truth" or "split".
     #[getter]
     fn view(&self) -> PyResult<&'static str> {
-        Ok(match self.game()?.view {
-            ViewMode::Seen => "seen",
-            ViewMode::Truth => "truth",
-            ViewMode::Split => "split",
+        Ok(match self.game()?.pictures() {
+            Pictures::Seen => "seen",
+            Pictures::Truth => "truth",
+            Pictures::Split => "split",
         })
     }
 
     #[setter]
     fn set_view(&mut self, view: &str) -> PyResult<()> {
         let mode = match view {
-            "seen" => ViewMode::Seen,
-            "truth" => ViewMode::Truth,
-            "split" => ViewMode::Split,
+            "seen" => Pictures::Seen,
+            "truth" => Pictures::Truth,
+            "split" => Pictures::Split,
             other => {
                 return Err(PyValueError::new_err(format!(
                     "view {other:?}: use \"seen\", \"truth\" or \"split\""
                 )));
             }
         };
-        self.game_mut()?.view = mode;
+        self.game_mut()?.set_pictures(mode);
         Ok(())
     }
 
@@ -242,18 +307,19 @@ impl World {
     #[getter]
     fn observer(&self) -> PyResult<Option<String>> {
         let g = self.game()?;
-        Ok(g.observer
-            .and_then(|i| g.scene.observers.get(i))
+        Ok(g.observer()
+            .and_then(|i| g.scene().observers.get(i))
             .map(|o| o.name.clone()))
     }
 
     #[setter]
     fn set_observer(&mut self, name: Option<&str>) -> PyResult<()> {
         let g = self.game_mut()?;
-        g.observer = match name {
+        let observer = match name {
             None => None,
-            Some(n) => Some(super::observer_index(&g.scene, Some(n))?),
+            Some(n) => Some(super::observer_index(g.scene(), Some(n))?),
         };
+        g.set_observer(observer);
         Ok(())
     }
 
@@ -263,7 +329,7 @@ impl World {
         let g = self.game()?;
         let d = PyDict::new(py);
         for e in Effect::ALL {
-            d.set_item(e.key(), g.effects.is_on(e))?;
+            d.set_item(e.key(), g.effects().is_on(e))?;
         }
         Ok(d)
     }
@@ -271,33 +337,33 @@ impl World {
     /// Turns an effect on or off in the student's view.
     fn set_effect(&mut self, name: &str, on: bool) -> PyResult<()> {
         let e = super::effect(name)?;
-        self.game_mut()?.effects.set(e, on);
+        self.game_mut()?.effects_mut().set(e, on);
         Ok(())
     }
 
     /// Every puck now: the `state` dict of `lightcone simulate`.
     fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let g = self.game()?;
-        super::state(py, &g.billiard, g.live_time)
+        super::state(py, g.billiard(), g.live_time())
     }
 
     /// Every collision so far, as the dicts `lightcone simulate` prints.
     fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
-        super::collisions(py, &self.game()?.billiard)
+        super::collisions(py, self.game()?.billiard())
     }
 
     /// The proper velocity γβ of puck `name` now, as (x, y).
     fn velocity(&self, name: &str) -> PyResult<(f64, f64)> {
         let g = self.game()?;
-        super::velocity(&g.billiard, name, g.live_time)
+        super::velocity(g.billiard(), name, g.live_time())
     }
 
     /// Strikes puck `name` now: its proper velocity γβ (dimensionless)
     /// grows by `du` (two numbers: tuple, list or array).
     fn impulse(&mut self, name: &str, du: super::convert::Vector<2>) -> PyResult<()> {
         let g = self.game_mut()?;
-        let t = g.live_time;
-        super::impulse(&mut g.billiard, name, t, du.pair())
+        let t = g.live_time();
+        super::impulse(g.billiard_mut(), name, t, du.pair())
     }
 
     /// What `observer` (default: the first scene observer) sees at board
@@ -318,9 +384,9 @@ impl World {
         if t.is_some() && at.is_some() {
             return Err(PyValueError::new_err("observe: give at or t, not both"));
         }
-        let t = super::past_time(at.or(t), g.live_time)?;
-        let fx = super::effects_from(g.effects, effects)?;
-        super::observation(py, &g.scene, &g.billiard, t, observer, vertices, fx)
+        let t = super::past_time(at.or(t), g.live_time())?;
+        let fx = super::effects_from(g.effects(), effects)?;
+        super::observation(py, g.scene(), g.billiard(), t, observer, vertices, fx)
     }
 
     /// Shows `text` as the lesson's message (replacing the previous one).
@@ -352,8 +418,8 @@ impl World {
             .as_ref()
             .is_some_and(|q| q.chosen.is_none() && q.resume);
         let g = self.game_mut()?;
-        let resume = !g.paused || open;
-        g.paused = true;
+        let resume = !g.paused() || open;
+        g.set_paused(true);
         self.ui.question = Some(Question {
             text: question.to_owned(),
             choices,
@@ -444,9 +510,9 @@ impl World {
         match &self.game {
             Some(g) => format!(
                 "World({:?}, t = {:.3} s, {} pucks)",
-                g.scene.title,
-                g.live_time,
-                g.billiard.len()
+                g.scene().title,
+                g.live_time(),
+                g.billiard().len()
             ),
             None => "World(no game)".to_owned(),
         }

@@ -8,7 +8,7 @@ use lightcone_engine::physics::{Billiard, CollisionKind};
 use lightcone_engine::scene::{Effects, Scene};
 use lightcone_engine::spacetime::{Event, ProperVelocity};
 
-use crate::render::frame::{Camera, SceneMeshes};
+use lightcone_render::frame::{Camera, SceneMeshes};
 
 /// Which pictures are shown.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -222,7 +222,7 @@ impl GameState {
         if let Some(i) = self.observer.take()
             && i < self.scene.observers.len()
         {
-            let (eye, _) = crate::render::frame::eye_of(&self.scene, i, self.view_time);
+            let (eye, _) = lightcone_render::frame::eye_of(&self.scene, i, self.view_time);
             let o = &self.scene.observers[i];
             let f = (o.look_at - o.position).normalize_or(DVec3::Y);
             self.eye = FlyingEye {
@@ -366,7 +366,7 @@ impl GameState {
     pub fn eye(&self) -> Eye {
         match self.observer {
             Some(i) if i < self.scene.observers.len() => {
-                crate::render::frame::eye_of(&self.scene, i, self.view_time).0
+                lightcone_render::frame::eye_of(&self.scene, i, self.view_time).0
             }
             _ => Eye {
                 event: Event::new(self.view_time, self.eye.position),
@@ -381,22 +381,22 @@ impl GameState {
     pub fn eye_and_camera(&self, aspect: f64) -> (Eye, Camera) {
         let eye = self.eye();
         let camera = match self.framing {
-            Framing::Look => crate::render::camera::zoomed(
+            Framing::Look => lightcone_render::camera::zoomed(
                 self.eye.forward(),
                 std::f64::consts::FRAC_PI_3,
                 self.zoom,
             ),
             Framing::Fit => {
                 let c = self.scene.c;
-                let points: Vec<DVec3> = crate::render::camera::table_corners(
+                let points: Vec<DVec3> = lightcone_render::camera::table_corners(
                     self.scene.table.size,
-                    crate::render::frame::CUSHION_HEIGHT,
-                    crate::render::frame::CUSHION_WIDTH,
+                    lightcone_render::frame::CUSHION_HEIGHT,
+                    lightcone_render::frame::CUSHION_WIDTH,
                 )
                 .into_iter()
                 .map(|p| eye.see_static(p, c, self.effects.aberration).position)
                 .collect();
-                let mut cam = crate::render::camera::fit(&points, aspect, FIT_MARGIN, self.zoom);
+                let mut cam = lightcone_render::camera::fit(&points, aspect, FIT_MARGIN, self.zoom);
                 if let Some(i) = self.follow.filter(|&i| i < self.billiard.len()) {
                     let (_, seen) = self.apparent_centre(&eye, &self.effects, i);
                     if seen.position.length() > 1e-9 {

@@ -1,5 +1,6 @@
 //! Rendering without a window: into a texture, read back, written as PNG.
 
+use std::io::Write;
 use std::path::Path;
 
 use super::frame::{self, Camera, FrameVertex, SceneMeshes, ViewKind};
@@ -55,7 +56,7 @@ impl Image {
             .write_image_data(&self.rgba)
             .and_then(|()| writer.finish())
             .map_err(|e| format!("{}: {e}", path.display()))?;
-        crate::output::write_file(path, &bytes)
+        write_file(path, &bytes)
     }
 
     /// Reads a PNG written by [`Self::save_png`].
@@ -289,4 +290,15 @@ pub fn render_billiard(
         &mut vertices,
     );
     draw(gpu, &vertices, &camera, width, height)
+}
+
+/// Writes `bytes` to the file at `path` (created or truncated), reporting
+/// every failure, including those a buffered writer would drop on close
+/// (a full disk, `/dev/full`).
+fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let mut f = std::fs::File::create(path)
+        .map_err(|e| format!("{}: cannot create: {e}", path.display()))?;
+    f.write_all(bytes)
+        .and_then(|()| f.flush())
+        .map_err(|e| format!("{}: cannot write: {e}", path.display()))
 }
