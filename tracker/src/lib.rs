@@ -28,6 +28,7 @@
 #![warn(missing_docs)]
 
 pub mod cave;
+pub mod dtrack;
 pub mod filter;
 pub mod follow;
 pub mod latency;

@@ -7,14 +7,21 @@
 //!     [--csv FILE] [--rate HZ] [--noise METRES] [--seed N] [--first-seq N]
 //!     [--duration S] [--count N] [--nan-every N] [--reorder-every N]
 //!     [--stall START,DURATION] [--dropout START,DURATION]... [--quiet]
+//!     [--dtrack-udp PORT [--dtrack-bind ADDR] [--dtrack-body ID]]
 //! ```
+//!
+//! With `--dtrack-udp` the samples come from a real tracking system instead:
+//! ART DTrack's ASCII UDP output ([`crate::dtrack`]), one sample per packet,
+//! the chosen body's pose (a packet without it: a sample with no fix,
+//! holding the last pose). A malformed packet is reported on stderr with
+//! its content and dropped; the publisher keeps listening.
 //!
 //! Stop it with Ctrl-C or kill: a killed publisher's shared-memory resources
 //! are reclaimed by the next iceoryx2 node created on the machine.
 
 use crate::motion::{CsvTrack, Faults, MotionConfig, MotionGenerator, Path, PoseSource};
 use crate::transport::quiet_iceoryx_logs;
-use crate::{DEFAULT_SERVICE_NAME, Publisher, unix_now_ns};
+use crate::{DEFAULT_SERVICE_NAME, Publisher, TrackerSample, dtrack, unix_now_ns};
 use std::time::{Duration, Instant};
 
 /// What to publish, and for how long.
@@ -29,13 +36,25 @@ pub struct Args {
     pub count: Option<u64>,
     /// No messages on stderr.
     pub quiet: bool,
+    /// Read poses from DTrack's UDP output instead of the motion source.
+    pub dtrack: Option<DTrackSource>,
+}
+
+/// Where DTrack's packets arrive and which body is the head.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DTrackSource {
+    /// Address and port to listen on.
+    pub bind: std::net::SocketAddr,
+    /// The head's DTrack body ID (from 0).
+    pub body: u32,
 }
 
 /// The options, for error messages.
 pub const USAGE: &str = "options: [--service NAME] \
 [--path still|circle|walk|figure8] [--csv FILE] [--rate HZ] [--noise METRES] [--seed N] \
 [--first-seq N] [--duration S] [--count N] [--nan-every N] [--reorder-every N] \
-[--stall START,DURATION] [--dropout START,DURATION]... [--quiet]";
+[--stall START,DURATION] [--dropout START,DURATION]... [--quiet] \
+[--dtrack-udp PORT [--dtrack-bind ADDR] [--dtrack-body ID]]";
 
 fn parse_num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
     v.parse()
@@ -68,8 +87,12 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
         duration: None,
         count: None,
         quiet: false,
+        dtrack: None,
     };
     let mut faults = Faults::default();
+    let mut dtrack_port: Option<u16> = None;
+    let mut dtrack_bind = std::net::IpAddr::from([0, 0, 0, 0]);
+    let mut dtrack_body: u32 = 0;
     let mut it = argv.into_iter();
     while let Some(flag) = it.next() {
         if flag == "--quiet" {
@@ -125,10 +148,28 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
             "--reorder-every" => faults.reorder_every = Some(parse_num(&flag, &v)?),
             "--stall" => faults.stall = Some(parse_window(&flag, &v)?),
             "--dropout" => faults.dropouts.push(parse_window(&flag, &v)?),
+            "--dtrack-udp" => {
+                dtrack_port = Some(
+                    v.parse()
+                        .map_err(|_| format!("--dtrack-udp: `{v}` is not a port (0 to 65535)"))?,
+                )
+            }
+            "--dtrack-bind" => {
+                dtrack_bind = v
+                    .parse()
+                    .map_err(|_| format!("--dtrack-bind: `{v}` is not an IP address"))?
+            }
+            "--dtrack-body" => dtrack_body = parse_num(&flag, &v)?,
             _ => return Err(format!("unknown option `{flag}`\n{USAGE}")),
         }
     }
     args.config.faults = faults;
+    if let Some(port) = dtrack_port {
+        args.dtrack = Some(DTrackSource {
+            bind: std::net::SocketAddr::new(dtrack_bind, port),
+            body: dtrack_body,
+        });
+    }
     Ok(args)
 }
 
@@ -145,6 +186,9 @@ pub fn run_until(args: Args, stop: &dyn Fn() -> bool) -> Result<u64, String> {
         quiet_iceoryx_logs();
     }
     let publisher = Publisher::open(&args.service).map_err(|e| e.to_string())?;
+    if let Some(source) = args.dtrack.clone() {
+        return run_dtrack(&args, &source, &publisher, stop);
+    }
     let mut generator = MotionGenerator::new(args.config);
     let period = Duration::from_secs_f64(generator.period_s());
     if !args.quiet {
@@ -205,6 +249,104 @@ pub fn run_until(args: Args, stop: &dyn Fn() -> bool) -> Result<u64, String> {
     }
     if !args.quiet {
         eprintln!("lightcone tracker: sent {sent} samples");
+    }
+    Ok(sent)
+}
+
+/// Malformed packets reported one by one; after that, one line per 1 000.
+const REPORTED_PACKETS: u64 = 20;
+
+/// Publishes one sample per DTrack packet until the duration or count is
+/// reached or `stop()` (checked every 50 ms).
+fn run_dtrack(
+    args: &Args,
+    source: &DTrackSource,
+    publisher: &Publisher,
+    stop: &dyn Fn() -> bool,
+) -> Result<u64, String> {
+    let socket = std::net::UdpSocket::bind(source.bind)
+        .map_err(|e| format!("--dtrack-udp: cannot listen on {}: {e}", source.bind))?;
+    socket
+        .set_read_timeout(Some(Duration::from_millis(50)))
+        .map_err(|e| format!("--dtrack-udp: {e}"))?;
+    if !args.quiet {
+        eprintln!(
+            "lightcone tracker: publishing DTrack body {} from UDP {} on {:?}",
+            source.body, source.bind, args.service
+        );
+    }
+    let start = Instant::now();
+    let mut buf = vec![0u8; dtrack::MAX_PACKET];
+    let (mut sent, mut dropped, mut own_sequence) = (0u64, 0u64, 0u64);
+    let mut last = TrackerSample::default();
+    loop {
+        if stop()
+            || args
+                .duration
+                .is_some_and(|d| start.elapsed().as_secs_f64() >= d)
+            || args.count.is_some_and(|c| sent >= c)
+        {
+            break;
+        }
+        let (n, from) = match socket.recv_from(&mut buf) {
+            Ok(got) => got,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+                ) =>
+            {
+                continue;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(format!("--dtrack-udp: {e}")),
+        };
+        let packet = match dtrack::parse(&buf[..n]) {
+            Ok(p) => p,
+            Err(e) => {
+                dropped += 1;
+                if dropped <= REPORTED_PACKETS {
+                    eprintln!(
+                        "lightcone tracker: dropped a malformed DTrack packet from {from}: {e}; \
+                         content: \"{}\"",
+                        dtrack::show_content(&buf[..n], 200)
+                    );
+                } else if dropped % 1000 == 0 {
+                    eprintln!(
+                        "lightcone tracker: {dropped} malformed DTrack packets dropped so far"
+                    );
+                }
+                continue;
+            }
+        };
+        own_sequence += 1;
+        let sequence = packet.frame.unwrap_or(own_sequence);
+        let sample = match packet.bodies.iter().find(|b| b.id == source.body) {
+            Some(b) => TrackerSample::new(
+                unix_now_ns(),
+                sequence,
+                b.position,
+                dtrack::quaternion(b.rotation),
+                true,
+            ),
+            // Not tracked in this frame: no fix, the last pose held.
+            None => TrackerSample {
+                timestamp_ns: unix_now_ns(),
+                sequence,
+                valid: 0,
+                ..last
+            },
+        };
+        match publisher.send(&sample) {
+            Ok(_) => {
+                sent += 1;
+                last = sample;
+            }
+            Err(e) => eprintln!("lightcone tracker: {e}"),
+        }
+    }
+    if !args.quiet {
+        eprintln!("lightcone tracker: sent {sent} samples, dropped {dropped} malformed packets");
     }
     Ok(sent)
 }

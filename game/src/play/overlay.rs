@@ -59,6 +59,9 @@ pub struct Marker {
     pub ring: f32,
     /// The proper time its clock shows in the picture, s.
     pub clock: f64,
+    /// On-screen unit direction of its rest-frame +x (its dark stripe), as
+    /// the Thomas–Wigner rotation has turned it, uncontracted.
+    pub heading: Option<DVec2>,
 }
 
 /// Every puck visible in its view, where it is drawn.
@@ -84,6 +87,11 @@ pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker>
             let edge = project(&camera, rect, s.position + right * spec.radius);
             let r_px = edge.map_or(0.0, |q| q.distance(p) as f32);
             let w = state.billiard.worldline(i);
+            let turned = w.state_at(e.event.t).orientation;
+            let ahead = s.position + DVec3::new(turned.cos(), turned.sin(), 0.0) * spec.radius;
+            let heading = project(&camera, rect, ahead)
+                .map(|q| q - p)
+                .and_then(|d| d.try_normalize());
             out.push(Marker {
                 view: k,
                 puck: i,
@@ -94,6 +102,7 @@ pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker>
                 } else {
                     e.event.t
                 },
+                heading,
             });
         }
     }
@@ -120,6 +129,15 @@ pub fn overlays(
         let colour = ring_colour(spec.color);
         let r = m.ring / ppp;
         painter.circle_stroke(pt(m.centre), r, egui::Stroke::new(2.5, colour));
+        // A tick on the ring where the puck's rest-frame +x points: it turns
+        // with the Thomas–Wigner rotation, not with the contraction.
+        if let Some(d) = m.heading {
+            let d = egui::vec2(d.x as f32, d.y as f32);
+            painter.line_segment(
+                [pt(m.centre) + d * r, pt(m.centre) + d * (r + 7.0)],
+                egui::Stroke::new(2.5, colour),
+            );
+        }
         painter.text(
             pt(m.centre) - egui::vec2(0.0, r + 1.0),
             egui::Align2::CENTER_BOTTOM,
