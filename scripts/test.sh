@@ -4,7 +4,8 @@
 # checked against it (mypy.stubtest) and its tests run with pytest. The
 # lessons in scripts/lessons run inside `cargo test` (tests/lessons.rs),
 # through the game's embedded interpreter. Needs what .ci/run installs
-# (Mesa's lavapipe, Xvfb, pytest, mypy).
+# (Mesa's lavapipe, Xvfb, pytest, mypy; nbclient, ipykernel and matplotlib
+# for the tour notebook).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo test --workspace --release

@@ -761,3 +761,132 @@ fn ctrl_c_stops_the_tracker_cleanly_with_exit_130() {
         "{stderr}"
     );
 }
+
+/// `record`: a GIF, a PNG sequence and the .mp4 path (ffmpeg's output when
+/// it is installed, else a message naming ffmpeg); bad input located.
+#[test]
+fn record_writes_a_gif_a_png_sequence_or_says_ffmpeg_is_missing() {
+    let dir = std::env::temp_dir().join(format!("lightcone-record-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = "assets/scenes/paper_carom.toml";
+    let common = ["--until", "0.4", "--fps", "10", "--size", "64x36"];
+    // 0, 0.1, …, 0.4 s: five frames.
+    let gif_path = dir.join("a.gif");
+    let mut args = vec!["record", scene];
+    args.extend(common);
+    let gif_arg = gif_path.to_str().unwrap().to_owned();
+    args.extend(["-o", &gif_arg]);
+    let out = lightcone(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = options
+        .read_info(std::fs::File::open(&gif_path).unwrap())
+        .expect("a GIF");
+    assert_eq!((decoder.width(), decoder.height()), (64, 36));
+    let mut frames = 0;
+    let mut green = 0;
+    while let Some(f) = decoder.read_next_frame().unwrap() {
+        assert_eq!(f.delay, 10, "1/10 s a frame");
+        green += f
+            .buffer
+            .chunks(4)
+            .filter(|p| p[1] > p[0] + 30 && p[1] > p[2] + 30)
+            .count();
+        frames += 1;
+    }
+    assert_eq!(frames, 5);
+    assert!(
+        green > 5 * 64 * 36 / 10,
+        "the cloth is in the frames ({green} green px)"
+    );
+    // A directory: one PNG a frame.
+    let seq = format!("{}/seq/", dir.display());
+    let mut args = vec!["record", scene];
+    args.extend(common);
+    args.extend(["-o", &seq]);
+    let out = lightcone(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut names: Vec<String> = std::fs::read_dir(dir.join("seq"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 5, "{names:?}");
+    assert_eq!(names[4], "frame_00004.png");
+    // MP4: without ffmpeg on PATH, a clear message naming it.
+    let mp4 = dir.join("a.mp4");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["record", scene, "--until", "0.1", "--size", "64x36", "-o"])
+        .arg(&mp4)
+        .current_dir(repo())
+        .env("PATH", dir.join("no-such-dir"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("needs ffmpeg") && stderr.contains("a.mp4"),
+        "{stderr}"
+    );
+    // With ffmpeg installed, an MP4 file (an `ftyp` box near the start).
+    let has_ffmpeg = std::process::Command::new("ffmpeg")
+        .arg("-version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if has_ffmpeg {
+        let out = lightcone(&[
+            "record",
+            scene,
+            "--until",
+            "0.2",
+            "--size",
+            "64x36",
+            "-o",
+            mp4.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let bytes = std::fs::read(&mp4).unwrap();
+        assert!(bytes.len() > 100 && &bytes[4..8] == b"ftyp", "not an MP4");
+    }
+    // Bad input: an unknown kind of output and an endless request are
+    // usage errors (2); a bad scene is located (1).
+    let out = lightcone(&["record", scene, "--until", "1", "-o", "movie.avi"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".gif or .mp4"));
+    let out = lightcone(&[
+        "record", scene, "--until", "1e6", "--fps", "120", "-o", "x.gif",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("frames"));
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[[puck]]\nposition = [1.0, 0.5]\nmass = \"heavy\"\n").unwrap();
+    let out = lightcone(&[
+        "record",
+        bad.to_str().unwrap(),
+        "--until",
+        "1",
+        "-o",
+        gif_arg.as_str(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("bad.toml:3:8") && stderr.contains("mass"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -33,6 +33,7 @@ fn the_paper_observations_are_all_there() {
     let names = lessons();
     for needed in [
         "simultaneity",
+        "relative_simultaneity",
         "approach_recede",
         "collision_angle",
         "contraction",

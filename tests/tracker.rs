@@ -29,11 +29,17 @@ struct Publisher(Option<Child>);
 
 impl Publisher {
     fn spawn(service: &str, extra: &[&str]) -> Self {
+        Self::spawn_in(&repo(), service, extra)
+    }
+
+    /// In working directory `dir` (where iceoryx2 looks for
+    /// `config/iceoryx2.toml`).
+    fn spawn_in(dir: &std::path::Path, service: &str, extra: &[&str]) -> Self {
         let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
             .args(["tracker", "--service", service, "--rate", "500", "--quiet"])
             .args(["--duration", "20"])
             .args(extra)
-            .current_dir(repo())
+            .current_dir(dir)
             .stdin(Stdio::null())
             .spawn()
             .expect("lightcone tracker starts");
@@ -53,6 +59,13 @@ impl Drop for Publisher {
     fn drop(&mut self) {
         self.kill();
     }
+}
+
+/// The game's tracked head, its bridge the built `lightcone`.
+fn tracked(service: &str) -> TrackedHead {
+    TrackedHead::with_bridge(service, Default::default(), || {
+        Command::new(env!("CARGO_BIN_EXE_lightcone"))
+    })
 }
 
 fn game() -> GameState {
@@ -98,7 +111,7 @@ fn sequence(head: &TrackedHead) -> u64 {
 #[test]
 fn the_tracked_head_drives_the_observer_across_two_processes() {
     let name = service("drive");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let start = g.eye.position;
     let _publisher = Publisher::spawn(&name, &["--path", "circle", "--noise", "0.0005"]);
@@ -134,7 +147,7 @@ fn the_tracked_head_drives_the_observer_across_two_processes() {
 #[test]
 fn nan_samples_are_rejected_and_the_eye_stays_finite() {
     let name = service("nan");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let _publisher = Publisher::spawn(&name, &["--nan-every", "3"]);
     // Every frame asserts a finite eye; run until plenty of NaNs went by.
@@ -151,7 +164,7 @@ fn nan_samples_are_rejected_and_the_eye_stays_finite() {
 #[test]
 fn out_of_order_samples_are_dropped() {
     let name = service("reorder");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let _publisher = Publisher::spawn(&name, &["--reorder-every", "4"]);
     let (mut last, mut backwards) = (0, 0);
@@ -172,7 +185,7 @@ fn out_of_order_samples_are_dropped() {
 #[test]
 fn a_lost_fix_holds_the_last_pose_then_resumes() {
     let name = service("dropout");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let _publisher = Publisher::spawn(&name, &["--path", "circle", "--dropout", "0.5,0.5"]);
     let mut held = None;
@@ -202,7 +215,7 @@ fn a_lost_fix_holds_the_last_pose_then_resumes() {
 #[test]
 fn a_stalled_tracker_goes_stale_holds_the_pose_and_resumes() {
     let name = service("stall");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let _publisher = Publisher::spawn(&name, &["--path", "circle", "--stall", "0.5,0.8"]);
     let mut held = None;
@@ -234,7 +247,7 @@ fn a_stalled_tracker_goes_stale_holds_the_pose_and_resumes() {
 #[test]
 fn a_dead_tracker_is_lost_and_a_restarted_one_resumes() {
     let name = service("restart");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let mut first = Publisher::spawn(&name, &["--path", "circle"]);
     assert!(until(
@@ -275,10 +288,135 @@ fn a_dead_tracker_is_lost_and_a_restarted_one_resumes() {
     assert_ne!(g.eye.position, held);
 }
 
+/// Random bytes written, as a crashed or hostile peer could, into every
+/// shared-memory segment and bookkeeping file of the tracker service
+/// (iceoryx2's own management data, not only the samples) while the game
+/// reads it. The game maps none of it (its `tracker-bridge` child does), so
+/// it never crashes: it reports the reader's deaths, restarts it, and its eye
+/// stays finite, at the last good pose or a validated new one.
+#[test]
+fn random_bytes_in_the_tracker_shared_memory_never_crash_the_game() {
+    // An iceoryx2 universe of its own (file prefix and root folder, read
+    // from `config/iceoryx2.toml` in the working directory of both
+    // processes): the bytes hit this test's files only.
+    let tag = format!(
+        "lct{}x{}_",
+        std::process::id(),
+        lightcone_tracker::unix_now_ns() % 1_000_000
+    );
+    let dir = std::env::temp_dir().join(format!("lightcone-shm-{tag}"));
+    let root = dir.join("iox2");
+    std::fs::create_dir_all(dir.join("config")).unwrap();
+    std::fs::create_dir_all(&root).unwrap();
+    std::fs::write(
+        dir.join("config/iceoryx2.toml"),
+        format!(
+            "[global]\nroot-path = \"{}/\"\nprefix = \"{tag}\"\n",
+            root.display()
+        ),
+    )
+    .unwrap();
+    let name = service("hostile");
+    let here = dir.clone();
+    let mut head = TrackedHead::with_bridge(&name, Default::default(), move || {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_lightcone"));
+        c.current_dir(&here);
+        c
+    });
+    let mut g = game();
+    let mut publisher = Publisher::spawn_in(&dir, &name, &["--path", "circle"]);
+    assert!(
+        until(&mut head, &mut g, Duration::from_secs(20), |h, _| sequence(
+            h
+        ) > 50),
+        "{}",
+        head.status_line()
+    );
+    // The files of this universe: shared memory, and the node and service
+    // folders.
+    fn files(dir: &std::path::Path, prefix: &str, out: &mut Vec<std::path::PathBuf>) {
+        for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                files(&p, "", out);
+            } else if e.file_name().to_string_lossy().starts_with(prefix) {
+                out.push(p);
+            }
+        }
+    }
+    let mut rng = lightcone_tracker::motion::Prng::new(15);
+    let mut hit = std::collections::BTreeSet::new();
+    let mut statuses = std::collections::BTreeSet::new();
+    let start = Instant::now();
+    while start.elapsed() < Duration::from_secs(3) {
+        let mut all = Vec::new();
+        files(std::path::Path::new("/dev/shm"), &tag, &mut all);
+        files(&root, "", &mut all);
+        if !all.is_empty() {
+            let path = &all[(rng.next_u64() % all.len() as u64) as usize];
+            let len = std::fs::metadata(path).map_or(0, |m| m.len());
+            if len > 0
+                && let Ok(mut f) = std::fs::OpenOptions::new().write(true).open(path)
+            {
+                use std::io::{Seek, Write};
+                let n = 1 + rng.next_u64() % 256;
+                let at = rng.next_u64() % len;
+                let bytes: Vec<u8> = (0..n).map(|_| rng.next_u64() as u8).collect();
+                if f.seek(std::io::SeekFrom::Start(at)).is_ok() && f.write_all(&bytes).is_ok() {
+                    hit.insert(
+                        path.file_name()
+                            .unwrap_or_default()
+                            .to_string_lossy()
+                            .into_owned(),
+                    );
+                }
+            }
+        }
+        for _ in 0..5 {
+            frame(&mut head, &mut g);
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        let line = head.status_line();
+        let kinds = [
+            "live",
+            "stale",
+            "LOST",
+            "rejecting",
+            "not connected",
+            "restarting",
+        ];
+        for k in kinds.iter().filter(|k| line.contains(*k)) {
+            statuses.insert(*k);
+        }
+    }
+    // The game goes on: the reader is restarted as long as it dies.
+    let deaths = head.bridge().deaths;
+    let bridge = format!("{:?}", head.bridge().state());
+    for _ in 0..100 {
+        frame(&mut head, &mut g);
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    let line = head.status_line();
+    println!(
+        "files hit: {hit:?}\nreader deaths: {deaths} ({bridge})\nstatuses: {statuses:?}\nnow: {line}"
+    );
+    assert!(hit.iter().any(|f| f.ends_with(".dynamic")), "{hit:?}");
+    assert!(hit.iter().any(|f| f.ends_with(".data")), "{hit:?}");
+    assert!(line.starts_with("tracker"), "{line}");
+    publisher.kill();
+    drop(head);
+    let mut ours = Vec::new();
+    files(std::path::Path::new("/dev/shm"), &tag, &mut ours);
+    for f in ours {
+        let _ = std::fs::remove_file(f);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn no_tracker_at_all_leaves_the_eye_alone() {
     let name = service("nobody");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let start = g.eye.position;
     for _ in 0..50 {
@@ -408,13 +546,16 @@ fn bench_tracker_quick_shows_the_filter_cutting_jitter() {
     // β, jitter raw, jitter filtered, error raw, error filtered.
     let (raw, filtered) = (cells[1], cells[2]);
     assert!(filtered * 5.0 < raw, "raw {raw} px, filtered {filtered} px");
-    assert!(text.contains("| 1000 Hz | 50 µs |"), "{text}");
+    assert!(
+        text.contains("| bridge child | 1000 Hz | 50 µs |"),
+        "{text}"
+    );
 }
 
 #[test]
 fn a_recorded_track_is_replayed() {
     let name = service("csv");
-    let mut head = TrackedHead::new(&name, Default::default());
+    let mut head = tracked(&name);
     let mut g = game();
     let _publisher = Publisher::spawn(&name, &["--csv", "tests/tracks/walk.csv", "--noise", "0"]);
     assert!(until(

@@ -11,6 +11,45 @@ pub const DEFAULT_SCENE_TOML: &str = include_str!("../../assets/scenes/paper_car
 /// The name the built-in scene goes by in messages and summaries.
 pub const DEFAULT_SCENE_NAME: &str = "(built in) paper_carom.toml";
 
+/// Every shipped scene (`assets/scenes/*.toml`), built in: the window's
+/// scene menu offers them. A test checks that the list matches the folder.
+pub const SCENES: &[(&str, &str)] = &[
+    ("paper_carom.toml", DEFAULT_SCENE_TOML),
+    (
+        "parallel_tracks.toml",
+        include_str!("../../assets/scenes/parallel_tracks.toml"),
+    ),
+    (
+        "ten_pucks.toml",
+        include_str!("../../assets/scenes/ten_pucks.toml"),
+    ),
+    (
+        "cushion_095.toml",
+        include_str!("../../assets/scenes/cushion_095.toml"),
+    ),
+    (
+        "simultaneity.toml",
+        include_str!("../../assets/scenes/simultaneity.toml"),
+    ),
+    (
+        "newton.toml",
+        include_str!("../../assets/scenes/newton.toml"),
+    ),
+    ("ultra.toml", include_str!("../../assets/scenes/ultra.toml")),
+    (
+        "wigner_box.toml",
+        include_str!("../../assets/scenes/wigner_box.toml"),
+    ),
+];
+
+/// The built-in scene `name` (a file name of [`SCENES`]).
+pub fn shipped_scene(name: &str) -> Option<Result<Scene, SceneErrors>> {
+    SCENES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(n, text)| scene::parse(text, &format!("(built in) {n}")))
+}
+
 /// The text of `assets/cave.toml`, the default CAVE.
 pub const DEFAULT_CAVE_TOML: &str = include_str!("../../assets/cave.toml");
 
@@ -30,5 +69,27 @@ mod tests {
     fn the_built_in_assets_are_valid() {
         assert!(super::default_scene().is_ok());
         assert!(super::default_cave().is_ok());
+    }
+
+    #[test]
+    fn every_shipped_scene_is_built_in_and_valid() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        let mut files: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".toml"))
+            .collect();
+        files.sort();
+        let mut built_in: Vec<String> = super::SCENES.iter().map(|(n, _)| n.to_string()).collect();
+        built_in.sort();
+        assert_eq!(files, built_in, "assets.rs SCENES must list assets/scenes");
+        for (name, _) in super::SCENES {
+            let scene = super::shipped_scene(name).unwrap();
+            assert!(
+                scene.is_ok(),
+                "{name}: {:?}",
+                scene.err().map(|e| e.to_string())
+            );
+        }
     }
 }

@@ -2,8 +2,10 @@
 //! its own off-axis projection from that head (Kooima's generalized
 //! perspective, in [`lightcone_tracker::cave`]).
 //!
-//! [`TrackedHead`] drains tracker samples from iceoryx2 into a
-//! [`Follower`] (which rejects NaN, out-of-order and stale samples, holds the
+//! [`TrackedHead`] drains tracker samples into a [`Follower`], through a
+//! child process that alone maps iceoryx2's shared memory
+//! ([`crate::tracker_bridge`]: random bytes there may crash the child, never
+//! the game) (which rejects NaN, out-of-order and stale samples, holds the
 //! last good pose and One-Euro-filters the velocity) and drives the game's
 //! eye: position from the pose, proper velocity from the filtered velocity,
 //! viewing direction from the orientation. The velocity matters more than it
@@ -17,16 +19,17 @@
 //! approximation too: the physical CAVE is the observer's laboratory.
 
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use glam::{DMat3, DMat4, DQuat, DVec3, Mat4};
 use lightcone_engine::optics::Eye;
 use lightcone_engine::spacetime::{Event, ProperVelocity};
 use lightcone_tracker::cave::{CaveConfig, TrackerToBoard, Wall};
 use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus, Verdict};
-use lightcone_tracker::{Subscriber, TrackerSample, unix_now_ns};
+use lightcone_tracker::{TrackerSample, unix_now_ns};
 
 use crate::model::GameState;
+use crate::tracker_bridge::{Bridge, BridgeState};
 use lightcone_render::frame::{self, FrameVertex};
 use lightcone_render::gpu::Gpu;
 use lightcone_render::headless::{Image, Offscreen};
@@ -59,10 +62,7 @@ const LATENCY_WINDOW: usize = 100_000;
 /// A tracked head, driving the observer.
 pub struct TrackedHead {
     service: String,
-    subscriber: Option<Subscriber>,
-    /// Why the subscriber is not open (shown until it opens).
-    open_error: Option<String>,
-    retry_at: Instant,
+    bridge: Bridge,
     follower: Follower,
     /// Tracker → board placement.
     pub map: TrackerToBoard,
@@ -74,18 +74,27 @@ pub struct TrackedHead {
     /// Publication times of the samples accepted since the last update.
     pending: Vec<u64>,
     received: u64,
+    batch: Vec<TrackerSample>,
 }
 
 impl TrackedHead {
-    /// Subscribes to `service`. Never fails: a service that cannot be
-    /// opened is retried every second, and the status says why.
+    /// Follows `service` through a `tracker-bridge` child of this very
+    /// program. Never fails: a child that cannot start, dies or cannot
+    /// open the service is retried, and the status says why.
     pub fn new(service: &str, map: TrackerToBoard) -> Self {
-        lightcone_tracker::transport::quiet_iceoryx_logs();
-        let mut head = Self {
+        Self::with_bridge(service, map, crate::tracker_bridge::this_program)
+    }
+
+    /// As [`TrackedHead::new`], with the bridge started by `make()` (plus
+    /// `tracker-bridge --service NAME`): tests give the built `lightcone`.
+    pub fn with_bridge(
+        service: &str,
+        map: TrackerToBoard,
+        make: impl Fn() -> std::process::Command + Send + 'static,
+    ) -> Self {
+        Self {
             service: service.to_owned(),
-            subscriber: None,
-            open_error: None,
-            retry_at: Instant::now(),
+            bridge: Bridge::new(service, make),
             follower: Follower::new(FollowerConfig::default()),
             map,
             output: None,
@@ -93,38 +102,17 @@ impl TrackedHead {
             capped: false,
             pending: Vec::new(),
             received: 0,
-        };
-        head.reopen(Instant::now());
-        head
-    }
-
-    fn reopen(&mut self, now: Instant) {
-        match Subscriber::open(&self.service) {
-            Ok(s) => {
-                self.subscriber = Some(s);
-                self.open_error = None;
-            }
-            Err(e) => {
-                self.open_error = Some(e.to_string());
-                self.retry_at = now + Duration::from_secs(1);
-            }
+            batch: Vec::new(),
         }
     }
 
     /// Takes every sample that arrived, and brings the follower's view up
     /// to `now`. Returns the follower's output.
     pub fn poll(&mut self, now: Instant) -> FollowerOutput {
-        if self.subscriber.is_none() && now >= self.retry_at {
-            self.reopen(now);
-        }
-        let mut batch: Vec<TrackerSample> = Vec::new();
-        if let Some(sub) = &self.subscriber
-            && let Err(e) = sub.drain_into(&mut batch)
-        {
-            self.open_error = Some(e.to_string());
-        }
-        self.received += batch.len() as u64;
-        for s in &batch {
+        self.batch.clear();
+        self.bridge.poll(now, &mut self.batch);
+        self.received += self.batch.len() as u64;
+        for s in &self.batch {
             if self.follower.push(s, now) == Verdict::Accepted {
                 self.pending.push(s.timestamp_ns);
             }
@@ -132,6 +120,11 @@ impl TrackedHead {
         let out = self.follower.output(now);
         self.output = Some(out);
         out
+    }
+
+    /// The bridge process reading the tracker (its state, deaths, pid).
+    pub fn bridge(&self) -> &Bridge {
+        &self.bridge
     }
 
     /// The pose to use: the last good one, or `None` before any.
@@ -175,10 +168,23 @@ impl TrackedHead {
 
     /// One line for the screen: service, health, samples.
     pub fn status_line(&self) -> String {
-        let health = match (&self.open_error, &self.output) {
-            (Some(e), _) if self.subscriber.is_none() => format!("not connected: {e}"),
-            (_, Some(out)) => out.status_line(),
-            (_, None) => "waiting".to_owned(),
+        let follower = self
+            .output
+            .map_or_else(|| "waiting".to_owned(), |o| o.status_line());
+        let health = match self.bridge.state() {
+            BridgeState::Restarting { reason } => {
+                format!("{follower}; {reason}, restarting it")
+            }
+            BridgeState::Running { status } if status == "starting" && self.output.is_none() => {
+                "waiting".to_owned()
+            }
+            BridgeState::Running { status } if !status.is_empty() && status != "starting" => {
+                match self.output {
+                    Some(_) => format!("{follower}; not connected: {status}"),
+                    None => format!("not connected: {status}"),
+                }
+            }
+            BridgeState::Running { .. } => follower,
         };
         let cap = if self.capped {
             " (speed capped at 0.99 c)"

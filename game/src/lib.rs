@@ -12,6 +12,7 @@ pub mod model;
 pub mod output;
 pub mod play;
 pub mod progress;
+pub mod tracker_bridge;
 
 /// The scene used when none is named.
 pub const DEFAULT_SCENE: &str = "assets/scenes/paper_carom.toml";

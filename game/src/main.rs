@@ -71,6 +71,13 @@ enum Command {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
+    /// Internal: read a tracker service in a child of `play --tracker`
+    /// (see tracker_bridge).
+    #[command(hide = true, disable_help_flag = true)]
+    TrackerBridge {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
     /// Render every wall of a CAVE, both eyes, headless to PNG.
     Cave {
         /// Scene file (TOML); the built-in default scene when not given.
@@ -162,12 +169,45 @@ enum Command {
         /// Observer name (default: the scene's first).
         #[arg(long)]
         observer: Option<String>,
+        /// Also draw the lines of simultaneity of this puck's rest frame
+        /// (its "now" through its event at T). Default: none (only the
+        /// board's "now").
+        #[arg(long)]
+        frame: Option<String>,
+        /// The board axis across: x (default) or y.
+        #[arg(long, value_enum, default_value = "x")]
+        axis: AxisArg,
         /// Output PNG.
         #[arg(short, long)]
         out: PathBuf,
         /// Image size, WIDTHxHEIGHT.
         #[arg(long, default_value = "1000x700")]
         size: String,
+    },
+    /// Record what an observer sees from board time 0 to T, headless, as
+    /// an animated GIF, an MP4 (through ffmpeg) or a directory of PNGs.
+    Record {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Last board time, s (0 to 1e9).
+        #[arg(long, allow_negative_numbers = true, value_parser = args::time_from_zero)]
+        until: f64,
+        /// Frames per second of board time (1 to 120).
+        #[arg(long, default_value_t = 25.0, allow_negative_numbers = true, value_parser = commands::record::fps)]
+        fps: f64,
+        /// Observer name (default: the scene's first).
+        #[arg(long)]
+        observer: Option<String>,
+        /// `out.gif`, `out.mp4` (needs ffmpeg), or `DIR/` for
+        /// `DIR/frame_00000.png`, ….
+        #[arg(short, long, value_parser = commands::record::output)]
+        out: commands::record::Output,
+        /// Frame size, WIDTHxHEIGHT (each 1 to 16384).
+        #[arg(long, default_value = "640x360", value_parser = args::size)]
+        size: String,
+        /// `seen` (the scene's effects) or `truth` (board-simultaneous).
+        #[arg(long, value_enum, default_value = "seen")]
+        view: ViewArg,
     },
     /// Run a Python lesson headless: its hooks, questions answered with
     /// the lesson's answer, and its claims checked. Fails if the lesson
@@ -218,6 +258,14 @@ enum ViewArg {
     Seen,
     /// The board-frame truth.
     Truth,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum AxisArg {
+    /// Board x (the long side).
+    X,
+    /// Board y.
+    Y,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -297,9 +345,42 @@ fn main() -> ExitCode {
             scene,
             at,
             observer,
+            frame,
+            axis,
             out,
             size,
-        }) => commands::diagram::run(&scene, at, observer.as_deref(), &out, &size),
+        }) => commands::diagram::run(
+            &scene,
+            at,
+            observer.as_deref(),
+            frame.as_deref(),
+            match axis {
+                AxisArg::X => lightcone_render::diagram::Axis::X,
+                AxisArg::Y => lightcone_render::diagram::Axis::Y,
+            },
+            &out,
+            &size,
+        ),
+        Some(Command::Record {
+            scene,
+            until,
+            fps,
+            observer,
+            out,
+            size,
+            view,
+        }) => commands::record::run(commands::record::Request {
+            scene: &scene,
+            until,
+            fps,
+            size: &size,
+            observer: observer.as_deref(),
+            view: match view {
+                ViewArg::Seen => lightcone_render::frame::ViewKind::Seen,
+                ViewArg::Truth => lightcone_render::frame::ViewKind::Truth,
+            },
+            out,
+        }),
         Some(Command::Lesson {
             lessons,
             until,
@@ -355,6 +436,7 @@ fn main() -> ExitCode {
             },
         ),
         Some(Command::Tracker { args }) => commands::tracker::run(args),
+        Some(Command::TrackerBridge { args }) => lightcone::tracker_bridge::child_main(&args),
         Some(Command::Cave {
             scene,
             config,

@@ -71,6 +71,24 @@ pub struct Overlays {
     pub arrows: bool,
     /// The live space-time diagram, in its own window (key Y).
     pub diagram: bool,
+    /// The diagram's frame: the puck whose lines of simultaneity it draws
+    /// (`None`: only the board's).
+    pub diagram_frame: Option<usize>,
+    /// The diagram's board axis across.
+    pub diagram_axis: lightcone_render::diagram::Axis,
+}
+
+/// The menu's own state.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SceneMenu {
+    /// Shown.
+    pub open: bool,
+    /// The highlighted shipped scene (index into [`crate::assets::SCENES`]; the window draws it, `play::scene_menu`).
+    pub selected: usize,
+    /// The path typed in.
+    pub path: String,
+    /// Why the last choice could not be opened.
+    pub error: Option<String>,
 }
 
 impl Default for Overlays {
@@ -80,6 +98,8 @@ impl Default for Overlays {
             ghost: true,
             arrows: true,
             diagram: false,
+            diagram_frame: None,
+            diagram_axis: lightcone_render::diagram::Axis::X,
         }
     }
 }
@@ -152,6 +172,8 @@ pub struct GameState {
     /// The scene's title and description are shown over the table until
     /// the player starts (a scene opened with `play` starts paused on it).
     pub intro: bool,
+    /// The scene menu (key M).
+    pub scene_menu: SceneMenu,
 }
 
 /// Largest cue stroke, as a proper-velocity change (γβ): β ≈ 0.995.
@@ -181,6 +203,7 @@ impl GameState {
             follow: None,
             intro: false,
             show: Overlays::default(),
+            scene_menu: Default::default(),
         }
     }
 

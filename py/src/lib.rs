@@ -11,6 +11,7 @@
 //! [`LessonGame`].
 
 mod convert;
+mod diagram;
 pub mod errors;
 mod frame;
 mod scene;
@@ -46,11 +47,19 @@ fn _lightcone(m: &Bound<'_, PyModule>) -> PyResult<()> {
     register(m)
 }
 
-/// Turns a serialisable report into Python objects via JSON (the same
-/// shapes the command line prints).
-fn to_python<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
+/// Turns a serialisable report into the record class `class` of
+/// `lightcone.records` (`Collision`, `State`, `Observation`), built from the
+/// JSON object the command line prints.
+fn to_record<'py, T: serde::Serialize>(
+    py: Python<'py>,
+    class: &str,
+    value: &T,
+) -> PyResult<Bound<'py, PyAny>> {
     let text = serde_json::to_string(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    py.import("json")?.call_method1("loads", (text,))
+    let data = py.import("json")?.call_method1("loads", (text,))?;
+    py.import("lightcone.records")?
+        .getattr(class)?
+        .call1((data,))
 }
 
 /// The effect called `key`, or a ValueError listing the valid names.
@@ -115,18 +124,20 @@ fn finite_time(t: f64) -> PyResult<f64> {
     }
 }
 
-/// Every collision up to now, as the dicts `lightcone simulate` prints.
+/// Every collision up to now, as `Collision` records (what `lightcone
+/// simulate` prints).
 fn collisions<'py>(py: Python<'py>, billiard: &Billiard) -> PyResult<Vec<Bound<'py, PyAny>>> {
     billiard
         .collisions()
         .iter()
-        .map(|c| to_python(py, &CollisionLine::new(billiard, c)))
+        .map(|c| to_record(py, "Collision", &CollisionLine::new(billiard, c)))
         .collect()
 }
 
-/// Every puck at board time `t`: the `state` dict of `lightcone simulate`.
+/// Every puck at board time `t`: a `State` record (the `state` line of
+/// `lightcone simulate`).
 fn state<'py>(py: Python<'py>, billiard: &Billiard, t: f64) -> PyResult<Bound<'py, PyAny>> {
-    to_python(py, &StateLine::new(billiard, t))
+    to_record(py, "State", &StateLine::new(billiard, t))
 }
 
 /// `at` (default `now`) if the physics has reached it, else
@@ -174,7 +185,7 @@ fn observation<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let index = observer_index(scene, observer)?;
     let report = lightcone_render::observe::report(scene, billiard, index, t, effects, vertices);
-    to_python(py, &report)
+    to_record(py, "Observation", &report)
 }
 
 /// The headless graphics device, opened once per process.

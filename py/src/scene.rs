@@ -177,12 +177,17 @@ impl Scene {
         self.inner.c
     }
 
-    /// Sets the speed of light, m/s (positive and finite).
+    /// Sets the speed of light, m/s: from 1e-6 to 1e9, as in a scene file
+    /// (`SceneError` otherwise, naming `Scene.c`).
     #[setter]
     fn set_c(&mut self, c: f64) -> PyResult<()> {
-        if !(c.is_finite() && c > 0.0) {
+        let range = scene::C_RANGE;
+        if !range.contains(&c) {
             return Err(SceneError::new_err(format!(
-                "c = {c} must be a positive finite number of m/s"
+                "Scene.c: {} must be a positive finite number from {} to {} m/s",
+                scene::number(c),
+                scene::number(*range.start()),
+                scene::number(*range.end())
             )));
         }
         self.inner.c = c;

@@ -210,6 +210,44 @@ impl Simulation {
         Ok(frame)
     }
 
+    /// The space-time diagram (board `axis` "x" or "y" across, board time
+    /// up) for `observer` (default: the first) at board time `at` (default:
+    /// now), as the `Frame` `render` returns; drawn on the CPU (no graphics
+    /// adapter needed). `frame`: a puck whose lines of simultaneity to draw
+    /// (default: none). With `path`, also saved as a PNG.
+    #[pyo3(signature = (path = None, observer = None, size = (1000, 700), at = None, axis = "x", frame = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn diagram(
+        &self,
+        py: Python<'_>,
+        path: Option<PathBuf>,
+        observer: Option<&str>,
+        size: (u32, u32),
+        at: Option<f64>,
+        axis: &str,
+        frame: Option<&str>,
+    ) -> PyResult<Frame> {
+        let s = self.lock(py);
+        let t = super::past_time(at, s.billiard.time())?;
+        super::diagram::diagram_frame(&s.scene, &s.billiard, t, observer, size, axis, frame, path)
+    }
+
+    /// The line of simultaneity of puck `frame`'s rest frame through its
+    /// event at board time `at` (default: now): `{"puck", "event": {"t",
+    /// "position"}, "slope": [dt/dx, dt/dy]}` (s, m, s/m); the diagram
+    /// draws it.
+    #[pyo3(signature = (frame, at = None))]
+    fn simultaneity<'py>(
+        &self,
+        py: Python<'py>,
+        frame: &str,
+        at: Option<f64>,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let s = self.lock(py);
+        let t = super::past_time(at, s.billiard.time())?;
+        super::diagram::simultaneity(py, &s.scene, &s.billiard, frame, t)
+    }
+
     /// Warnings (e.g. a Zeno sequence ended).
     fn warnings(&self, py: Python<'_>) -> Vec<String> {
         self.lock(py).billiard.warnings().to_vec()

@@ -65,6 +65,15 @@ pub trait LessonGame: Any {
     fn effects(&self) -> Effects;
     /// The effects shown, to turn one on or off.
     fn effects_mut(&mut self) -> &mut Effects;
+    /// Opens or closes the live space-time diagram, with the puck whose
+    /// lines of simultaneity it draws (`None`: only the board's) and the
+    /// board axis across.
+    fn set_diagram(
+        &mut self,
+        on: bool,
+        frame: Option<usize>,
+        axis: lightcone_render::diagram::Axis,
+    );
     /// The game itself, for the host to take it back.
     fn into_any(self: Box<Self>) -> Box<dyn Any>;
 }
@@ -387,6 +396,66 @@ impl World {
         let t = super::past_time(at.or(t), g.live_time())?;
         let fx = super::effects_from(g.effects(), effects)?;
         super::observation(py, g.scene(), g.billiard(), t, observer, vertices, fx)
+    }
+
+    /// The space-time diagram for `observer` (default: the first scene
+    /// observer) at board time `at` (default: now), as a `Frame` (see
+    /// `Simulation.diagram`); `frame`: a puck whose lines of simultaneity
+    /// to draw. With `path` (relative to the lesson), also saved.
+    #[pyo3(signature = (path = None, observer = None, size = (1000, 700), at = None, axis = "x", frame = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn diagram(
+        &self,
+        path: Option<PathBuf>,
+        observer: Option<&str>,
+        size: (u32, u32),
+        at: Option<f64>,
+        axis: &str,
+        frame: Option<&str>,
+    ) -> PyResult<super::Frame> {
+        let g = self.game()?;
+        let t = super::past_time(at, g.live_time())?;
+        let path = path.map(|p| self.dir.join(p));
+        super::diagram::diagram_frame(
+            g.scene(),
+            g.billiard(),
+            t,
+            observer,
+            size,
+            axis,
+            frame,
+            path,
+        )
+    }
+
+    /// Opens (`on`) or closes the live space-time diagram in the window,
+    /// drawing puck `frame`'s lines of simultaneity (None: only the
+    /// board's), with board `axis` "x" or "y" across. Headless, it only
+    /// records the choice.
+    #[pyo3(signature = (on = true, frame = None, axis = "x"))]
+    fn show_diagram(&mut self, on: bool, frame: Option<&str>, axis: &str) -> PyResult<()> {
+        let axis = lightcone_render::diagram::Axis::parse(axis).map_err(PyValueError::new_err)?;
+        let g = self.game_mut()?;
+        let frame = frame
+            .map(|f| super::puck_index(g.billiard(), f))
+            .transpose()?;
+        g.set_diagram(on, frame, axis);
+        Ok(())
+    }
+
+    /// The line of simultaneity of puck `frame`'s rest frame through its
+    /// event at board time `at` (default: now): see
+    /// `Simulation.simultaneity`.
+    #[pyo3(signature = (frame, at = None))]
+    fn simultaneity<'py>(
+        &self,
+        py: Python<'py>,
+        frame: &str,
+        at: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let g = self.game()?;
+        let t = super::past_time(at, g.live_time())?;
+        super::diagram::simultaneity(py, g.scene(), g.billiard(), frame, t)
     }
 
     /// Shows `text` as the lesson's message (replacing the previous one).

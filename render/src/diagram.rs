@@ -10,11 +10,17 @@
 //! dashed curve in its colour, the cone's trace along that puck's path,
 //! `t = T − |X(t) − eye| / c`; the puck's worldline crosses it exactly at the
 //! emission event.
+//!
+//! With a *frame* (a puck, [`Options::frame`]) it also draws that puck's
+//! line of simultaneity through its event at the current instant: the
+//! board events its rest frame calls "now", `t = t₀ + v·Δx / c²`
+//! ([`lightcone_engine::spacetime::simultaneous_board_time`]), beside the
+//! board's own "now" (the horizontal line through the observation).
 
 use glam::DVec3;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::Scene;
-use lightcone_engine::spacetime::Event;
+use lightcone_engine::spacetime::{Event, simultaneity_slope, simultaneous_board_time};
 use lightcone_engine::worldline::Worldline;
 
 use super::headless::Image;
@@ -148,6 +154,56 @@ pub enum Mark {
     },
 }
 
+/// Which board axis runs across the diagram.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Axis {
+    /// Board x (the table's long side).
+    #[default]
+    X,
+    /// Board y.
+    Y,
+}
+
+impl Axis {
+    /// The component of `v` along this axis.
+    pub fn of(self, v: DVec3) -> f64 {
+        match self {
+            Self::X => v.x,
+            Self::Y => v.y,
+        }
+    }
+
+    /// Parses `x` or `y`.
+    pub fn parse(s: &str) -> Result<Self, String> {
+        match s {
+            "x" => Ok(Self::X),
+            "y" => Ok(Self::Y),
+            _ => Err(format!("axis {s:?}: give \"x\" or \"y\"")),
+        }
+    }
+}
+
+/// What the diagram shows beyond the worldlines and the cone.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Options {
+    /// The board axis across.
+    pub axis: Axis,
+    /// The puck (index) whose lines of simultaneity are drawn; `None`:
+    /// only the board's.
+    pub frame: Option<usize>,
+}
+
+/// A frame's line of simultaneity on the diagram.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Simultaneity {
+    /// The puck whose frame it is.
+    pub puck: usize,
+    /// Its event at the current instant: the line passes through it.
+    pub event: Event,
+    /// The line's slope on the diagram, dt/d(axis), s/m: `v_axis / c²`.
+    pub slope: f64,
+}
+
 /// The diagram as marks, with its ranges.
 pub struct Plot {
     /// Board x shown, m.
@@ -160,11 +216,20 @@ pub struct Plot {
     pub eye: Event,
     /// Each puck's emission event: where the cone meets its worldline.
     pub emissions: Vec<Event>,
+    /// The chosen frame's line of simultaneity, if a frame was chosen.
+    pub simultaneity: Option<Simultaneity>,
 }
 
 /// The diagram of `scene` (its `billiard` run to at least `eye.t`) for
 /// an eye at observation event `eye`.
 pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
+    plot_with(scene, billiard, eye, Options::default())
+}
+
+/// [`plot`] along `options.axis`, with `options.frame`'s line of
+/// simultaneity. A frame index beyond the pucks draws none.
+pub fn plot_with(scene: &Scene, billiard: &Billiard, eye: Event, options: Options) -> Plot {
+    let axis = options.axis;
     let t = eye.t;
     let c = scene.c;
     let lifts: Vec<DVec3> = scene
@@ -178,11 +243,12 @@ pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
     let earliest = emissions.iter().map(|e| e.t).fold(0.0f64, f64::min);
     let span = (t - earliest).max(0.5);
     let t_range = (earliest - 0.15 * span, t + 0.08 * span);
-    let size = scene.table.size;
-    let x_range = (
-        (-0.1f64).min(eye.position.x - 0.1),
-        (size.x + 0.1).max(eye.position.x + 0.1),
-    );
+    let side = match axis {
+        Axis::X => scene.table.size.x,
+        Axis::Y => scene.table.size.y,
+    };
+    let eye_x = axis.of(eye.position);
+    let x_range = ((-0.1f64).min(eye_x - 0.1), (side + 0.1).max(eye_x + 0.1));
     let mut marks = Vec::new();
     let line =
         |points: Vec<(f64, f64)>, rgb: [u8; 3], width: f64, alpha: f64, dashed: bool| Mark::Line {
@@ -223,7 +289,7 @@ pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
         0.9,
         false,
     ));
-    for x in [0.0, size.x] {
+    for x in [0.0, side] {
         marks.push(line(
             vec![(x, t_range.0), (x, t_range.1)],
             [60, 140, 70],
@@ -234,7 +300,7 @@ pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
     }
     // The eye's worldline (where it is now, at rest or not).
     marks.push(line(
-        vec![(eye.position.x, t_range.0), (eye.position.x, t)],
+        vec![(eye_x, t_range.0), (eye_x, t)],
         [230, 230, 230],
         1.5,
         0.7,
@@ -263,26 +329,109 @@ pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
             .iter()
             .map(|&s| {
                 let p = w.position_at(s) + lifts[i];
-                (p.x, t - p.distance(eye.position) / c)
+                (axis.of(p), t - p.distance(eye.position) / c)
             })
             .collect();
         marks.push(line(trace, rgb, 1.5, 0.55, true));
-        let path = times.iter().map(|&s| (w.position_at(s).x, s)).collect();
+        let path = times
+            .iter()
+            .map(|&s| (axis.of(w.position_at(s)), s))
+            .collect();
         marks.push(line(path, rgb, 2.5, 1.0, false));
     }
     for k in billiard.collisions().iter().filter(|k| k.t <= t) {
         marks.push(Mark::Cross {
-            at: (k.contact.x, k.t),
+            at: (axis.of(k.contact), k.t),
         });
     }
     for (e, &rgb) in emissions.iter().zip(&colours) {
         marks.push(Mark::Event {
-            at: (e.position.x, e.t),
+            at: (axis.of(e.position), e.t),
+            rgb,
+        });
+    }
+    let simultaneity = options.frame.filter(|&f| f < billiard.len()).map(|f| {
+        let w = billiard.worldline(f);
+        let event = w.event_at(t);
+        let slope = axis.of(simultaneity_slope(w.velocity_at(t), c));
+        Simultaneity {
+            puck: f,
+            event,
+            slope,
+        }
+    });
+    // The board's "now" (faint) and the frame's "now" through its puck's
+    // event, clipped to the time range.
+    marks.push(line(
+        vec![(x_range.0, t), (x_range.1, t)],
+        [200, 200, 200],
+        1.0,
+        0.45,
+        true,
+    ));
+    if let Some(sim) = simultaneity {
+        let x0 = axis.of(sim.event.position);
+        let at = |x: f64| {
+            // The board time `simultaneous_board_time` gives at this x (on
+            // the line through the event along the axis).
+            let mut p = sim.event.position;
+            match axis {
+                Axis::X => p.x = x,
+                Axis::Y => p.y = x,
+            }
+            let u = billiard.worldline(sim.puck).velocity_at(t);
+            simultaneous_board_time(sim.event, u, c, p)
+        };
+        let (mut a, mut b) = (x_range.0, x_range.1);
+        if sim.slope.abs() > 1e-300 {
+            // Clip x so the line stays within the time range.
+            let xa = x0 + (t_range.0 - sim.event.t) / sim.slope;
+            let xb = x0 + (t_range.1 - sim.event.t) / sim.slope;
+            let (lo, hi) = if xa < xb { (xa, xb) } else { (xb, xa) };
+            a = a.max(lo);
+            b = b.min(hi);
+        }
+        // Earlier "nows" of the same frame, faint: every 0.5 s of the
+        // puck's frame time (0.5 / γ s of board time apart at fixed x).
+        let gamma = billiard.worldline(sim.puck).velocity_at(t).gamma();
+        for k in 1..=8 {
+            let dt = -0.5 * f64::from(k) / gamma;
+            if sim.slope.abs() <= 1e-300 && sim.event.t + dt < t_range.0 {
+                break;
+            }
+            let (mut a, mut b) = (x_range.0, x_range.1);
+            if sim.slope.abs() > 1e-300 {
+                let xa = x0 + (t_range.0 - sim.event.t - dt) / sim.slope;
+                let xb = x0 + (t_range.1 - sim.event.t - dt) / sim.slope;
+                let (lo, hi) = if xa < xb { (xa, xb) } else { (xb, xa) };
+                a = a.max(lo);
+                b = b.min(hi);
+            }
+            if a < b {
+                let rgb = colours[sim.puck];
+                marks.push(line(
+                    vec![(a, at(a) + dt), (b, at(b) + dt)],
+                    rgb,
+                    1.0,
+                    0.35,
+                    false,
+                ));
+            }
+        }
+        let rgb = colours[sim.puck];
+        let light = [
+            rgb[0].saturating_add(40),
+            rgb[1].saturating_add(40),
+            rgb[2].saturating_add(40),
+        ];
+        marks.push(line(vec![(a, at(a)), (b, at(b))], light, 2.5, 0.9, false));
+        marks.push(Mark::Event {
+            at: (x0, sim.event.t),
             rgb,
         });
     }
     marks.push(Mark::Event {
-        at: (eye.position.x, t),
+        at: (eye_x, t),
         rgb: [255, 255, 255],
     });
     Plot {
@@ -291,6 +440,7 @@ pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
         marks,
         eye,
         emissions,
+        simultaneity,
     }
 }
 
@@ -302,6 +452,8 @@ pub struct Drawn {
     pub eye: Event,
     /// Each puck's emission event: where the cone meets its worldline.
     pub emissions: Vec<Event>,
+    /// The chosen frame's line of simultaneity.
+    pub simultaneity: Option<Simultaneity>,
 }
 
 /// Draws the diagram of `scene` (its `billiard` run to at least `t`) for
@@ -314,8 +466,27 @@ pub fn draw(
     width: u32,
     height: u32,
 ) -> Drawn {
+    draw_with(
+        scene,
+        billiard,
+        observer,
+        t,
+        (width, height),
+        Options::default(),
+    )
+}
+
+/// [`draw`] with [`Options`] (axis, frame).
+pub fn draw_with(
+    scene: &Scene,
+    billiard: &Billiard,
+    observer: usize,
+    t: f64,
+    (width, height): (u32, u32),
+    options: Options,
+) -> Drawn {
     let (eye, _) = super::frame::eye_of(scene, observer, t);
-    let plot = plot(scene, billiard, eye.event);
+    let plot = plot_with(scene, billiard, eye.event, options);
     let mut cv = Canvas {
         img: Image {
             width,
@@ -371,6 +542,7 @@ pub fn draw(
         image: cv.img,
         eye: plot.eye,
         emissions: plot.emissions,
+        simultaneity: plot.simultaneity,
     }
 }
 
@@ -378,6 +550,50 @@ pub fn draw(
 mod tests {
     use super::*;
     use lightcone_engine::optics::emission;
+
+    /// The frame's line passes through the puck's event now, with slope
+    /// β_x / c (closed form from the scene: the white puck at β = (0.8,
+    /// 0.12) before its hit at 1.19 s); points on it are simultaneous with
+    /// that event in the puck's frame (Lorentz transform t' = γ(t − v·x/c²)).
+    #[test]
+    fn the_frame_line_is_the_pucks_now() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        let scene = lightcone_engine::scene::load(&dir.join("paper_carom.toml")).unwrap();
+        let white = scene.pucks.iter().position(|p| p.name == "white").unwrap();
+        let t = 0.8;
+        let mut billiard = Billiard::from_scene(&scene);
+        billiard.advance_to(t);
+        let options = Options {
+            axis: Axis::X,
+            frame: Some(white),
+        };
+        let drawn = draw_with(&scene, &billiard, 0, t, (320, 200), options);
+        let sim = drawn.simultaneity.expect("a frame line");
+        let c = scene.c;
+        assert!((sim.slope - 0.8 / c).abs() < 1e-12, "{}", sim.slope);
+        let start = scene.pucks[white].position;
+        assert!((sim.event.t - t).abs() < 1e-15);
+        assert!((sim.event.position.x - (start.x + 0.8 * c * t)).abs() < 1e-12);
+        let (bx, by) = (0.8, 0.12);
+        let gamma = 1.0 / (1.0f64 - bx * bx - by * by).sqrt();
+        let t_frame = |t: f64, x: f64, y: f64| gamma * (t - (bx * x + by * y) / c);
+        let y = sim.event.position.y;
+        let now = t_frame(sim.event.t, sim.event.position.x, y);
+        for x in [0.0, 1.0, 2.84] {
+            let tb = sim.event.t + sim.slope * (x - sim.event.position.x);
+            assert!((t_frame(tb, x, y) - now).abs() < 1e-12, "x = {x}");
+        }
+        // No frame, no line; a y diagram has the y slope.
+        let plain = draw(&scene, &billiard, 0, t, 320, 200);
+        assert!(plain.simultaneity.is_none());
+        let y_options = Options {
+            axis: Axis::Y,
+            frame: Some(white),
+        };
+        let drawn = draw_with(&scene, &billiard, 0, t, (320, 200), y_options);
+        let slope = drawn.simultaneity.unwrap().slope;
+        assert!((slope - 0.12 / c).abs() < 1e-12, "{slope}");
+    }
 
     #[test]
     fn the_cone_meets_each_worldline_at_the_emission_event_observe_reports() {

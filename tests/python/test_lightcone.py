@@ -102,6 +102,17 @@ def test_build_a_scene_in_code_and_check_the_head_on_exchange():
         s.c = -1.0
 
 
+@pytest.mark.parametrize("c", [0.0, -1.0, 5e-7, 2e9, 1e308, math.inf, math.nan])
+def test_setting_c_outside_the_scene_files_range_is_a_located_scene_error(c):
+    s = lightcone.Scene(size=(4.0, 2.0), c=2.0)
+    with pytest.raises(lightcone.SceneError, match=r"Scene\.c: .* from 1e-6 to 1e9 m/s"):
+        s.c = c
+    assert s.c == 2.0  # unchanged
+    s.c = 1e9  # both ends of the range are accepted
+    s.c = 1e-6
+    assert s.c == 1e-6
+
+
 def test_render_writes_a_png(tmp_path):
     sim = lightcone.Simulation(scene("paper_carom.toml"))
     sim.run_until(1.0)
@@ -282,3 +293,34 @@ def test_history_horizon_bounds_what_is_kept_and_says_so():
     assert len(sim.collisions()) < len(everything.collisions())
     with pytest.raises(ValueError):
         lightcone.Simulation(scene("ten_pucks.toml"), history=-1.0)
+
+
+def test_diagram_returns_a_frame_and_its_line_is_the_pucks_now(tmp_path):
+    """The diagram needs no graphics adapter. The white puck moves at
+    β = (0.8, 0.12) until its hit at 1.19 s: its now is tilted by β / c."""
+    sim = lightcone.Simulation(scene("paper_carom.toml"))
+    sim.run_until(1.0)
+    frame = sim.diagram(size=(200, 140), at=0.8, frame="white", path=str(tmp_path / "d.png"))
+    assert isinstance(frame, lightcone.Frame)
+    assert (frame.width, frame.height, frame.t) == (200, 140, 0.8)
+    assert (tmp_path / "d.png").read_bytes() == frame.png[:]
+    assert sim.diagram(size=(50, 40), axis="y").png[:8] == b"\x89PNG\r\n\x1a\n"
+    now = sim.simultaneity("white", at=0.8)
+    c = sim.scene.c
+    assert now["puck"] == "white" and now["event"]["t"] == 0.8
+    assert now["slope"] == pytest.approx([0.8 / c, 0.12 / c], abs=1e-12)
+    assert now["event"]["position"] == pytest.approx([0.6 + 0.8 * c * 0.8, 0.55 + 0.12 * c * 0.8], abs=1e-12)
+    # Lorentz transform: points on the line share the white puck's time.
+    gamma = 1 / math.sqrt(1 - 0.8**2 - 0.12**2)
+    x0, y0 = now["event"]["position"]
+    for x, y in [(0.0, 0.0), (2.84, 1.42)]:
+        t = 0.8 + now["slope"][0] * (x - x0) + now["slope"][1] * (y - y0)
+        t_white = gamma * (t - (0.8 * x + 0.12 * y) / c)
+        assert t_white == pytest.approx(gamma * (0.8 - (0.8 * x0 + 0.12 * y0) / c), abs=1e-12)
+    from lightcone.records import Simultaneity
+
+    assert set(now) == set(Simultaneity.__annotations__)
+    with pytest.raises(KeyError):
+        sim.diagram(frame="nobody")
+    with pytest.raises(ValueError):
+        sim.diagram(axis="z")

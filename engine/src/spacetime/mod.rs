@@ -16,11 +16,13 @@
 mod boost;
 mod event;
 mod momentum;
+mod simultaneity;
 mod velocity;
 mod wigner;
 
 pub use boost::{Boost, compose};
 pub use event::{Event, FourVector};
 pub use momentum::FourMomentum;
+pub use simultaneity::{simultaneity_slope, simultaneous_board_time};
 pub use velocity::{ProperVelocity, SpeedError};
 pub use wigner::{rotate_about_normal, rotation_of_velocity_change, wigner_angle};

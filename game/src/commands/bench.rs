@@ -17,16 +17,26 @@ use lightcone_engine::spacetime::ProperVelocity;
 
 /// Runs the physics benchmarks; `quick` shortens them (for tests).
 pub fn run(quick: bool) -> ExitCode {
+    let progress = crate::progress::steps(3, "bench physics");
+    progress.step("frame times");
     let frames = match frame_times(quick) {
         Ok(t) => t,
         Err(e) => {
+            progress.finish();
             crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
-    crate::sayln!("{frames}");
-    crate::sayln!("{}", gas_rates(quick));
-    crate::sayln!("{}", exactness(quick));
+    progress.inc();
+    progress.suspend(|| crate::sayln!("{frames}"));
+    progress.step("collision rates in gases");
+    let gas = gas_rates(quick);
+    progress.inc();
+    progress.suspend(|| crate::sayln!("{gas}"));
+    progress.step("exact against fixed-step");
+    let exact = exactness(quick);
+    progress.finish();
+    crate::sayln!("{exact}");
     ExitCode::SUCCESS
 }
 

@@ -49,8 +49,11 @@ pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    let progress = crate::progress::steps(4, "bench optics");
+    progress.step("accuracy of the emission solves");
     let rows = accuracy(&scene, quick);
-    print_rows(&rows);
+    progress.inc();
+    progress.suspend(|| print_rows(&rows));
     if let Some(path) = csv {
         let mut text = String::from(
             "method,fps,frames,iterations,interpolate,max_m,mean_m,max_px,mean_px,ns_per_vertex,memory_bytes\n",
@@ -76,12 +79,21 @@ pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
             return ExitCode::FAILURE;
         }
     }
-    match memory_ten_pucks() {
+    progress.step("memory");
+    let memory = memory_ten_pucks();
+    progress.inc();
+    progress.suspend(|| match memory {
         Ok(text) => crate::sayln!("{text}"),
         Err(e) => crate::errln!("{e}"),
-    }
-    crate::sayln!("{}", throughput(quick));
-    crate::sayln!("{}", effect_costs(quick));
+    });
+    progress.step("solves per second");
+    let solves = throughput(quick);
+    progress.inc();
+    progress.suspend(|| crate::sayln!("{solves}"));
+    progress.step("cost of each effect");
+    let costs = effect_costs(quick);
+    progress.finish();
+    crate::sayln!("{costs}");
     ExitCode::SUCCESS
 }
 

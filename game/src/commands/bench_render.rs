@@ -81,7 +81,9 @@ pub fn run(quick: bool) -> ExitCode {
         gpu.adapter
     );
     let frames = if quick { 3 } else { 30 };
+    let progress = crate::progress::steps(2 * frames as u64, "bench render");
     for scene in [paper, large(if quick { 100 } else { 1100 })] {
+        progress.step(&scene.title);
         let meshes = SceneMeshes::new(&scene);
         let mut billiard = Billiard::from_scene(&scene);
         let mut vertices = Vec::new();
@@ -100,17 +102,21 @@ pub fn run(quick: bool) -> ExitCode {
             }
             cpu += (mid - start).as_secs_f64();
             gpu_time += mid.elapsed().as_secs_f64();
+            progress.inc();
         }
         let n = f64::from(frames);
-        crate::sayln!(
-            "| {} | {} | {} | {:.2} | {:.2} | {:.1} |",
-            scene.title,
-            scene.pucks.len(),
-            vertices.len() / 3,
-            cpu / n * 1e3,
-            gpu_time / n * 1e3,
-            n / (cpu + gpu_time)
-        );
+        progress.suspend(|| {
+            crate::sayln!(
+                "| {} | {} | {} | {:.2} | {:.2} | {:.1} |",
+                scene.title,
+                scene.pucks.len(),
+                vertices.len() / 3,
+                cpu / n * 1e3,
+                gpu_time / n * 1e3,
+                n / (cpu + gpu_time)
+            )
+        });
     }
+    progress.finish();
     ExitCode::SUCCESS
 }

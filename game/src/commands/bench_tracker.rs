@@ -134,10 +134,27 @@ pub fn jitter(beta: f64, sigma: f64, rate: f64, seconds: f64, filtered: bool) ->
     }
 }
 
+/// How the game side reads the tracker in [`latency`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reader {
+    /// The game's way: a `tracker-bridge` child forwards over a pipe.
+    Bridge,
+    /// For comparison, what the game did before (and must not: random
+    /// bytes in shared memory can crash the reader): iceoryx2 mapped in
+    /// this process.
+    InProcess,
+}
+
 /// Latency of one two-process run: a `lightcone tracker` child publishing
 /// at `rate` Hz, this process polling every `poll` and updating a game's
-/// observer. Returns (p50, p99, max) in µs and the sample count.
-pub fn latency(rate: f64, seconds: f64, poll: Duration) -> Result<(f64, f64, f64, usize), String> {
+/// observer (or, [`Reader::InProcess`], accepting samples into a
+/// follower). Returns (p50, p99, max) in µs and the sample count.
+pub fn latency(
+    rate: f64,
+    seconds: f64,
+    poll: Duration,
+    reader: Reader,
+) -> Result<(f64, f64, f64, usize), String> {
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let service = format!("lightcone/bench/{}", std::process::id());
     let mut child = Command::new(exe)
@@ -159,18 +176,41 @@ pub fn latency(rate: f64, seconds: f64, poll: Duration) -> Result<(f64, f64, f64
     let scene = scene::Scene::empty(glam::DVec2::new(2.84, 1.42), None)
         .unwrap_or_else(|_| unreachable!("a carom table is a valid scene"));
     let mut game = GameState::new(scene);
-    let mut head = TrackedHead::new(&service, Default::default());
     let start = Instant::now();
-    while start.elapsed().as_secs_f64() < seconds + 0.5 {
-        head.poll(Instant::now());
-        head.drive(&mut game, DVec3::ZERO, DVec3::ZERO);
-        std::thread::sleep(poll);
-    }
+    let latencies = match reader {
+        Reader::Bridge => {
+            let mut head = TrackedHead::new(&service, Default::default());
+            while start.elapsed().as_secs_f64() < seconds + 0.5 {
+                head.poll(Instant::now());
+                head.drive(&mut game, DVec3::ZERO, DVec3::ZERO);
+                std::thread::sleep(poll);
+            }
+            head.latencies().to_vec()
+        }
+        Reader::InProcess => {
+            lightcone_tracker::transport::quiet_iceoryx_logs();
+            let sub = lightcone_tracker::Subscriber::open(&service).map_err(|e| e.to_string())?;
+            let mut follower = Follower::new(FollowerConfig::default());
+            let (mut batch, mut l) = (Vec::new(), Vec::new());
+            while start.elapsed().as_secs_f64() < seconds + 0.5 {
+                batch.clear();
+                sub.drain_into(&mut batch).map_err(|e| e.to_string())?;
+                let now = Instant::now();
+                for s in &batch {
+                    if follower.push(s, now) == lightcone_tracker::follow::Verdict::Accepted {
+                        l.push(lightcone_tracker::unix_now_ns().saturating_sub(s.timestamp_ns));
+                    }
+                }
+                std::thread::sleep(poll);
+            }
+            l
+        }
+    };
     let _ = child.kill();
     let _ = child.wait();
     // Drop the first half second: process start-up.
     let skip = (rate * 0.5) as usize;
-    let l: Vec<u64> = head.latencies().iter().skip(skip).copied().collect();
+    let l: Vec<u64> = latencies.iter().skip(skip).copied().collect();
     let zeros = vec![0u64; l.len()];
     let stats = latency_stats(&zeros, &l).map_err(|e| e.to_string())?;
     let us = |ns: u64| ns as f64 / 1e3;
@@ -199,45 +239,78 @@ pub fn run(quick: bool) -> ExitCode {
         &[0.0005, 0.001, 0.002]
     };
     let betas: &[f64] = if quick { &[0.5] } else { &[0.0, 0.5, 0.9] };
-    for &sigma in sigmas {
-        for &beta in betas {
-            let raw = jitter(beta, sigma, 120.0, seconds, false);
-            let filtered = jitter(beta, sigma, 120.0, seconds, true);
-            crate::sayln!(
-                "| {:.1} mm | {beta:.1} | {:.2} | {:.3} | {:.2} | {:.2} |",
-                sigma * 1e3,
-                raw.jitter_px,
-                filtered.jitter_px,
-                raw.error_px,
-                filtered.error_px
-            );
-        }
-    }
-    crate::sayln!();
-    crate::sayln!("## Publish → observer update, two processes (µs)");
-    crate::sayln!();
-    crate::sayln!("| tracker rate | poll period | samples | p50 | p99 | max |");
-    crate::sayln!("| --- | --- | --- | --- | --- | --- |");
     let runs: &[(f64, u64)] = if quick {
         &[(1000.0, 50)]
     } else {
         &[(1000.0, 50), (1000.0, 0), (120.0, 50)]
     };
-    for &(rate, poll_us) in runs {
-        match latency(rate, seconds.min(10.0), Duration::from_micros(poll_us)) {
-            Ok((p50, p99, max, n)) => crate::sayln!(
-                "| {rate:.0} Hz | {} | {n} | {p50:.0} | {p99:.0} | {max:.0} |",
-                if poll_us == 0 {
-                    "busy spin".to_owned()
-                } else {
-                    format!("{poll_us} µs")
+    let readers: &[Reader] = if quick {
+        &[Reader::Bridge]
+    } else {
+        &[Reader::Bridge, Reader::InProcess]
+    };
+    let progress = crate::progress::steps(
+        (sigmas.len() * betas.len() + runs.len() * readers.len()) as u64,
+        "bench tracker",
+    );
+    for &sigma in sigmas {
+        for &beta in betas {
+            progress.step(&format!("jitter at σ = {:.1} mm, β = {beta}", sigma * 1e3));
+            let raw = jitter(beta, sigma, 120.0, seconds, false);
+            let filtered = jitter(beta, sigma, 120.0, seconds, true);
+            progress.inc();
+            progress.suspend(|| {
+                crate::sayln!(
+                    "| {:.1} mm | {beta:.1} | {:.2} | {:.3} | {:.2} | {:.2} |",
+                    sigma * 1e3,
+                    raw.jitter_px,
+                    filtered.jitter_px,
+                    raw.error_px,
+                    filtered.error_px
+                )
+            });
+        }
+    }
+    progress.suspend(|| {
+        crate::sayln!();
+        crate::sayln!("## Publish → observer update, two processes (µs)");
+        crate::sayln!();
+        crate::sayln!("| reader | tracker rate | poll period | samples | p50 | p99 | max |");
+        crate::sayln!("| --- | --- | --- | --- | --- | --- | --- |");
+    });
+    for &reader in readers {
+        for &(rate, poll_us) in runs {
+            progress.step(&format!("latency at {rate:.0} Hz"));
+            let measured = latency(
+                rate,
+                seconds.min(10.0),
+                Duration::from_micros(poll_us),
+                reader,
+            );
+            progress.inc();
+            match measured {
+                Ok((p50, p99, max, n)) => progress.suspend(|| {
+                    crate::sayln!(
+                        "| {} | {rate:.0} Hz | {} | {n} | {p50:.0} | {p99:.0} | {max:.0} |",
+                        match reader {
+                            Reader::Bridge => "bridge child",
+                            Reader::InProcess => "in-process (before)",
+                        },
+                        if poll_us == 0 {
+                            "busy spin".to_owned()
+                        } else {
+                            format!("{poll_us} µs")
+                        }
+                    )
+                }),
+                Err(e) => {
+                    progress.finish();
+                    crate::errln!("latency: {e}");
+                    return ExitCode::FAILURE;
                 }
-            ),
-            Err(e) => {
-                crate::errln!("latency: {e}");
-                return ExitCode::FAILURE;
             }
         }
     }
+    progress.finish();
     ExitCode::SUCCESS
 }

@@ -62,6 +62,18 @@ pub fn run(
         Err(e) => return fail(e),
     };
     let mut game = GameState::new(scene);
+    {
+        // The physics to `at`, with a bar (the walls are quick after it).
+        let progress = crate::progress::bar(at, "board s");
+        while !game.billiard.step_until(at, 16_384) {
+            progress.set_position_f64(game.billiard.time());
+            if crate::interrupt::interrupted() {
+                progress.finish();
+                return crate::interrupt::exit_code("cave stopped");
+            }
+        }
+        progress.finish();
+    }
     game.step(at);
     let gpu = match lightcone_render::gpu::headless() {
         Ok(g) => g,
@@ -74,12 +86,16 @@ pub fn run(
         Ok(i) => i,
         Err(e) => return fail(e),
     };
+    let progress = crate::progress::steps(images.len() as u64, "cave: writing");
     for (wall, side, image) in images {
         let path = out_dir.join(format!("{wall}_{}.png", side.name()));
+        progress.step(&path.display().to_string());
         if let Err(e) = image.save_png(&path) {
+            progress.finish();
             return fail(e);
         }
-        if let Err(stop) = crate::outln!("{}", path.display()) {
+        progress.inc();
+        if let Err(stop) = progress.suspend(|| crate::outln!("{}", path.display())) {
             return stop.exit();
         }
     }

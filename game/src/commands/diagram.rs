@@ -1,6 +1,6 @@
-//! `lightcone diagram SCENE --at T [--observer NAME] [--size WxH] -o out.png`:
-//! the space-time diagram of a scene at board time T (see
-//! [`lightcone_render::diagram`]).
+//! `lightcone diagram SCENE --at T [--observer NAME] [--frame PUCK]
+//! [--axis x|y] [--size WxH] -o out.png`: the space-time diagram of a scene
+//! at board time T (see [`lightcone_render::diagram`]).
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -10,9 +10,38 @@ use lightcone_engine::scene;
 
 use lightcone_render::diagram;
 
+/// The index of puck `name` in `scene`, or a message listing the names.
+pub fn puck_index(
+    scene: &lightcone_engine::scene::Scene,
+    path: &Path,
+    name: &str,
+) -> Result<usize, String> {
+    scene
+        .pucks
+        .iter()
+        .position(|p| p.name == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = scene.pucks.iter().map(|p| p.name.as_str()).collect();
+            format!(
+                "{}: --frame {name:?}: no such puck; the pucks are {}",
+                path.display(),
+                names.join(", ")
+            )
+        })
+}
+
 /// Draws and writes the PNG; prints each puck's emission event (where the
-/// eye's past light cone meets its worldline).
-pub fn run(path: &Path, at: f64, observer: Option<&str>, out: &Path, size: &str) -> ExitCode {
+/// eye's past light cone meets its worldline), and with a frame the line of
+/// simultaneity drawn.
+pub fn run(
+    path: &Path,
+    at: f64,
+    observer: Option<&str>,
+    frame: Option<&str>,
+    axis: diagram::Axis,
+    out: &Path,
+    size: &str,
+) -> ExitCode {
     let fail = |msg: String| {
         eprintln!("{msg}");
         ExitCode::FAILURE
@@ -32,16 +61,42 @@ pub fn run(path: &Path, at: f64, observer: Option<&str>, out: &Path, size: &str)
         Ok(i) => i,
         Err(e) => return fail(e),
     };
+    let frame = match frame.map(|f| puck_index(&scene, path, f)).transpose() {
+        Ok(f) => f,
+        Err(e) => return fail(e),
+    };
     let mut billiard = Billiard::from_scene(&scene);
     billiard.advance_to(at);
-    let drawn = diagram::draw(&scene, &billiard, index, at, width, height);
+    let drawn = diagram::draw_with(
+        &scene,
+        &billiard,
+        index,
+        at,
+        (width, height),
+        diagram::Options { axis, frame },
+    );
     if let Err(e) = drawn.image.save_png(out) {
         return fail(e);
     }
+    let axis_name = match axis {
+        diagram::Axis::X => "x",
+        diagram::Axis::Y => "y",
+    };
     for (p, e) in scene.pucks.iter().zip(&drawn.emissions) {
         println!(
-            "{}: seen from t = {:.6} s at x = {:.6} m",
-            p.name, e.t, e.position.x
+            "{}: seen from t = {:.6} s at {axis_name} = {:.6} m",
+            p.name,
+            e.t,
+            axis.of(e.position)
+        );
+    }
+    if let Some(sim) = drawn.simultaneity {
+        println!(
+            "{}'s now: through t = {:.6} s, {axis_name} = {:.6} m, slope dt/d{axis_name} = {:.6} s/m",
+            scene.pucks[sim.puck].name,
+            sim.event.t,
+            axis.of(sim.event.position),
+            sim.slope
         );
     }
     ExitCode::SUCCESS

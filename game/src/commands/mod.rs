@@ -11,6 +11,7 @@ pub mod diagram;
 pub mod lesson;
 pub mod observe;
 pub mod play;
+pub mod record;
 pub mod render;
 pub mod simulate;
 pub mod tracker;

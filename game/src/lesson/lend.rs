@@ -94,6 +94,17 @@ impl LessonGame for GameState {
         &mut self.effects
     }
 
+    fn set_diagram(
+        &mut self,
+        on: bool,
+        frame: Option<usize>,
+        axis: lightcone_render::diagram::Axis,
+    ) {
+        self.show.diagram = on;
+        self.show.diagram_frame = frame;
+        self.show.diagram_axis = axis;
+    }
+
     fn into_any(self: Box<Self>) -> Box<dyn std::any::Any> {
         self
     }

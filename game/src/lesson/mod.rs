@@ -4,8 +4,9 @@
 //!
 //! - `setup(world)` (required): build or load a scene and `world.start(scene)`;
 //! - `on_frame(world, t)`: after every frame in which board time advanced;
-//! - `on_collision(world, event)`: for each collision, with the dict
-//!   `lightcone simulate` prints;
+//! - `on_collision(world, event)`: for each collision, with its
+//!   `lightcone.records.Collision` (attributes, or keys as in the JSON
+//!   `lightcone simulate` prints);
 //! - `on_answer(world, question, choice)`: when the student answers a
 //!   question asked with `world.ask`.
 //!
@@ -454,7 +455,11 @@ impl LessonHost {
                 Err(_) => continue,
             };
             self.call(game, "on_collision", move |py, world| {
-                let event = py.import("json")?.call_method1("loads", (text,))?;
+                let data = py.import("json")?.call_method1("loads", (text,))?;
+                let event = py
+                    .import("lightcone.records")?
+                    .getattr("Collision")?
+                    .call1((data,))?;
                 PyTuple::new(py, [world.clone().into_any(), event])
             });
         }

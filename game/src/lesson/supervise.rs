@@ -180,6 +180,9 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         });
     }
     let mut partial = Partial::default();
+    // Board time reached, towards `--until` (stderr, a terminal only; the
+    // lesson's own printing goes there too, through the child).
+    let progress = crate::progress::bar(limits.until, "board s");
     let mut hook: Option<(String, Instant)> = None;
     let mut outcome = None;
     let mut failed = None;
@@ -193,6 +196,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
             Ok(Event::Progress(Progress::Frame { t, frames })) => {
                 partial.t = t;
                 partial.frames = frames;
+                progress.set_position_f64(t);
             }
             Ok(Event::Progress(Progress::Claim(c))) => partial.claims.push(c),
             Ok(Event::Progress(Progress::Answer(q, a))) => partial.answers.push((q, a)),
@@ -203,6 +207,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         }
         if crate::interrupt::interrupted() {
             // Ctrl-C: stop the lesson; what it did so far is reported.
+            progress.finish();
             kill_group();
             let _ = child.wait();
             return Ok(Outcome {
@@ -235,6 +240,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
             break;
         }
     }
+    progress.finish();
     // Whatever the child left behind (a forked process) goes with it.
     kill_group();
     let status = match exited {

@@ -300,6 +300,9 @@ impl App {
     }
 
     fn key(&mut self, code: KeyCode) {
+        if super::scene_menu::key(&mut self.state, code, self.lesson.is_some()) {
+            return;
+        }
         let s = &mut self.state;
         match code {
             KeyCode::KeyP | KeyCode::Space => {
@@ -500,6 +503,9 @@ fn panels(
             .show(ui, |ui| {
                 ui.heading("Lightcone");
                 ui.label(&s.scene.title);
+                if ui.small_button("other scenes… (M)").clicked() {
+                    s.scene_menu.open = !s.scene_menu.open;
+                }
                 ui.separator();
                 ui.horizontal(|ui| {
                     if ui
@@ -680,9 +686,13 @@ fn panels(
             .open(&mut open)
             .default_pos(egui::pos2(left / ppp + 12.0, size.1 as f32 / ppp - 340.0))
             .default_width(420.0)
-            .show(ctx, |ui| super::overlay::diagram_panel(ui, state));
+            .show(ctx, |ui| {
+                super::diagram_controls::frame_and_axis(ui, state);
+                super::overlay::diagram_panel(ui, state);
+            });
         state.show.diagram = open;
     }
+    super::scene_menu::window(ctx, state, hud.lesson);
     if state.intro {
         intro(state, ctx, (left + right) / 2.0 / ppp, 12.0);
     }

@@ -3,5 +3,8 @@
 //! a window; [`app`] is the winit + wgpu + egui front end.
 
 pub mod app;
+pub mod collision_arcs;
+pub mod diagram_controls;
 pub mod lesson_panel;
 pub mod overlay;
+pub mod scene_menu;

@@ -123,6 +123,7 @@ pub fn overlays(
     let label = egui::Color32::from_gray(235);
     for &(rect, kind) in rects {
         physics_marks(state, painter, rect, kind, ppp);
+        super::collision_arcs::draw(state, painter, rect, kind, ppp);
     }
     for m in markers(state, rects) {
         let spec = &state.scene.pucks[m.puck];
@@ -353,8 +354,12 @@ pub fn doppler_legend(ui: &mut egui::Ui) {
 /// The live space-time diagram (see [`lightcone_render::diagram`]): board x
 /// across, board time up, for the eye looked through at the time shown.
 pub fn diagram_panel(ui: &mut egui::Ui, state: &GameState) {
-    use lightcone_render::diagram::{Mark, plot};
-    let p = plot(&state.scene, &state.billiard, state.eye().event);
+    use lightcone_render::diagram::{Mark, plot_with};
+    let options = lightcone_render::diagram::Options {
+        axis: state.show.diagram_axis,
+        frame: state.show.diagram_frame,
+    };
+    let p = plot_with(&state.scene, &state.billiard, state.eye().event, options);
     let size = egui::vec2(ui.available_width().max(300.0), 260.0);
     let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
     let painter = ui.painter_at(rect);
@@ -399,8 +404,10 @@ pub fn diagram_panel(ui: &mut egui::Ui, state: &GameState) {
         }
     }
     ui.small(
-        "board x across, board time up (grid 0.5 m, 0.5 s; green: cushions). \
+        "board x (or y) across, board time up (grid 0.5 m, 0.5 s; green: cushions). \
          Dashed: the eye's past light cone along each puck's path; dots: the \
-         events seen now (top: the eye); crosses: collisions.",
+         events seen now (top: the eye); crosses: collisions. Grey dashed \
+         line: the board's \"now\"; bright line: the chosen puck's \"now\" \
+         (its line of simultaneity, through its event).",
     );
 }

@@ -4,12 +4,14 @@
     >>> scene = lightcone.Scene.load("assets/scenes/paper_carom.toml")
     >>> sim = lightcone.Simulation(scene)
     >>> sim.run_until(20.0)
-    >>> sim.collisions()[0]["kind"]
+    >>> sim.collisions()[0].kind
     'puck_puck'
 
-Collision, state and observation records are the dictionaries that
-`lightcone simulate` and `lightcone observe` print as JSON (README); their
-keys, types and units are in `lightcone.records`. Lessons
+Collision, state and observation records are classes in
+`lightcone.records` (`Collision`, `State`, `Observation`, ...) holding the
+JSON objects that `lightcone simulate` and `lightcone observe` print
+(README): fields as attributes (typed, with units) or keys
+(`c["kind"]`), `repr`, and `to_dict()`. Lessons
 (`lightcone play LESSON.py`) receive a `World` in their hooks.
 """
 
@@ -24,7 +26,7 @@ from ._lightcone import (
     SpeedOfLightError,
     World,
 )
-from .records import Collision, Observation, State
+from .records import Collision, Observation, Record, State
 
 __all__ = [
     "Collision",
@@ -32,6 +34,7 @@ __all__ = [
     "NoAdapterError",
     "NotComputedError",
     "Observation",
+    "Record",
     "Scene",
     "SceneError",
     "Simulation",

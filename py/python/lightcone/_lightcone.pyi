@@ -8,7 +8,7 @@ goes, any sequence of numbers is accepted: a tuple, a list, a numpy array.
 from os import PathLike
 from typing import Iterator, Optional, Protocol, Sequence, SupportsFloat, Union, final
 
-from lightcone.records import Collision, Observation, State
+from lightcone.records import Collision, Observation, Simultaneity, State
 
 __all__ = [
     "Frame",
@@ -133,8 +133,10 @@ class Simulation:
         """Advances by `dt` s of board time."""
     def impulse(self, name: str, du: _Vector) -> None:
         """Adds `du` to the proper velocity γβ of puck `name` now."""
-    def collisions(self) -> list[Collision]: ...
-    def state(self) -> State: ...
+    def collisions(self) -> list[Collision]:
+        """Every collision so far, oldest first (records: `c.t`, `c.pucks[0].u_after`, or `c["t"]`)."""
+    def state(self) -> State:
+        """Every puck now (a record: `s.pucks[0].position`, or `s["pucks"][0]["position"]`)."""
     def observe(
         self,
         observer: Optional[str] = None,
@@ -154,6 +156,20 @@ class Simulation:
         at: Optional[float] = None,
     ) -> Frame:
         """Renders what `observer` sees at board time `at` s (default: now); saves it to `path` if given."""
+    def diagram(
+        self,
+        path: Optional[Union[str, PathLike[str]]] = None,
+        observer: Optional[str] = None,
+        size: tuple[int, int] = ...,
+        at: Optional[float] = None,
+        axis: str = "x",
+        frame: Optional[str] = None,
+    ) -> Frame:
+        """The space-time diagram at board time `at` s (default: now), board
+        `axis` ("x" or "y") across, with puck `frame`'s lines of
+        simultaneity; drawn on the CPU; saved to `path` if given."""
+    def simultaneity(self, frame: str, at: Optional[float] = None) -> Simultaneity:
+        """Puck `frame`'s line of simultaneity through its event at `at` s."""
     def warnings(self) -> list[str]: ...
     def _repr_png_(self) -> Optional[bytes]: ...
 
@@ -205,6 +221,19 @@ class World:
         effects: Optional[Sequence[str]] = None,
         at: Optional[float] = None,
     ) -> Observation: ...
+    def diagram(
+        self,
+        path: Optional[Union[str, PathLike[str]]] = None,
+        observer: Optional[str] = None,
+        size: tuple[int, int] = ...,
+        at: Optional[float] = None,
+        axis: str = "x",
+        frame: Optional[str] = None,
+    ) -> Frame:
+        """The space-time diagram (see `Simulation.diagram`); `path` relative to the lesson."""
+    def show_diagram(self, on: bool = True, frame: Optional[str] = None, axis: str = "x") -> None:
+        """Opens or closes the live diagram in the window, with puck `frame`'s lines of simultaneity."""
+    def simultaneity(self, frame: str, at: Optional[float] = None) -> Simultaneity: ...
     def say(self, text: str) -> None: ...
     def ask(self, question: str, choices: Sequence[str], answer: Optional[int] = None) -> None: ...
     def check(self, claim: str, ok: bool, detail: str = "") -> bool: ...

@@ -1,23 +1,30 @@
-"""The shapes of the records `lightcone` returns, for type checkers.
+"""The records `lightcone` returns: collisions, puck outcomes, states and
+observations, as classes.
 
-The records are plain dictionaries (the JSON objects `lightcone simulate`
-and `lightcone observe` print, see the README); these TypedDicts name their
-keys, types and units. Units: metres, seconds of board time (or of proper
-time where named), kilograms; velocities as β = v/c or as proper velocity
-u = γβ (dimensionless).
+Each record holds the JSON object that `lightcone simulate` or `lightcone
+observe` prints for it (see the README) and offers it three ways:
+
+- as attributes, typed here: `sim.collisions()[0].pucks[1].u_after`;
+- by key, as before, so code written for dictionaries keeps working:
+  `rec["pucks"][1]["u_after"]`, `"cushion" in rec`, `rec.get("cushion")`,
+  `dict(rec)`, `rec == {...}` (a record is a read-only `Mapping`);
+- as plain data: `rec.to_dict()` (dicts and lists all the way down, for
+  `json.dumps`).
+
+An optional field that a record lacks (`cushion` of a puck-puck collision,
+`mass_before` of an elastic one) reads as `None` by attribute and raises
+`KeyError` by key. Records are read-only.
+
+Units: metres, seconds of board time (or of proper time where named),
+kilograms; velocities as β = v/c or as proper velocity u = γβ
+(dimensionless).
 """
 
-import sys
-from typing import List, Optional
-
-if sys.version_info >= (3, 11):
-    from typing import NotRequired, TypedDict
-else:  # pragma: no cover
-    from typing import TypedDict
-
-    NotRequired = Optional  # only for type checkers on old Pythons
+from collections.abc import Mapping
+from typing import Any, ClassVar, Dict, Iterator, List, Optional
 
 __all__ = [
+    "Record",
     "CollisionPuck",
     "Collision",
     "PuckState",
@@ -27,11 +34,82 @@ __all__ = [
     "SeenPoint",
     "SeenPuck",
     "Observation",
+    "BoardEvent",
+    "Simultaneity",
 ]
 
 
-class CollisionPuck(TypedDict):
+def _plain(value: Any) -> Any:
+    if isinstance(value, Record):
+        return value.to_dict()
+    if isinstance(value, list):
+        return [_plain(v) for v in value]
+    return value
+
+
+class Record(Mapping):  # type: ignore[type-arg]
+    """A record: attribute and key access to one JSON object of the command
+    line, `to_dict()` and a `repr` that shows its fields."""
+
+    __slots__ = ("_data",)
+    _children: ClassVar[Dict[str, type]] = {}
+    """Fields holding records (or lists of records) of these classes."""
+
+    def __init__(self, data: Mapping) -> None:  # type: ignore[type-arg]
+        d = dict(data)
+        for key, cls in type(self)._children.items():
+            if key in d:
+                v = d[key]
+                d[key] = [cls(x) for x in v] if isinstance(v, list) else cls(v)
+        object.__setattr__(self, "_data", d)
+
+    @classmethod
+    def _fields(cls) -> List[str]:
+        names: List[str] = []
+        for klass in reversed(cls.__mro__):
+            for name in getattr(klass, "__annotations__", {}):
+                if not name.startswith("_") and name not in names:
+                    names.append(name)
+        return names
+
+    def __getattr__(self, name: str) -> Any:
+        data = object.__getattribute__(self, "_data")
+        if name in data:
+            return data[name]
+        if name in type(self)._fields():
+            return None  # an optional field this record lacks
+        raise AttributeError(
+            f"{type(self).__name__} has no field {name!r}; its fields: {', '.join(data)}"
+        )
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"{type(self).__name__} is read-only (use to_dict() for a copy)")
+
+    def __getitem__(self, key: str) -> Any:
+        return self._data[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._data)
+
+    def __len__(self) -> int:
+        return len(self._data)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The record as plain dicts and lists (what the command line prints)."""
+        return {k: _plain(v) for k, v in self._data.items()}
+
+    def __repr__(self) -> str:
+        fields = ", ".join(f"{k}={v!r}" for k, v in self._data.items())
+        return f"{type(self).__name__}({fields})"
+
+    def __reduce__(self) -> Any:
+        return (type(self), (self.to_dict(),))
+
+
+class CollisionPuck(Record):
     """One puck's part in a collision: its own velocity-change event."""
+
+    __slots__ = ()
 
     name: str
     t: float
@@ -46,21 +124,23 @@ class CollisionPuck(TypedDict):
     """β = v/c before, (x, y)."""
     beta_after: List[float]
     """β = v/c after, (x, y)."""
-    mass_before: NotRequired[float]
+    mass_before: Optional[float]
     """Rest mass before, kg: only when an inelastic collision changed it."""
-    mass_after: NotRequired[float]
+    mass_after: Optional[float]
     """Rest mass after, kg: only when an inelastic collision changed it."""
     orientation: float
     """Rest-frame orientation after the change, rad counter-clockwise from +x (accumulated Thomas–Wigner rotation)."""
-    pending: NotRequired[bool]
+    pending: Optional[bool]
     """Present and True when this puck's velocity change was still ahead (the second kick of a contact)."""
 
 
-class Collision(TypedDict):
+class Collision(Record):
     """A collision: `kind` is "puck_puck" or "cushion"."""
 
+    __slots__ = ()
+
     kind: str
-    cushion: NotRequired[str]
+    cushion: Optional[str]
     """Cushion hits only: "x0", "x1", "y0" or "y1"."""
     t: float
     """Board time of the contact, s."""
@@ -69,8 +149,10 @@ class Collision(TypedDict):
     pucks: List[CollisionPuck]
 
 
-class PuckState(TypedDict):
+class PuckState(Record):
     """A puck at one board time."""
+
+    __slots__ = ()
 
     name: str
     position: List[float]
@@ -85,23 +167,29 @@ class PuckState(TypedDict):
     """Rest-frame orientation, rad counter-clockwise from +x (accumulated Thomas–Wigner rotation; 0 at t = 0)."""
 
 
-class State(TypedDict):
+class State(Record):
     """Every puck at board time `t` (s); `kind` is "state"."""
+
+    __slots__ = ()
 
     kind: str
     t: float
     pucks: List[PuckState]
 
 
-class Emission(TypedDict):
+class Emission(Record):
     """The event whose light is seen: board time t (s), position (x, y, z) m."""
+
+    __slots__ = ()
 
     t: float
     position: List[float]
 
 
-class ObserverState(TypedDict):
+class ObserverState(Record):
     """The observer at the observation."""
+
+    __slots__ = ()
 
     name: str
     position: List[float]
@@ -112,8 +200,10 @@ class ObserverState(TypedDict):
     """The observer's clock, s."""
 
 
-class SeenPoint(TypedDict):
+class SeenPoint(Record):
     """A point as seen: where its light left, from which direction it arrives."""
+
+    __slots__ = ()
 
     emission: Emission
     direction: List[float]
@@ -129,18 +219,49 @@ class SeenPoint(TypedDict):
 class SeenPuck(SeenPoint):
     """A puck as seen: its centre's light (the SeenPoint keys) and its clock."""
 
+    __slots__ = ()
+
     name: str
     seen_proper_time: float
     """The proper time its clock shows in the picture, s."""
     orientation: float
     """Its rest-frame orientation in the picture, rad counter-clockwise from +x (Thomas–Wigner rotation)."""
-    vertices: NotRequired[List[SeenPoint]]
+    vertices: Optional[List[SeenPoint]]
     """Every mesh vertex, with `vertices=True`."""
 
 
-class Observation(TypedDict):
+class Observation(Record):
     """What an observer sees at board time `t` (s)."""
+
+    __slots__ = ()
 
     t: float
     observer: ObserverState
     pucks: List[SeenPuck]
+
+
+# Nested records, set once every class exists.
+Collision._children = {"pucks": CollisionPuck}
+State._children = {"pucks": PuckState}
+SeenPoint._children = {"emission": Emission}
+SeenPuck._children = {"emission": Emission, "vertices": SeenPoint}
+Observation._children = {"observer": ObserverState, "pucks": SeenPuck}
+
+
+class BoardEvent(TypedDict):
+    """An event on the board: board time t (s), position (x, y) m."""
+
+    t: float
+    position: List[float]
+
+
+class Simultaneity(TypedDict):
+    """A puck frame's line of simultaneity (what the space-time diagram
+    draws): the board events its rest frame calls simultaneous with `event`
+    are those with t = event.t + slope · (position − event.position)."""
+
+    puck: str
+    event: BoardEvent
+    """The puck's centre at the board time asked for."""
+    slope: List[float]
+    """(dt/dx, dt/dy), s/m: the puck's velocity / c²."""
