@@ -21,7 +21,7 @@ kilograms; velocities as β = v/c or as proper velocity u = γβ
 """
 
 from collections.abc import Mapping
-from typing import Any, ClassVar, Dict, Iterator, List, Optional
+from typing import Any, ClassVar, Dict, Iterator, List, Optional, TypedDict
 
 __all__ = [
     "Record",
