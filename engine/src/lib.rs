@@ -4,21 +4,32 @@
 //! and no GPU. The world is a set of **worldlines** in the board's rest
 //! frame; everything else is a view of them:
 //!
+//! * [`camera`]: the one camera model (pinhole, fitted framing);
 //! * [`spacetime`]: events, 4-vectors, proper velocities, boosts;
 //! * [`worldline`]: each body's history as analytic segments, and its
 //!   contracted shape at any board time;
 //! * [`scene`]: scene files, validated with located error messages;
-//! * [`world`]: the bevy_ecs world and schedule built from a scene, where
-//!   each effect runs only when the scene asks for it.
+//! * [`physics`]: the event-anticipation billiard that extends worldlines;
+//! * [`optics`]: pure kernels for what an observer sees (emission solve,
+//!   aberration, Doppler, searchlight);
+//! * [`ecs`]: the bevy_ecs world and frame schedule built from a scene:
+//!   views (observer + effect set + camera) as entities, each effect's
+//!   system running only for the views that have it.
 //!
 //! Units: SI metres and seconds on the board; `c` is a scene parameter;
 //! velocities are proper velocities `u = γβ` (dimensionless).
 
-pub mod kinematics;
+pub mod camera;
+pub mod ecs;
 pub mod optics;
 pub mod physics;
 pub mod report;
 pub mod scene;
 pub mod spacetime;
-pub mod world;
+
+/// The former name of [`ecs`], kept for the front ends until they move.
+pub mod world {
+    pub use crate::ecs::Simulation;
+    pub use crate::worldline::mesh::PUCK_SEGMENTS;
+}
 pub mod worldline;

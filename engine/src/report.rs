@@ -278,3 +278,73 @@ impl ObserveReport {
         }
     }
 }
+
+impl SeenPoint {
+    /// Point `i` of a body as a view of the frame schedule saw it.
+    pub fn of_apparent(body: &crate::ecs::ApparentBody, i: usize) -> Self {
+        let e = body.emissions[i];
+        let s = body.seen[i];
+        Self {
+            emission: EmissionLine {
+                t: e.event.t,
+                position: xyz(e.event.position),
+            },
+            direction: xyz(s.direction),
+            distance: s.distance,
+            doppler: s.doppler,
+            intensity: body.intensity[i],
+        }
+    }
+}
+
+impl ObserveReport {
+    /// The report of what `view` of `sim` saw at its last frame (pucks
+    /// only; the fixtures are not listed), with every vertex if
+    /// `with_vertices`. `None` if `view` is not a view or saw nothing.
+    pub fn of_view(
+        sim: &crate::ecs::Simulation,
+        view: bevy_ecs::entity::Entity,
+        with_vertices: bool,
+    ) -> Option<Self> {
+        use crate::ecs::BodyRef;
+        let apparent = sim.apparent(view)?;
+        let eye = apparent.eye?;
+        let observer = sim.observer_of(view)?;
+        let worldline = sim.observer_worldline(observer)?;
+        let name = sim
+            .world
+            .get::<crate::ecs::components::BodyName>(observer)?;
+        let billiard = sim.physics();
+        Some(Self {
+            t: eye.event.t,
+            observer: ObserverLine {
+                name: name.0.clone(),
+                position: xyz(eye.event.position),
+                beta: xyz(eye.u.beta()),
+                proper_time: worldline.proper_time_at(eye.event.t),
+            },
+            pucks: apparent
+                .bodies
+                .iter()
+                .filter_map(|b| match b.body {
+                    BodyRef::Puck(i) => Some((i, b)),
+                    BodyRef::Fixture(_) => None,
+                })
+                .map(|(i, b)| SeenPuck {
+                    name: billiard.name(i).to_owned(),
+                    centre: SeenPoint::of_apparent(b, b.centre()),
+                    seen_proper_time: b.seen_proper_time,
+                    orientation: billiard
+                        .worldline(i)
+                        .state_at(b.emissions[b.centre()].event.t)
+                        .orientation,
+                    vertices: with_vertices.then(|| {
+                        (0..b.vertex_count())
+                            .map(|k| SeenPoint::of_apparent(b, k))
+                            .collect()
+                    }),
+                })
+                .collect(),
+        })
+    }
+}

@@ -272,8 +272,8 @@ fn head_on_at_any_proper_velocity_is_one_contact() {
         // Elastic, and the board is the CM frame: each keeps its speed and
         // turns back (the small offset tilts the normal a little).
         let after = (
-            b.worldline(0).velocity_at(2.9),
-            b.worldline(1).velocity_at(2.9),
+            b.worldline(0).proper_velocity_at(2.9),
+            b.worldline(1).proper_velocity_at(2.9),
         );
         let before = u(speed, across).0.length();
         for (w, sign) in [(after.0, -1.0), (after.1, 1.0)] {
@@ -321,8 +321,8 @@ fn inelastic_hit_stays_within_the_overlap_bound() {
     assert!(bound < 0.007, "{bound}"); // the light-travel convention left 14 mm
     // Moving together at the CM velocity, within the bound, never deeper.
     let (ua, ub) = (
-        b.worldline(0).velocity_at(2.0),
-        b.worldline(1).velocity_at(2.0),
+        b.worldline(0).proper_velocity_at(2.0),
+        b.worldline(1).proper_velocity_at(2.0),
     );
     assert!((ua.0 - ub.0).length() < 1e-12, "{ua:?} {ub:?}");
     let worst = check_invariants(&b, 2.0, 400);
@@ -384,10 +384,10 @@ fn newtons_cradle_passes_the_stroke_to_the_last_puck() {
     b.advance_to(until);
     assert_eq!(pair_contacts(&b), 5, "{:?}", b.collisions());
     for i in 0..5 {
-        let ui = b.worldline(i).velocity_at(until);
+        let ui = b.worldline(i).proper_velocity_at(until);
         assert!(ui.0.length() < 1e-12, "{}: {ui:?}", b.name(i));
     }
-    let last = b.worldline(5).velocity_at(until);
+    let last = b.worldline(5).proper_velocity_at(until);
     assert!((last.0 - u0.0).length() < 1e-12, "{last:?}");
     check_invariants(&b, until, 400);
 }

@@ -304,7 +304,7 @@ fn three_pucks_in_simultaneous_contact() {
     assert_eq!(b.stats().overlapping_kicks, 0);
     let total = |t: f64| {
         (0..3).fold(FourMomentum::default(), |s, i| {
-            s + FourMomentum::of_body(b.mass(i), b.worldline(i).velocity_at(t))
+            s + FourMomentum::of_body(b.mass(i), b.worldline(i).proper_velocity_at(t))
         })
     };
     let (p0, p1) = (total(0.0), total(1.5));
@@ -318,8 +318,8 @@ fn three_pucks_in_simultaneous_contact() {
     );
     // B is pushed up and C down: they fly apart.
     let (ub, uc) = (
-        b.worldline(1).velocity_at(1.5).0,
-        b.worldline(2).velocity_at(1.5).0,
+        b.worldline(1).proper_velocity_at(1.5).0,
+        b.worldline(2).proper_velocity_at(1.5).0,
     );
     assert!(ub.y > 0.0 && uc.y < 0.0, "{ub} {uc}");
     assert!(b.mass(0) == 0.21 && b.mass(1) == 0.21 && b.mass(2) == 0.21);
@@ -342,7 +342,7 @@ fn corner_hit_reverses_both_components() {
         .filter(|c| (c.t - t).abs() < 1e-9)
         .collect();
     assert_eq!(hits.len(), 2, "{:?}", b.collisions());
-    let after = b.worldline(0).velocity_at(1.2).0;
+    let after = b.worldline(0).proper_velocity_at(1.2).0;
     assert!((after + u.0).length() < 1e-15, "{after}");
     let p = b.worldline(0).position_at(1.2);
     assert!(p.x < TABLE.x && p.y < TABLE.y);
@@ -380,8 +380,8 @@ fn near_zero_relative_speed_does_not_loop() {
     b.advance_to(10.0);
     assert_eq!(b.stats().pair_contacts, 1);
     let (ua, ub) = (
-        b.worldline(0).velocity_at(10.0).0,
-        b.worldline(1).velocity_at(10.0).0,
+        b.worldline(0).proper_velocity_at(10.0).0,
+        b.worldline(1).proper_velocity_at(10.0).0,
     );
     // Exchanged, to the absolute precision of a proper velocity near rest
     // (a few ε, since the CM boost works at γ ≈ 1).
@@ -427,7 +427,7 @@ fn impulses_add_momentum_and_never_reach_c() {
         vec![puck("p", 1.4, 0.7, ProperVelocity::ZERO)],
     );
     b.apply_impulse(0, 0.5, DVec3::new(1e12, 0.0, 0.0)).unwrap();
-    let u = b.worldline(0).velocity_at(0.6);
+    let u = b.worldline(0).proper_velocity_at(0.6);
     assert!(u.speed_deficit() > 0.0);
     assert_eq!(u.0.x, 1e12);
     // It reaches the cushion after (1.42 − R/γ) / v and comes back.

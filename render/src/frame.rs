@@ -2,9 +2,16 @@
 //! the apparent positions the optics computed, in the observer's frame and
 //! relative to the eye (so f32 is enough), with Doppler factor and
 //! intensity per vertex.
+//!
+//! [`build_view`] draws a view of the frame schedule (its `Apparent`, the
+//! one optics output): `lightcone render`, `observe` and the tests go
+//! through it. [`build`] still computes the optics itself for the window,
+//! the CAVE walls and the Python wheel's `render`, until they run the
+//! schedule too (issue 12).
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Mat4, Vec3};
+use lightcone_engine::ecs::{Apparent, BodyRef, Entity, Framing, Simulation};
 use lightcone_engine::optics::view::{self, Method};
 use lightcone_engine::optics::{Emission, Eye, Seen, mesh};
 use lightcone_engine::physics::Billiard;
@@ -56,6 +63,15 @@ pub struct Camera {
     pub forward: DVec3,
     /// Vertical field of view, radians.
     pub fovy: f64,
+}
+
+impl From<lightcone_engine::camera::Camera> for Camera {
+    fn from(c: lightcone_engine::camera::Camera) -> Self {
+        Self {
+            forward: c.forward,
+            fovy: c.fovy,
+        }
+    }
 }
 
 impl Camera {
@@ -241,6 +257,153 @@ pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
         fovy: std::f64::consts::FRAC_PI_3,
     };
     (eye, camera)
+}
+
+/// The triangles and colours of every body a view of a
+/// [`Simulation`] lists in its [`Apparent`], built once per simulation
+/// (meshes do not change).
+pub struct ViewMeshes {
+    pucks: Vec<BodyMesh>,
+    fixtures: Vec<BodyMesh>,
+}
+
+/// One body's triangles, each with its colour.
+#[derive(Default)]
+struct BodyMesh {
+    triangles: Vec<[u32; 3]>,
+    colours: Vec<[f32; 3]>,
+}
+
+impl ViewMeshes {
+    /// The meshes of every puck and fixture of `sim`: pucks in their scene
+    /// colour with the dark stripe, the cloth and the cushions in theirs
+    /// (the framing marks have no triangles).
+    pub fn new(sim: &mut Simulation) -> Self {
+        let mut pucks = Vec::new();
+        let mut fixtures = Vec::new();
+        for (body, mesh, tint) in sim.body_meshes() {
+            let shape = &mesh.shape;
+            let colours = match tint {
+                Some(t) => {
+                    let base = linear(t);
+                    let dark = [base[0] * 0.15, base[1] * 0.15, base[2] * 0.15];
+                    shape
+                        .triangles
+                        .iter()
+                        .map(|&t| if marked(shape, t) { dark } else { base })
+                        .collect()
+                }
+                None => {
+                    let colour = if shape.vertices.iter().all(|v| v.z <= 1e-9) {
+                        CLOTH
+                    } else {
+                        CUSHION
+                    };
+                    vec![colour; shape.triangles.len()]
+                }
+            };
+            let (list, i) = match body {
+                BodyRef::Puck(i) => (&mut pucks, i),
+                BodyRef::Fixture(i) => (&mut fixtures, i),
+            };
+            if list.len() <= i {
+                list.resize_with(i + 1, BodyMesh::default);
+            }
+            list[i] = BodyMesh {
+                triangles: shape.triangles.clone(),
+                colours,
+            };
+        }
+        Self { pucks, fixtures }
+    }
+
+    fn of(&self, body: BodyRef) -> Option<&BodyMesh> {
+        match body {
+            BodyRef::Puck(i) => self.pucks.get(i),
+            BodyRef::Fixture(i) => self.fixtures.get(i),
+        }
+    }
+}
+
+/// One triangle corner of a view, in f64: apparent position (observer's
+/// frame with aberration, relative to the eye), Doppler factor, intensity,
+/// base colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ApparentCorner {
+    /// Apparent position, m.
+    pub position: DVec3,
+    /// Doppler factor (1: no shift).
+    pub doppler: f64,
+    /// Brightness factor (1: unchanged).
+    pub intensity: f64,
+    /// Base colour, linear RGB.
+    pub colour: [f32; 3],
+}
+
+/// Every triangle corner of what a view saw (its [`Apparent`], the frame
+/// schedule's output): the frame path of the window and of headless
+/// rendering, before the copy to f32.
+pub fn view_corners(apparent: &Apparent, meshes: &ViewMeshes) -> Vec<ApparentCorner> {
+    let mut out = Vec::new();
+    for body in &apparent.bodies {
+        let Some(mesh) = meshes.of(body.body) else {
+            continue;
+        };
+        for (tri, &colour) in mesh.triangles.iter().zip(&mesh.colours) {
+            for &i in tri {
+                let i = i as usize;
+                let (Some(s), Some(&intensity)) = (body.seen.get(i), body.intensity.get(i)) else {
+                    continue;
+                };
+                out.push(ApparentCorner {
+                    position: s.position,
+                    doppler: s.doppler,
+                    intensity,
+                    colour,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The triangle list of what a view saw, as the GPU takes it.
+pub fn build_view(apparent: &Apparent, meshes: &ViewMeshes, out: &mut Vec<FrameVertex>) {
+    out.clear();
+    out.extend(
+        view_corners(apparent, meshes)
+            .into_iter()
+            .map(|c| FrameVertex {
+                position: c.position.as_vec3().to_array(),
+                colour: c.colour,
+                doppler: c.doppler as f32,
+                intensity: c.intensity as f32,
+            }),
+    );
+}
+
+/// A simulation of `scene` at board time `t` with one view of observer
+/// `index`: the scene's effects for [`ViewKind::Seen`], the truth's for
+/// [`ViewKind::Truth`], its camera looking at the observer's `look_at`
+/// with a 60° field (as `lightcone render` has always framed it).
+pub fn scene_view(scene: &Scene, index: usize, t: f64, kind: ViewKind) -> (Simulation, Entity) {
+    let mut sim = Simulation::new(scene);
+    let o = &scene.observers[index];
+    let view = sim.views()[index];
+    let effects = kind.effects(scene.effects);
+    for e in lightcone_engine::scene::Effect::ALL {
+        sim.set_view_effect(view, e, effects.is_on(e));
+    }
+    sim.set_framing(
+        view,
+        Framing::Look {
+            forward: o.look_at - o.position,
+            fovy: std::f64::consts::FRAC_PI_3,
+            zoom: 1.0,
+        },
+    );
+    sim.advance_to(t);
+    (sim, view)
 }
 
 #[cfg(test)]

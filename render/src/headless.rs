@@ -6,6 +6,7 @@ use std::path::Path;
 use super::frame::{self, Camera, FrameVertex, SceneMeshes, ViewKind};
 use super::gpu::Gpu;
 use super::pipeline::Renderer;
+use lightcone_engine::ecs::{Entity, Simulation};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::Scene;
 
@@ -261,9 +262,26 @@ pub fn render_scene(
     width: u32,
     height: u32,
 ) -> Result<Image, String> {
-    let mut billiard = Billiard::from_scene(scene);
-    billiard.advance_to(t);
-    render_billiard(gpu, scene, &billiard, t, observer, kind, width, height)
+    let (mut sim, view) = frame::scene_view(scene, observer, t, kind);
+    render_view(gpu, &mut sim, view, width, height)
+}
+
+/// Renders what `view` of `sim` saw at its last frame (its `Apparent`,
+/// drawn with its camera), headless.
+pub fn render_view(
+    gpu: &Gpu,
+    sim: &mut Simulation,
+    view: Entity,
+    width: u32,
+    height: u32,
+) -> Result<Image, String> {
+    let meshes = frame::ViewMeshes::new(sim);
+    let (Some(apparent), Some(camera)) = (sim.apparent(view), sim.camera(view)) else {
+        return Err("no such view".into());
+    };
+    let mut vertices = Vec::new();
+    frame::build_view(apparent, &meshes, &mut vertices);
+    draw(gpu, &vertices, &camera.into(), width, height)
 }
 
 /// Renders what observer `observer` sees at board time `t` of a billiard

@@ -66,28 +66,41 @@ impl Eye {
     /// with `emitter`. `aberration` off keeps board-frame directions and
     /// distances (as if the eye were at rest).
     pub fn see(&self, emission: Event, emitter: ProperVelocity, c: f64, aberration: bool) -> Seen {
+        let placed = if aberration {
+            self.place_in_own_frame(&self.frame(), emission, c)
+        } else {
+            self.place_on_board(emission)
+        };
         Seen {
             doppler: self.doppler_of(emission, emitter),
-            ..self.place(&self.frame(), emission, c, aberration)
+            ..placed
         }
     }
 
     /// The boost into this eye's rest frame (compute once per frame, pass to
-    /// [`Self::see_in`] for every vertex).
+    /// [`Self::place_in_own_frame`] for every vertex).
     pub fn frame(&self) -> Boost {
         Boost::into_frame(self.u)
     }
 
-    /// Where the light from `emission` appears ([`Self::see`] without the
-    /// Doppler factor, which is left at 1), with the eye's frame precomputed.
-    pub fn place(&self, frame: &Boost, emission: Event, c: f64, aberration: bool) -> Seen {
+    /// Where the light from `emission` appears with aberration: the
+    /// past-directed null vector to the emission boosted into this eye's
+    /// rest frame (`frame`, from [`Self::frame`]; compute it once per
+    /// frame). Doppler factor left at 1.
+    pub fn place_in_own_frame(&self, frame: &Boost, emission: Event, c: f64) -> Seen {
         let to_source = emission.position - self.event.position;
-        let position = if aberration {
-            let ray = FourVector::new(c * (emission.t - self.event.t), to_source);
-            frame.apply(ray).space
-        } else {
-            to_source
-        };
+        let ray = FourVector::new(c * (emission.t - self.event.t), to_source);
+        Self::seen_at(frame.apply(ray).space)
+    }
+
+    /// Where the light from `emission` appears without aberration: the
+    /// board-frame offset from the eye (as if the eye were at rest).
+    /// Doppler factor left at 1.
+    pub fn place_on_board(&self, emission: Event) -> Seen {
+        Self::seen_at(emission.position - self.event.position)
+    }
+
+    fn seen_at(position: DVec3) -> Seen {
         let distance = position.length();
         let direction = if distance > 0.0 {
             position / distance

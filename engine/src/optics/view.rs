@@ -1,8 +1,13 @@
-//! Everything an observer sees at one event: every puck's vertices (and its
-//! centre at mid-height) with emission event, apparent position, Doppler
-//! factor and searchlight intensity, and the clocks. The stages are plain
-//! functions so that the frame schedule can run each effect as its own
-//! system under a run condition; [`observe`] runs them all in order.
+//! The optics kernels, one per effect and one for its absence, with no
+//! effect flags: light delay ([`light_delayed`], [`light_delayed_sampled`])
+//! or board simultaneity ([`simultaneous`]); aberration ([`aberrated`]) or
+//! board directions ([`on_board`]); [`doppler`]; [`searchlight_intensity`].
+//! The frame schedule (`crate::ecs`) runs each as its own system for the
+//! views that have the effect.
+//!
+//! [`observe`] composes them for one eye and one effect set, as the
+//! commands that predate the schedule use it (to be replaced by the
+//! schedule's per-view output, issue 12).
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -12,7 +17,7 @@ use super::eye::{Eye, Seen, searchlight};
 use super::history::{SampledHistory, Search};
 use crate::physics::Billiard;
 use crate::scene::Effects;
-use crate::worldline::RestShape;
+use crate::worldline::{RestShape, Worldline};
 
 /// How emission events are found.
 #[derive(Clone, Copy, Debug)]
@@ -57,8 +62,99 @@ pub struct View {
     pub bodies: Vec<BodyView>,
 }
 
-/// Finds the emission events of `offsets` on puck `puck` (light delay on),
-/// or their board-simultaneous positions (off).
+/// Light delay (kernel): the emission events of the points at rest-frame
+/// `offsets` on a body moving along `worldline`, for light reaching the
+/// `eye`, exactly on the worldline. `contracted`: the body's shape is
+/// Lorentz-contracted along its motion (its rest shape otherwise).
+pub fn light_delayed(
+    worldline: &Worldline,
+    offsets: &[DVec3],
+    contracted: bool,
+    eye: &Eye,
+    out: &mut Vec<Emission>,
+) {
+    out.clear();
+    emission::solve_body(worldline, offsets, DVec3::ZERO, contracted, eye.event, out);
+}
+
+/// Light delay (kernel) by the paper's method: emission events of `offsets`
+/// on puck `puck` searched in the sampled `history` (the exact solve on
+/// `worldline` where the history has no sample yet).
+#[allow(clippy::too_many_arguments)]
+pub fn light_delayed_sampled(
+    history: &SampledHistory,
+    search: Search,
+    puck: usize,
+    worldline: &Worldline,
+    offsets: &[DVec3],
+    contracted: bool,
+    eye: &Eye,
+    out: &mut Vec<Emission>,
+) {
+    out.clear();
+    let c = worldline.speed_of_light();
+    out.extend(offsets.iter().map(|&r| {
+        history
+            .solve(puck, r, contracted, eye.event, c, search)
+            .unwrap_or_else(|| emission::solve(worldline, r, contracted, eye.event))
+    }));
+}
+
+/// Without light delay (kernel): every point where it is at the eye's
+/// board time (board-simultaneous, the "truth").
+pub fn simultaneous(
+    worldline: &Worldline,
+    offsets: &[DVec3],
+    contracted: bool,
+    eye: &Eye,
+    out: &mut Vec<Emission>,
+) {
+    out.clear();
+    out.extend(
+        offsets
+            .iter()
+            .map(|&r| emission::simultaneous(worldline, r, contracted, eye.event.t)),
+    );
+}
+
+/// Aberration (kernel): apparent positions of `emissions` in the eye's
+/// rest frame, relative to the eye. Doppler factors left at 1.
+pub fn aberrated(eye: &Eye, c: f64, emissions: &[Emission], out: &mut Vec<Seen>) {
+    out.clear();
+    let frame = eye.frame();
+    out.extend(
+        emissions
+            .iter()
+            .map(|e| eye.place_in_own_frame(&frame, e.event, c)),
+    );
+}
+
+/// Without aberration (kernel): board-frame offsets of `emissions` from
+/// the eye. Doppler factors left at 1.
+pub fn on_board(eye: &Eye, emissions: &[Emission], out: &mut Vec<Seen>) {
+    out.clear();
+    out.extend(emissions.iter().map(|e| eye.place_on_board(e.event)));
+}
+
+/// Doppler (kernel): the factor of each emission, into `seen` (same order).
+pub fn doppler(eye: &Eye, emissions: &[Emission], seen: &mut [Seen]) {
+    for (s, e) in seen.iter_mut().zip(emissions) {
+        s.doppler = eye.doppler_of(e.event, e.u);
+    }
+}
+
+/// Searchlight (kernel): the intensity factor `D⁴` of each emission.
+pub fn searchlight_intensity(eye: &Eye, emissions: &[Emission], out: &mut Vec<f64>) {
+    out.clear();
+    out.extend(
+        emissions
+            .iter()
+            .map(|e| searchlight(eye.doppler_of(e.event, e.u))),
+    );
+}
+
+/// Emission events with the effects of `effects` (for [`observe`] and the
+/// front ends that predate the schedule; they move to it in issue 12).
 pub fn emissions(
     billiard: &Billiard,
     puck: usize,
@@ -68,44 +164,24 @@ pub fn emissions(
     method: Method,
     out: &mut Vec<Emission>,
 ) {
-    out.clear();
     let w = billiard.worldline(puck);
     let contracted = effects.contraction;
-    if !effects.light_delay {
-        out.extend(
-            offsets
-                .iter()
-                .map(|&r| emission::simultaneous(w, r, contracted, eye.event.t)),
-        );
-        return;
-    }
-    match method {
-        Method::Exact => emission::solve_body(w, offsets, DVec3::ZERO, contracted, eye.event, out),
-        Method::Sampled(history, search) => out.extend(offsets.iter().map(|&r| {
-            history
-                .solve(puck, r, contracted, eye.event, billiard.c(), search)
-                .unwrap_or_else(|| emission::solve(w, r, contracted, eye.event))
-        })),
+    match (effects.light_delay, method) {
+        (false, _) => simultaneous(w, offsets, contracted, eye, out),
+        (true, Method::Exact) => light_delayed(w, offsets, contracted, eye, out),
+        (true, Method::Sampled(history, search)) => {
+            light_delayed_sampled(history, search, puck, w, offsets, contracted, eye, out)
+        }
     }
 }
 
-/// Apparent positions of emissions, in the observer's frame with
-/// aberration on, in the board frame with it off. Doppler factors are left
-/// at 1 (see [`doppler`]).
+/// Apparent positions with or without aberration (for [`observe`] and the
+/// front ends that predate the schedule).
 pub fn seen(eye: &Eye, c: f64, effects: &Effects, emissions: &[Emission], out: &mut Vec<Seen>) {
-    out.clear();
-    let frame = eye.frame();
-    out.extend(
-        emissions
-            .iter()
-            .map(|e| eye.place(&frame, e.event, c, effects.aberration)),
-    );
-}
-
-/// Doppler factors of emissions, into `seen` (same order).
-pub fn doppler(eye: &Eye, emissions: &[Emission], seen: &mut [Seen]) {
-    for (s, e) in seen.iter_mut().zip(emissions) {
-        s.doppler = eye.doppler_of(e.event, e.u);
+    if effects.aberration {
+        aberrated(eye, c, emissions, out);
+    } else {
+        on_board(eye, emissions, out);
     }
 }
 

@@ -30,7 +30,6 @@ pub mod gas;
 pub mod overlap;
 pub mod predict;
 pub mod resolve;
-pub mod systems;
 
 pub use billiard::{Billiard, Collision, CollisionKind, PuckInit, PuckOutcome, Stats};
 pub use predict::Cushion;

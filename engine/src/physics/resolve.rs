@@ -49,8 +49,9 @@ fn kinetic(mass: f64, u: ProperVelocity) -> f64 {
 /// The momentum magnitude² `q` at which two bodies of masses `m1`, `m2` with
 /// momenta ±p have kinetic energy `k`: solves
 /// `Σ q / (√(mᵢ² + q) + mᵢ) = k`, a form that keeps its digits when `k` is
-/// tiny. The left side is increasing and concave in `q`; bisection then
-/// Newton from `[0, hi]`.
+/// tiny. The left side is increasing in `q`, so bisection on `[0, hi]`
+/// until the bracket stops shrinking (at most 200 halvings) finds it to
+/// the last bit; `hi` itself if even `hi` has too little energy.
 fn momentum_sq_for_kinetic(m1: f64, m2: f64, k: f64, hi: f64) -> f64 {
     let f = |q: f64| q / ((m1 * m1 + q).sqrt() + m1) + q / ((m2 * m2 + q).sqrt() + m2) - k;
     let (mut lo, mut hi) = (0.0f64, hi.max(0.0));

@@ -2,8 +2,8 @@
 //! name the file, line and field.
 //!
 //! See the README section "Scene files" for the format. A scene is read in
-//! two steps: [`raw`] mirrors the file with the position of every value,
-//! then [`validate`] checks the physics (speed below `c`, pucks on the table
+//! two steps: the private `raw` module mirrors the file with the position of every value,
+//! then `validate` checks the physics (speed below `c`, pucks on the table
 //! and apart, finite numbers) and builds the engine's [`Scene`].
 
 mod error;

@@ -152,7 +152,7 @@ pub struct ObserverSpec {
 }
 
 /// The `[optics]` table: how the light-delay view finds emission events.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, bevy_ecs::resource::Resource)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct OpticsSpec {
     /// `false` (default): exactly, on the worldlines. `true`: the paper's
     /// sampled history, recorded every frame and searched by dichotomy.
@@ -281,11 +281,9 @@ impl Effect {
     }
 }
 
-/// The `[effects]` flags; also the world's resource that gates each
-/// effect's systems.
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, bevy_ecs::resource::Resource,
-)]
+/// The `[effects]` flags: a scene's effect set (in the ECS each view
+/// carries it as one marker component per effect, see `crate::ecs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Effects {
     /// See [`Effect::Contraction`]. Default on.
     pub contraction: bool,

@@ -156,7 +156,7 @@ pub struct BodyState {
 ///   instead has the body rest at its start until then (struck at the
 ///   start).
 /// * **At a kink** the later segment applies (right-continuous velocity).
-#[derive(Clone, Debug, PartialEq, bevy_ecs::component::Component)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Worldline {
     segments: Vec<Segment>,
     c: f64,
@@ -205,9 +205,17 @@ impl Worldline {
         self.segment_at(t).position_at(t)
     }
 
-    /// Proper velocity at board time `t`.
-    pub fn velocity_at(&self, t: f64) -> ProperVelocity {
+    /// Proper velocity `u = γβ` (dimensionless, board frame) at board time
+    /// `t` (the later segment's at a kink).
+    pub fn proper_velocity_at(&self, t: f64) -> ProperVelocity {
         self.segment_at(t).u
+    }
+
+    /// Former name of [`Self::proper_velocity_at`] (kept until the game's
+    /// callers move; it returns a proper velocity, not `dx/dt`).
+    #[doc(hidden)]
+    pub fn velocity_at(&self, t: f64) -> ProperVelocity {
+        self.proper_velocity_at(t)
     }
 
     /// Proper time at board time `t`, s.
@@ -353,7 +361,7 @@ mod tests {
         assert_eq!(s.u, ProperVelocity::ZERO);
         assert!((s.proper_time + 1.0).abs() < 1e-14);
         // From the start on, the motion: at the start itself and after.
-        assert!(w.velocity_at(0.0).0.x > 0.7);
+        assert!(w.proper_velocity_at(0.0).0.x > 0.7);
         assert!((w.state_at(2.0).position.x - 3.4).abs() < 1e-14);
         assert!((w.proper_time_at(2.0) - 1.6).abs() < 1e-14);
         // A kink at the start replaces the motion, not the rest.
@@ -375,7 +383,7 @@ mod tests {
         let p = w.position_at(4.0);
         assert!((p.y - (0.5 + 2f64.sqrt())).abs() < 1e-14);
         // Right-continuous velocity at a kink.
-        assert_eq!(w.velocity_at(1.0), ProperVelocity::ZERO);
+        assert_eq!(w.proper_velocity_at(1.0), ProperVelocity::ZERO);
         assert!(w.push(2.0, ProperVelocity::ZERO).is_err());
         assert!(w.push(5.0, ProperVelocity(DVec3::NAN)).is_err());
     }
@@ -386,7 +394,7 @@ mod tests {
         w.push(1.0, ProperVelocity::ZERO).unwrap();
         w.push(1.0, ProperVelocity(DVec3::X)).unwrap();
         assert_eq!(w.segments().len(), 2);
-        assert_eq!(w.velocity_at(1.5), ProperVelocity(DVec3::X));
+        assert_eq!(w.proper_velocity_at(1.5), ProperVelocity(DVec3::X));
     }
 
     #[test]

@@ -1,7 +1,8 @@
-//! Worldlines: the history of each body as analytic segments, and the
-//! body's shape at any board time.
+//! Worldlines: the history of each body as analytic segments, the body's
+//! shape at any board time, and the rest-frame meshes.
 
 mod linear;
+pub mod mesh;
 mod shape;
 pub mod sliding;
 

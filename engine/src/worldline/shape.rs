@@ -25,7 +25,7 @@ pub fn contract(r: DVec3, u: ProperVelocity) -> DVec3 {
 
 /// Geometry of a body in its own rest frame: vertices relative to its
 /// reference point (a puck's centre on the board plane), and triangles.
-#[derive(Clone, Debug, Default, PartialEq, bevy_ecs::component::Component)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct RestShape {
     /// Vertex offsets from the reference point, rest frame, m.
     pub vertices: Vec<DVec3>,
@@ -36,9 +36,9 @@ pub struct RestShape {
 impl RestShape {
     /// A closed cylinder standing on the board: axis z, bottom at z = 0,
     /// top at `height`, `segments` vertices around each rim (≥ 3); built
-    /// with parry ([`crate::optics::mesh::puck`]).
+    /// with parry ([`super::mesh::puck`]).
     pub fn puck(radius: f64, height: f64, segments: u32) -> Self {
-        crate::optics::mesh::puck(radius, height, segments)
+        super::mesh::puck(radius, height, segments)
     }
 
     /// Board-frame vertex positions at board time `t`, with the rest shape

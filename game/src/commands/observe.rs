@@ -4,9 +4,8 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{self, Effect, Effects};
-use lightcone_render::observe::report;
+use lightcone_render::observe::report_at;
 
 /// Parses `--effects`: `scene` (as the scene says), `all`, `none`, or a
 /// comma-separated list of effect keys to turn on (the others off).
@@ -84,9 +83,10 @@ pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) 
             return ExitCode::FAILURE;
         }
     };
-    let mut billiard = Billiard::from_scene(&scene);
-    billiard.advance_to(at);
-    let report = report(&scene, &billiard, index, at, effects, vertices);
+    let Some(report) = report_at(&scene, index, at, effects, vertices) else {
+        crate::errln!("{}: no observer number {index}", path.display());
+        return ExitCode::FAILURE;
+    };
     match serde_json::to_string(&report) {
         Ok(s) => match crate::outln!("{s}") {
             Ok(()) => ExitCode::SUCCESS,

@@ -1,8 +1,8 @@
-//! The physics phase of the frame schedule.
+//! The physics phase.
 
 use bevy_ecs::prelude::*;
 
-use crate::world::{Clock, FrameCollisions, Physics};
+use crate::ecs::resources::{Clock, FrameCollisions, Physics};
 
 /// Extends the worldlines to the clock's board time, resolving every event
 /// on the way, and lists this frame's new collisions. A clock moved

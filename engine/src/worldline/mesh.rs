@@ -5,7 +5,14 @@
 use glam::DVec3;
 use parry3d_f64::shape::{Ball, Cuboid, Cylinder};
 
-use crate::worldline::RestShape;
+use super::RestShape;
+
+/// Vertices around each rim of a puck mesh.
+pub const PUCK_SEGMENTS: u32 = 48;
+/// Height of the cushions above the board, m.
+pub const CUSHION_HEIGHT: f64 = 0.04;
+/// Width of the cushions, m.
+pub const CUSHION_WIDTH: f64 = 0.06;
 
 /// Turns parry's y-up geometry into ours (z up): a rotation by +90° about x,
 /// `(x, y, z) → (x, −z, y)`, which keeps the triangles' winding.

@@ -1,0 +1,40 @@
+//! The phases of a frame and the run conditions that gate effect systems.
+//! Plain data: this module imports no system.
+
+use bevy_ecs::prelude::*;
+
+use super::components::View;
+use super::resources::OpticsMethod;
+
+/// The phases of one frame, in the order they run.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Phase {
+    /// Cue impulses, script commands, tracker samples.
+    Input,
+    /// Advance worldlines to the clock: resolve events, re-predict.
+    Physics,
+    /// Proper time and contracted shapes (the design's
+    /// *relativistic-transform*).
+    Kinematics,
+    /// The sampled per-vertex history, when a scene asks for it (the
+    /// design's *history*).
+    History,
+    /// Per view: emission solve, aberration, Doppler, searchlight (the
+    /// design's *retarded-render*).
+    Optics,
+}
+
+/// Run condition: some view has the effect marker `M`.
+pub fn any_view_with<M: Component>(views: Query<(), (With<View>, With<M>)>) -> bool {
+    !views.is_empty()
+}
+
+/// Run condition: some view lacks the effect marker `M`.
+pub fn any_view_without<M: Component>(views: Query<(), (With<View>, Without<M>)>) -> bool {
+    !views.is_empty()
+}
+
+/// Run condition: the scene asks for the paper's sampled history.
+pub fn sampled_history(method: Option<Res<OpticsMethod>>) -> bool {
+    method.is_some_and(|m| m.0.sampled)
+}

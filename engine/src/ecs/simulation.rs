@@ -1,0 +1,350 @@
+//! One simulation: a world built from a scene and its frame schedule, the
+//! one way to advance the worldlines and to get what each view sees.
+
+use bevy_ecs::prelude::*;
+use glam::{DVec2, DVec3};
+
+use super::components::{
+    Apparent, BoardShape, BodyName, BodyRef, Fixture, FramingMarks, Lens, Mesh, Observer,
+    OwnWorldline, ProperTime, Puck, PuckIndex, Tint, Vantage, View, effects_of, set_effect_marker,
+};
+use super::resources::{
+    Clock, FrameCollisions, History, OpticsMethod, Physics, SpeedOfLight, Table,
+};
+use super::schedule::frame_schedule;
+use super::systems::input;
+use crate::camera::{self, Camera, Framing};
+use crate::optics::SampledHistory;
+use crate::physics::Billiard;
+use crate::scene::{Color, Effect, Effects, Scene};
+use crate::spacetime::{Event, ProperVelocity};
+use crate::worldline::mesh::{self, CUSHION_HEIGHT, CUSHION_WIDTH, PUCK_SEGMENTS};
+use crate::worldline::{RestShape, Worldline, WorldlineError};
+
+/// Why an observer cannot be moved.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum ObserverError {
+    /// The entity is not an observer (or was removed).
+    #[error("no such observer")]
+    NoSuchObserver,
+    /// The kink does not fit the worldline.
+    #[error(transparent)]
+    Worldline(#[from] WorldlineError),
+}
+
+/// One simulation: the ECS world and its frame schedule.
+pub struct Simulation {
+    /// The ECS world (public so front ends can query it).
+    pub world: World,
+    schedule: Schedule,
+    views: Vec<Entity>,
+}
+
+impl Simulation {
+    /// Builds the world for `scene`: one entity per puck, per table part
+    /// (fixtures at rest) and per observer, each observer with a worldline
+    /// starting at board time 0 and one view with the scene's effects and
+    /// camera, named after it. Runs the frame at board time 0.
+    pub fn new(scene: &Scene) -> Self {
+        let mut world = World::new();
+        world.insert_resource(Clock::default());
+        world.insert_resource(SpeedOfLight(scene.c));
+        world.insert_resource(Table(scene.table));
+        world.insert_resource(OpticsMethod(scene.optics));
+        if scene.optics.sampled {
+            world.insert_resource(History(SampledHistory::new(
+                scene.pucks.len(),
+                scene.optics.history_frames,
+            )));
+        }
+        world.insert_resource(Physics(Billiard::from_scene(scene)));
+        world.insert_resource(FrameCollisions::default());
+        for (i, p) in scene.pucks.iter().enumerate() {
+            world.spawn((
+                PuckIndex(i),
+                Puck {
+                    radius: p.radius,
+                    height: p.height,
+                    mass: p.mass,
+                },
+                BodyName(p.name.clone()),
+                Tint(p.color),
+                Mesh::new(
+                    RestShape::puck(p.radius, p.height, PUCK_SEGMENTS),
+                    DVec3::new(0.0, 0.0, p.height / 2.0),
+                ),
+                BoardShape::default(),
+                ProperTime::default(),
+            ));
+        }
+        let at_rest = Worldline::new(Event::new(0.0, DVec3::ZERO), ProperVelocity::ZERO, scene.c);
+        for (n, part) in mesh::table(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH)
+            .into_iter()
+            .enumerate()
+        {
+            let centre = part.vertices.iter().sum::<DVec3>() / part.vertices.len().max(1) as f64;
+            world.spawn((
+                Fixture(n),
+                OwnWorldline(at_rest.clone()),
+                Mesh::new(part, centre),
+            ));
+        }
+        let marks = RestShape {
+            vertices: camera::table_corners(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH),
+            triangles: Vec::new(),
+        };
+        let centre = marks.vertices.iter().sum::<DVec3>() / marks.vertices.len() as f64;
+        let n = world.query::<&Fixture>().iter(&world).count();
+        world.spawn((
+            Fixture(n),
+            FramingMarks,
+            OwnWorldline(at_rest),
+            Mesh::new(marks, centre),
+        ));
+        let mut sim = Self {
+            world,
+            schedule: frame_schedule(),
+            views: Vec::new(),
+        };
+        for o in &scene.observers {
+            let forward = (o.look_at - o.position).normalize_or(DVec3::Y);
+            let observer = sim.add_observer(
+                &o.name,
+                Worldline::new(Event::new(0.0, o.position), o.u, scene.c),
+                forward,
+            );
+            sim.add_view(
+                &o.name,
+                observer,
+                scene.effects,
+                Framing::default(),
+                Vantage::OnWorldline,
+            );
+        }
+        sim.advance_to(0.0);
+        sim
+    }
+
+    /// Sets the board time and runs one frame of the schedule. A time
+    /// before the physics' (a replay) only re-reads the worldlines.
+    pub fn advance_to(&mut self, t: f64) {
+        self.world.resource_mut::<Clock>().t = t;
+        self.schedule.run(&mut self.world);
+    }
+
+    /// Board time of the last frame, s.
+    pub fn time(&self) -> f64 {
+        self.world.resource::<Clock>().t
+    }
+
+    /// Speed of light, m/s.
+    pub fn c(&self) -> f64 {
+        self.world.resource::<SpeedOfLight>().0
+    }
+
+    /// The physics (pucks' worldlines, collisions so far).
+    pub fn physics(&self) -> &Billiard {
+        &self.world.resource::<Physics>().0
+    }
+
+    /// The physics, to apply impulses.
+    pub fn physics_mut(&mut self) -> &mut Billiard {
+        &mut self.world.resource_mut::<Physics>().into_inner().0
+    }
+
+    /// Table size, m.
+    pub fn table_size(&self) -> DVec2 {
+        self.world.resource::<Table>().0.size
+    }
+
+    /// The entity of the body (puck or observer) called `name`.
+    pub fn entity(&mut self, name: &str) -> Option<Entity> {
+        let mut q = self.world.query::<(Entity, &BodyName)>();
+        q.iter(&self.world)
+            .find(|(_, n)| n.0 == name)
+            .map(|(e, _)| e)
+    }
+
+    /// Adds an observer (scene observer, free eye, tracked head) moving
+    /// along `worldline`, looking along `forward` (board frame). It sees
+    /// nothing until a view uses it ([`Self::add_view`]).
+    pub fn add_observer(&mut self, name: &str, worldline: Worldline, forward: DVec3) -> Entity {
+        let tau = worldline.proper_time_at(self.world.resource::<Clock>().t);
+        self.world
+            .spawn((
+                Observer {
+                    forward: forward.normalize_or(DVec3::Y),
+                },
+                BodyName(name.to_owned()),
+                OwnWorldline(worldline),
+                ProperTime(tau),
+            ))
+            .id()
+    }
+
+    /// Adds a view of `observer` with the effect set `effects`, its camera
+    /// aimed by `framing`, and the vantage `vantage`; it sees from the next
+    /// frame.
+    pub fn add_view(
+        &mut self,
+        name: &str,
+        observer: Entity,
+        effects: Effects,
+        framing: Framing,
+        vantage: Vantage,
+    ) -> Entity {
+        let mut view = self.world.spawn((
+            View {
+                observer,
+                name: name.to_owned(),
+            },
+            Lens::new(framing),
+            vantage,
+            Apparent::default(),
+        ));
+        for effect in Effect::ALL {
+            set_effect_marker(&mut view, effect, effects.is_on(effect));
+        }
+        let id = view.id();
+        self.views.push(id);
+        id
+    }
+
+    /// Removes a view.
+    pub fn remove_view(&mut self, view: Entity) {
+        self.views.retain(|v| *v != view);
+        self.world.despawn(view);
+    }
+
+    /// Every view, in the order they were added (the scene's observers
+    /// first).
+    pub fn views(&self) -> &[Entity] {
+        &self.views
+    }
+
+    /// The view called `name`.
+    pub fn view(&self, name: &str) -> Option<Entity> {
+        self.views.iter().copied().find(|&v| {
+            self.world
+                .get::<View>(v)
+                .is_some_and(|view| view.name == name)
+        })
+    }
+
+    /// What `view` saw at the last frame.
+    pub fn apparent(&self, view: Entity) -> Option<&Apparent> {
+        self.world.get::<Apparent>(view)
+    }
+
+    /// The camera of `view` at the last frame.
+    pub fn camera(&self, view: Entity) -> Option<Camera> {
+        self.world.get::<Lens>(view).map(|l| l.camera)
+    }
+
+    /// How `view`'s camera is aimed.
+    pub fn framing(&self, view: Entity) -> Option<Framing> {
+        self.world.get::<Lens>(view).map(|l| l.framing)
+    }
+
+    /// Sets how `view`'s camera is aimed (from the next frame).
+    pub fn set_framing(&mut self, view: Entity, framing: Framing) {
+        if let Some(mut l) = self.world.get_mut::<Lens>(view) {
+            l.framing = framing;
+        }
+    }
+
+    /// The observer entity of `view`.
+    pub fn observer_of(&self, view: Entity) -> Option<Entity> {
+        self.world.get::<View>(view).map(|v| v.observer)
+    }
+
+    /// Sets where `view` puts its eye (on its observer's worldline, or the
+    /// "replay and move" mode).
+    pub fn set_vantage(&mut self, view: Entity, vantage: Vantage) {
+        if let Some(mut v) = self.world.get_mut::<Vantage>(view) {
+            *v = vantage;
+        }
+    }
+
+    /// The effect set of `view` (read off its markers).
+    pub fn view_effects(&self, view: Entity) -> Option<Effects> {
+        self.world.get_entity(view).ok().map(effects_of)
+    }
+
+    /// Turns `effect` on or off for `view`; takes hold at the next frame.
+    pub fn set_view_effect(&mut self, view: Entity, effect: Effect, on: bool) {
+        if let Ok(mut e) = self.world.get_entity_mut(view) {
+            set_effect_marker(&mut e, effect, on);
+        }
+    }
+
+    /// Turns `effect` on or off for every view; takes hold at the next
+    /// frame.
+    pub fn set_effect(&mut self, effect: Effect, on: bool) {
+        for view in self.views.clone() {
+            self.set_view_effect(view, effect, on);
+        }
+    }
+
+    /// Every drawn body's rest-frame mesh, with its colour for a puck
+    /// (`None` for a fixture), in no particular order.
+    pub fn body_meshes(&mut self) -> Vec<(BodyRef, &Mesh, Option<Color>)> {
+        let mut q = self
+            .world
+            .query::<(Option<&PuckIndex>, Option<&Fixture>, &Mesh, Option<&Tint>)>();
+        q.iter(&self.world)
+            .filter_map(|(p, f, m, tint)| {
+                let body = match (p, f) {
+                    (Some(p), _) => BodyRef::Puck(p.0),
+                    (None, Some(f)) => BodyRef::Fixture(f.0),
+                    (None, None) => return None,
+                };
+                Some((body, m, tint.map(|t| t.0)))
+            })
+            .collect()
+    }
+
+    /// The worldline of `observer`.
+    pub fn observer_worldline(&self, observer: Entity) -> Option<&Worldline> {
+        self.world.get::<OwnWorldline>(observer).map(|w| &w.0)
+    }
+
+    fn observer_worldline_mut(
+        &mut self,
+        observer: Entity,
+    ) -> Result<&mut Worldline, ObserverError> {
+        self.world
+            .get_mut::<OwnWorldline>(observer)
+            .map(|w| &mut w.into_inner().0)
+            .ok_or(ObserverError::NoSuchObserver)
+    }
+
+    /// Flight: `observer` moves with proper velocity `u` from board time
+    /// `t` on (a kink on its worldline; see [`input::steer`]).
+    pub fn steer_observer(
+        &mut self,
+        observer: Entity,
+        t: f64,
+        u: ProperVelocity,
+    ) -> Result<(), ObserverError> {
+        Ok(input::steer(self.observer_worldline_mut(observer)?, t, u)?)
+    }
+
+    /// A tracked head: a sample puts `observer` at `target` at board time
+    /// `t`; its worldline follows `lag` seconds behind (see
+    /// [`input::follow`]).
+    pub fn follow_observer(
+        &mut self,
+        observer: Entity,
+        t: f64,
+        target: DVec3,
+        lag: f64,
+    ) -> Result<(), ObserverError> {
+        Ok(input::follow(
+            self.observer_worldline_mut(observer)?,
+            t,
+            target,
+            lag,
+        )?)
+    }
+}
