@@ -1,220 +1,66 @@
 //! Framing: the camera direction and field of view that show a set of
 //! points (the table) inside a viewport, from a given eye.
 //!
-//! The eye itself is the observer (light delay and aberration depend on
-//! where it is), so framing never moves it: it turns the camera and widens
-//! or narrows its field of view. Points are given relative to the eye in the
-//! observer's frame (as [`lightcone_engine::optics::Eye::see_static`]
-//! returns them), so a moving eye's aberration is framed too.
+//! The one camera model is the engine's ([`lightcone_engine::camera`]: the
+//! eye is the observer, framing turns the camera and widens or narrows its
+//! field of view, never moves it). These are its functions with the
+//! renderer's [`Camera`] (which adds the GPU's view-projection matrix), so
+//! the window, headless renders and the schedule's views frame alike.
 
 use glam::DVec3;
+use lightcone_engine::camera as model;
 
 use super::frame::Camera;
 
-/// The narrowest and widest vertical fields of view a framing may use,
-/// radians.
-pub const FOV_RANGE: (f64, f64) = (0.02, 2.8);
+pub use model::{FOV_RANGE, basis, table_corners};
 
-/// The up vector [`Camera::view_proj`] uses for `forward`.
-fn up_for(forward: DVec3) -> DVec3 {
-    if forward.cross(DVec3::Z).length() < 1e-6 {
-        DVec3::Y
-    } else {
-        DVec3::Z
+impl From<Camera> for model::Camera {
+    fn from(c: Camera) -> Self {
+        Self {
+            forward: c.forward,
+            fovy: c.fovy,
+        }
     }
 }
 
-/// The camera's right and up axes for `forward` (unit), as
-/// [`Camera::view_proj`] builds them.
-pub fn basis(forward: DVec3) -> (DVec3, DVec3) {
-    let right = forward.cross(up_for(forward)).normalize();
-    let up = right.cross(forward);
-    (right, up)
-}
-
-/// The camera looking at `points` (relative to the eye) from the eye, so
-/// that they fill a viewport of `aspect` = width / height with `margin`
-/// (a fraction of the half-size, e.g. 0.08) left on each side, then zoomed
-/// by `zoom` (> 1 narrows the view about its centre). Points behind the eye
-/// are ignored; with none in front, looks at their mean direction with
-/// a 60° field.
+/// The camera that shows every point of `points` (relative to the eye)
+/// inside a viewport of `aspect` = width / height with `margin` on each
+/// side, narrowed by `zoom`: [`lightcone_engine::camera::fit`].
 pub fn fit(points: &[DVec3], aspect: f64, margin: f64, zoom: f64) -> Camera {
-    let aspect = if aspect.is_finite() && aspect > 0.0 {
-        aspect
-    } else {
-        1.0
-    };
-    let zoom = if zoom.is_finite() && zoom > 0.0 {
-        zoom
-    } else {
-        1.0
-    };
-    let ahead: Vec<DVec3> = points
-        .iter()
-        .filter(|p| p.length() > 1e-9)
-        .map(|p| p.normalize())
-        .collect();
-    // Start from the mean direction to the points, which sees all of them
-    // whenever they span less than a half space.
-    let mut forward = ahead.iter().sum::<DVec3>().normalize_or(DVec3::Y);
-    // The points' extents in the image plane of `f` (x0, x1, y0, y1), or
-    // `None` if one is not in front of it.
-    let extents = |f: DVec3| {
-        let (right, up) = basis(f);
-        let (mut e, mut ok) = ([f64::MAX, f64::MIN, f64::MAX, f64::MIN], true);
-        for p in &ahead {
-            let z = p.dot(f);
-            if z <= 1e-3 {
-                ok = false;
-                break;
-            }
-            let (x, y) = (p.dot(right) / z, p.dot(up) / z);
-            e = [e[0].min(x), e[1].max(x), e[2].min(y), e[3].max(y)];
-        }
-        (ok && !ahead.is_empty()).then_some(e)
-    };
-    let Some(mut e) = extents(forward) else {
-        return Camera {
-            forward,
-            fovy: std::f64::consts::FRAC_PI_3,
-        };
-    };
-    // Re-aim, damped, at the middle of the extents until centred; a step
-    // that would put a point behind the camera is not taken.
-    for _ in 0..40 {
-        let (right, up) = basis(forward);
-        let (mx, my) = ((e[0] + e[1]) / 2.0, (e[2] + e[3]) / 2.0);
-        if mx.abs() < 1e-7 && my.abs() < 1e-7 {
-            break;
-        }
-        let next = (forward + (right * mx + up * my) * 0.7).normalize();
-        match extents(next) {
-            Some(n) => {
-                forward = next;
-                e = n;
-            }
-            None => break,
-        }
-    }
-    let half_x = e[0].abs().max(e[1].abs());
-    let half_y = e[2].abs().max(e[3].abs());
-    let tan_half = half_y.max(half_x / aspect) * (1.0 + margin);
-    let fovy = 2.0 * (tan_half / zoom).atan();
-    Camera {
-        forward,
-        fovy: fovy.clamp(FOV_RANGE.0, FOV_RANGE.1),
-    }
+    model::fit(points, aspect, margin, zoom).into()
 }
 
-/// A camera with field of view `fovy` narrowed by `zoom` (> 1 zooms in),
-/// within [`FOV_RANGE`].
+/// Looking along `forward` with field of view `fovy` narrowed by `zoom`:
+/// [`lightcone_engine::camera::zoomed`].
 pub fn zoomed(forward: DVec3, fovy: f64, zoom: f64) -> Camera {
-    let zoom = if zoom.is_finite() && zoom > 0.0 {
-        zoom
-    } else {
-        1.0
-    };
-    Camera {
-        forward,
-        fovy: (2.0 * ((fovy / 2.0).tan() / zoom).atan()).clamp(FOV_RANGE.0, FOV_RANGE.1),
-    }
+    model::zoomed(forward, fovy, zoom).into()
 }
 
-/// Where a point relative to the eye lands in a viewport of `aspect`, in
-/// normalised device coordinates (x right, y up, both in [−1, 1] when
-/// visible); `None` behind the eye.
+/// Normalised device coordinates of `p` (relative to the eye) through
+/// `camera`, `None` behind it: [`lightcone_engine::camera::ndc`].
 pub fn ndc(camera: &Camera, aspect: f64, p: DVec3) -> Option<(f64, f64)> {
-    let f = camera.forward.normalize_or(DVec3::Y);
-    let (right, up) = basis(f);
-    let z = p.dot(f);
-    if z <= 0.0 {
-        return None;
-    }
-    let t = (camera.fovy / 2.0).tan();
-    Some((p.dot(right) / z / (t * aspect), p.dot(up) / z / t))
-}
-
-/// The corners of the table's playing area and of its cushions' outer top
-/// edge (board frame, m): what a framing must show.
-pub fn table_corners(size: glam::DVec2, cushion_height: f64, cushion_width: f64) -> Vec<DVec3> {
-    let mut v = Vec::with_capacity(8);
-    for (lo, hi, z) in [
-        (glam::DVec2::ZERO, size, 0.0),
-        (
-            glam::DVec2::splat(-cushion_width),
-            size + glam::DVec2::splat(cushion_width),
-            cushion_height,
-        ),
-    ] {
-        for (x, y) in [(lo.x, lo.y), (hi.x, lo.y), (lo.x, hi.y), (hi.x, hi.y)] {
-            v.push(DVec3::new(x, y, z));
-        }
-    }
-    v
+    model::ndc(&(*camera).into(), aspect, p)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec2;
 
     #[test]
-    fn a_fitted_table_fills_the_viewport_with_its_margin() {
+    fn the_renderer_frames_as_the_engine_does() {
         let eye = DVec3::new(1.42, -0.9, 0.9);
-        let points: Vec<DVec3> = table_corners(glam::DVec2::new(2.84, 1.42), 0.04, 0.06)
+        let points: Vec<DVec3> = table_corners(DVec2::new(2.84, 1.42), 0.04, 0.06)
             .into_iter()
             .map(|p| p - eye)
             .collect();
-        for aspect in [0.6, 0.85, 1.0, 16.0 / 9.0, 3.0] {
-            let cam = fit(&points, aspect, 0.1, 1.0);
-            let (mut ax, mut ay) = (0.0f64, 0.0f64);
+        for aspect in [0.6, 1.0, 16.0 / 9.0] {
+            let ours = fit(&points, aspect, 0.1, 1.5);
+            let engine = model::fit(&points, aspect, 0.1, 1.5);
+            assert_eq!((ours.forward, ours.fovy), (engine.forward, engine.fovy));
             for &p in &points {
-                let (x, y) = ndc(&cam, aspect, p).unwrap();
-                assert!(x.abs() <= 1.0 / 1.1 + 1e-9 && y.abs() <= 1.0 / 1.1 + 1e-9);
-                ax = ax.max(x.abs());
-                ay = ay.max(y.abs());
+                assert_eq!(ndc(&ours, aspect, p), model::ndc(&engine, aspect, p));
             }
-            // Tight on one axis.
-            assert!((ax.max(ay) - 1.0 / 1.1).abs() < 1e-3, "{aspect}: {ax} {ay}");
-            // Zooming in by 2 halves the extent.
-            let z = fit(&points, aspect, 0.1, 2.0);
-            let (x, _) = ndc(&z, aspect, points[1]).unwrap();
-            let (x1, _) = ndc(&cam, aspect, points[1]).unwrap();
-            assert!((x - 2.0 * x1).abs() < 1e-3);
-        }
-    }
-
-    #[test]
-    fn from_low_beside_a_corner_every_corner_is_in_view() {
-        // The simultaneity scene's off-centre eye, low by the near corner.
-        let eye = DVec3::new(0.4, -0.8, 0.5);
-        let points: Vec<DVec3> = table_corners(glam::DVec2::new(2.84, 1.42), 0.04, 0.06)
-            .into_iter()
-            .map(|p| p - eye)
-            .collect();
-        for aspect in [0.8, 1.6] {
-            let cam = fit(&points, aspect, 0.08, 1.0);
-            let mut widest = 0.0f64;
-            for &p in &points {
-                let (x, y) = ndc(&cam, aspect, p).unwrap();
-                assert!(x.abs() <= 1.0 / 1.08 + 1e-9 && y.abs() <= 1.0 / 1.08 + 1e-9);
-                widest = widest.max(x.abs()).max(y.abs());
-            }
-            assert!(widest > 0.85, "{aspect}: {widest}");
-        }
-    }
-
-    #[test]
-    fn from_straight_above_the_board_fits_too() {
-        let eye = DVec3::new(1.42, 0.71, 3.0);
-        let points: Vec<DVec3> = table_corners(glam::DVec2::new(2.84, 1.42), 0.04, 0.06)
-            .into_iter()
-            .map(|p| p - eye)
-            .collect();
-        let cam = fit(&points, 1.5, 0.05, 1.0);
-        assert!(cam.forward.z < -0.999);
-        for &p in &points {
-            let (x, y) = ndc(&cam, 1.5, p).unwrap();
-            assert!(x.abs() <= 1.0 && y.abs() <= 1.0);
         }
     }
 }
