@@ -4,19 +4,15 @@
 //! intensity per vertex.
 //!
 //! [`build_view`] draws a view of the frame schedule (its `Apparent`, the
-//! one optics output): `lightcone render`, `observe` and the tests go
-//! through it. [`build`] still computes the optics itself for the window,
-//! the CAVE walls and the Python wheel's `render`, until they run the
-//! schedule too (issue 12).
+//! one optics output): the window, the CAVE walls, `lightcone render`,
+//! `record`, Python's `render` and the tests all go through it.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Mat4, Vec3};
 use lightcone_engine::ecs::{Apparent, BodyRef, Entity, Framing, Simulation};
-use lightcone_engine::optics::view::{self, Method};
-use lightcone_engine::optics::{Emission, Eye, Seen, mesh};
+use lightcone_engine::optics::Eye;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{Color, Effects, Scene};
-use lightcone_engine::world::PUCK_SEGMENTS;
 use lightcone_engine::worldline::RestShape;
 
 /// One vertex as the GPU takes it.
@@ -92,40 +88,18 @@ impl Camera {
     }
 }
 
-/// The meshes of a scene, built once.
-pub struct SceneMeshes {
-    pucks: Vec<RestShape>,
-    colours: Vec<[f32; 3]>,
-    table: Vec<RestShape>,
-}
-
 fn linear(c: Color) -> [f32; 3] {
     let f = |x: u8| (f32::from(x) / 255.0).powf(2.2);
     [f(c.r), f(c.g), f(c.b)]
 }
 
 /// Height of the cushions above the board, m.
-pub const CUSHION_HEIGHT: f64 = 0.04;
+pub const CUSHION_HEIGHT: f64 = lightcone_engine::worldline::mesh::CUSHION_HEIGHT;
 /// Width of the cushions, m.
-pub const CUSHION_WIDTH: f64 = 0.06;
+pub const CUSHION_WIDTH: f64 = lightcone_engine::worldline::mesh::CUSHION_WIDTH;
 
 const CLOTH: [f32; 3] = [0.02, 0.16, 0.05];
 const CUSHION: [f32; 3] = [0.05, 0.09, 0.04];
-
-impl SceneMeshes {
-    /// Meshes for every puck of `scene` and its table.
-    pub fn new(scene: &Scene) -> Self {
-        Self {
-            pucks: scene
-                .pucks
-                .iter()
-                .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
-                .collect(),
-            colours: scene.pucks.iter().map(|p| linear(p.color)).collect(),
-            table: mesh::table(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH),
-        }
-    }
-}
 
 /// The dark stripe on each puck's side facing its rest-frame +x: it shows
 /// the puck's orientation and how its shape is distorted.
@@ -137,111 +111,6 @@ fn marked(shape: &RestShape, tri: [u32; 3]) -> bool {
         / 3.0;
     let r = c.truncate().length();
     r > 0.0 && c.x / r > 0.94
-}
-
-fn push_triangles(
-    shape: &RestShape,
-    seen: &[Seen],
-    intensity: impl Fn(usize) -> f32,
-    colour: impl Fn([u32; 3]) -> [f32; 3],
-    out: &mut Vec<FrameVertex>,
-) {
-    for &tri in &shape.triangles {
-        let c = colour(tri);
-        for i in tri {
-            let s = &seen[i as usize];
-            out.push(FrameVertex {
-                position: s.position.as_vec3().to_array(),
-                colour: c,
-                doppler: s.doppler as f32,
-                intensity: intensity(i as usize),
-            });
-        }
-    }
-}
-
-/// Builds the triangle list of what `eye` sees with `effects`.
-pub fn build(
-    billiard: &Billiard,
-    meshes: &SceneMeshes,
-    eye: &Eye,
-    effects: Effects,
-    out: &mut Vec<FrameVertex>,
-) {
-    out.clear();
-    let c = billiard.c();
-    let shifts = effects.doppler || effects.searchlight;
-    let mut emissions: Vec<Emission> = Vec::new();
-    let mut seen: Vec<Seen> = Vec::new();
-    // The table: at rest on the board.
-    for part in &meshes.table {
-        seen.clear();
-        seen.extend(part.vertices.iter().map(|&p| {
-            let mut s = eye.see_static(p, c, effects.aberration);
-            if !shifts {
-                s.doppler = 1.0;
-            }
-            s
-        }));
-        let colour = if part.vertices.iter().all(|v| v.z <= 1e-9) {
-            CLOTH
-        } else {
-            CUSHION
-        };
-        let intensity = |i: usize| {
-            if effects.searchlight {
-                seen[i].doppler.powi(4) as f32
-            } else {
-                1.0
-            }
-        };
-        push_triangles(part, &seen, intensity, |_| colour, out);
-        if !effects.doppler {
-            let n = part.triangles.len() * 3;
-            let len = out.len();
-            for v in &mut out[len - n..] {
-                v.doppler = 1.0;
-            }
-        }
-    }
-    // The pucks.
-    for (puck, shape) in meshes.pucks.iter().enumerate() {
-        view::emissions(
-            billiard,
-            puck,
-            &shape.vertices,
-            eye,
-            &effects,
-            Method::Exact,
-            &mut emissions,
-        );
-        view::seen(eye, c, &effects, &emissions, &mut seen);
-        if shifts {
-            view::doppler(eye, &emissions, &mut seen);
-        }
-        let base = meshes.colours[puck];
-        let dark = [base[0] * 0.15, base[1] * 0.15, base[2] * 0.15];
-        let intensity = |i: usize| {
-            if effects.searchlight {
-                seen[i].doppler.powi(4) as f32
-            } else {
-                1.0
-            }
-        };
-        let start = out.len();
-        push_triangles(
-            shape,
-            &seen,
-            intensity,
-            |t| if marked(shape, t) { dark } else { base },
-            out,
-        );
-        if !effects.doppler {
-            for v in &mut out[start..] {
-                v.doppler = 1.0;
-            }
-        }
-    }
 }
 
 /// The eye of observer `index` of `scene` at board time `t` (constant
@@ -387,7 +256,33 @@ pub fn build_view(apparent: &Apparent, meshes: &ViewMeshes, out: &mut Vec<FrameV
 /// [`ViewKind::Truth`], its camera looking at the observer's `look_at`
 /// with a 60° field (as `lightcone render` has always framed it).
 pub fn scene_view(scene: &Scene, index: usize, t: f64, kind: ViewKind) -> (Simulation, Entity) {
+    view_of(scene, None, index, t, kind)
+}
+
+/// As [`scene_view`], for the pucks of `billiard` (of `scene`, run at least
+/// to `t` elsewhere: the Python `Simulation`, a lesson's world) instead of
+/// the scene's own physics.
+pub fn billiard_view(
+    scene: &Scene,
+    billiard: &Billiard,
+    index: usize,
+    t: f64,
+    kind: ViewKind,
+) -> (Simulation, Entity) {
+    view_of(scene, Some(billiard), index, t, kind)
+}
+
+fn view_of(
+    scene: &Scene,
+    billiard: Option<&Billiard>,
+    index: usize,
+    t: f64,
+    kind: ViewKind,
+) -> (Simulation, Entity) {
     let mut sim = Simulation::new(scene);
+    if let Some(b) = billiard {
+        sim.replace_physics(b.clone());
+    }
     let o = &scene.observers[index];
     let view = sim.views()[index];
     let effects = kind.effects(scene.effects);
@@ -416,19 +311,20 @@ mod tests {
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
             let scene = lightcone_engine::scene::load(&path).unwrap();
-            let meshes = SceneMeshes::new(&scene);
-            let mut billiard = Billiard::from_scene(&scene);
+            let mut all = scene.clone();
+            for e in lightcone_engine::scene::Effect::ALL {
+                all.effects.set(e, true);
+            }
+            let mut none = scene.clone();
+            none.effects = Effects::NONE;
             let mut out = Vec::new();
-            for t in [0.0, 1.0, 5.0] {
-                billiard.advance_to(t);
-                let (eye, _) = eye_of(&scene, 0, t);
-                let mut all = Effects::NONE;
-                for e in lightcone_engine::scene::Effect::ALL {
-                    all.set(e, true);
-                }
-                for fx in [scene.effects, all, Effects::NONE] {
-                    build(&billiard, &meshes, &eye, fx, &mut out);
-                    assert!(!out.is_empty());
+            for s in [&scene, &all, &none] {
+                let (mut sim, view) = scene_view(s, 0, 0.0, ViewKind::Seen);
+                let meshes = ViewMeshes::new(&mut sim);
+                for t in [0.0, 1.0, 5.0] {
+                    sim.advance_to(t);
+                    build_view(sim.apparent(view).unwrap(), &meshes, &mut out);
+                    assert!(!out.is_empty() && out.len() % 3 == 0);
                     for v in &out {
                         assert!(
                             v.position.iter().all(|x| x.is_finite()),

@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use super::frame::{self, Camera, FrameVertex, SceneMeshes, ViewKind};
+use super::frame::{self, Camera, FrameVertex, ViewKind};
 use super::gpu::Gpu;
 use super::pipeline::Renderer;
 use lightcone_engine::ecs::{Entity, Simulation};
@@ -297,17 +297,11 @@ pub fn render_billiard(
     width: u32,
     height: u32,
 ) -> Result<Image, String> {
-    let meshes = SceneMeshes::new(scene);
-    let (eye, camera) = frame::eye_of(scene, observer, t);
-    let mut vertices = Vec::new();
-    frame::build(
-        billiard,
-        &meshes,
-        &eye,
-        kind.effects(scene.effects),
-        &mut vertices,
-    );
-    draw(gpu, &vertices, &camera, width, height)
+    if observer >= scene.observers.len() {
+        return Err(format!("no observer {observer}"));
+    }
+    let (mut sim, view) = frame::billiard_view(scene, billiard, observer, t, kind);
+    render_view(gpu, &mut sim, view, width, height)
 }
 
 /// Writes `bytes` to the file at `path` (created or truncated), reporting

@@ -152,6 +152,14 @@ impl Simulation {
         &mut self.world.resource_mut::<Physics>().into_inner().0
     }
 
+    /// Puts `billiard` (of the same scene, run as far as wanted) in place
+    /// of the physics: the pucks' worldlines every view then sees. Used to
+    /// look at a billiard run elsewhere (the Python `Simulation`, a lesson)
+    /// through this world's views.
+    pub fn replace_physics(&mut self, billiard: Billiard) {
+        self.world.resource_mut::<Physics>().0 = billiard;
+    }
+
     /// Table size, m.
     pub fn table_size(&self) -> DVec2 {
         self.world.resource::<Table>().0.size
@@ -328,6 +336,34 @@ impl Simulation {
         u: ProperVelocity,
     ) -> Result<(), ObserverError> {
         Ok(input::steer(self.observer_worldline_mut(observer)?, t, u)?)
+    }
+
+    /// Puts `observer` at `position` at board time `t`, moving with proper
+    /// velocity `u` from then on: a jump on its worldline (the free eye
+    /// orbited or reset, a tracked pose; see [`Worldline::relocate`]).
+    pub fn place_observer(
+        &mut self,
+        observer: Entity,
+        t: f64,
+        position: DVec3,
+        u: ProperVelocity,
+    ) -> Result<(), ObserverError> {
+        Ok(self
+            .observer_worldline_mut(observer)?
+            .relocate(t, position, u)?)
+    }
+
+    /// Forgets the part of `observer`'s worldline that ended at or before
+    /// board time `t` (a bounded replay window, as the physics keeps).
+    pub fn forget_observer_before(&mut self, observer: Entity, t: f64) {
+        if let Ok(w) = self.observer_worldline_mut(observer) {
+            w.forget_before(t);
+        }
+    }
+
+    /// The vantage of `view`.
+    pub fn vantage(&self, view: Entity) -> Option<Vantage> {
+        self.world.get::<Vantage>(view).copied()
     }
 
     /// A tracked head: a sample puts `observer` at `target` at board time

@@ -15,7 +15,8 @@ use lightcone_engine::physics::Billiard;
 use lightcone_engine::physics::gas::dense_box;
 use lightcone_engine::scene::{self, Effect, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
 use lightcone_engine::spacetime::{Event, ProperVelocity};
-use lightcone_engine::world::{PUCK_SEGMENTS, Simulation};
+use lightcone_engine::ecs::Simulation;
+use lightcone_engine::worldline::mesh::PUCK_SEGMENTS;
 use lightcone_engine::worldline::{RestShape, Worldline};
 use rayon::prelude::*;
 
