@@ -13,7 +13,7 @@ mod validate;
 
 pub use error::{SceneError, SceneErrors, number};
 pub use model::{
-    BeforeStart, C_RANGE, Color, Effect, Effects, LENGTH_RANGE, MASS_RANGE, MAX_DICHOTOMY_STEPS,
+    BeforeStart, C_RANGE, Color, GRAVITY_RANGE, MAX_FRICTION, Effect, Effects, LENGTH_RANGE, MASS_RANGE, MAX_DICHOTOMY_STEPS,
     MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS, MAX_U, ObserverSpec,
     OpticsSpec, PuckSpec, Scene, TableSpec, first_overlaps, overlap,
 };
