@@ -1040,14 +1040,21 @@ impl Billiard {
             mass: puck.mass,
             u: puck.worldline.last().u_at(t),
         };
-        let next = if puck.version == kick.version_at_contact {
+        // Unchanged since the contact and (on a braking segment) landing at
+        // its own time: the scheduled outcome. A braking puck whose kick
+        // lands early (flushed) has not yet slowed to the state the outcome
+        // was worked from: it takes the contact's transfer as below.
+        let as_scheduled = now.u == kick.before.u;
+        let next = if puck.version == kick.version_at_contact && as_scheduled {
             kick.after
         } else {
             // The puck was changed again before this kick's board time: add
             // this contact's 4-momentum transfer to its present 4-momentum.
             // Energy and momentum stay exactly conserved; the difference
             // from a rigid body's outcome shows as a change of rest mass.
-            self.stats.overlapping_kicks += 1;
+            if puck.version != kick.version_at_contact {
+                self.stats.overlapping_kicks += 1;
+            }
             let p = now.momentum() + (kick.after.momentum() - kick.before.momentum());
             let mass = p.invariant_mass();
             if mass > 1e-3 * now.mass && p.energy > 0.0 {
