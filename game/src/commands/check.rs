@@ -81,8 +81,8 @@ pub fn summary(path: &Path, s: &Scene) -> String {
              (a puck at γ stops after (c²/μg)(γ − 1) = {} m × (γ − 1))",
             number(s.table.friction),
             number(s.table.gravity),
-            number(a),
-            number(s.c * s.c / a)
+            number((a * 1e6).round() / 1e6),
+            number((s.c * s.c / a * 1e6).round() / 1e6)
         );
     }
     let _ = writeln!(out, "  effects on: {}; off: {}", list(&on), list(&off));
