@@ -54,6 +54,17 @@
 //! puck that comes to rest against another) is no contact: it rests there
 //! with no event, so there is no Zeno sequence of ever smaller bounces.
 //!
+//! ## Limits
+//!
+//! * A touch at which the pair is not closing ends the search of that
+//!   window (a graze, or a puck stopping against another); a later contact
+//!   of the same pair on the same segments would be missed. Uniform motion
+//!   cannot graze and then meet; braking motion could, in contrived cases.
+//! * Pucks overlapping and opening at `now` are searched from the first
+//!   time a doubling step finds them apart, not from a proven bracket.
+//! * No cheap lower bound prunes braking pairs in the event loop: every
+//!   broad-phase candidate gets this search (cost not yet benchmarked).
+//!
 //! ## The collision convention
 //!
 //! Unchanged: the contact event is where the board shapes first touch; each
