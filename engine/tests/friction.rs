@@ -13,9 +13,11 @@
 //!   contact, no re-collision, overlap within the bound, everything at rest
 //!   in finite board time.
 
+mod common;
+use common::assert_conserved;
 use glam::{DVec2, DVec3};
-use lightcone_engine::physics::{Billiard, Collision, CollisionKind, PuckInit, overlap};
-use lightcone_engine::spacetime::{FourMomentum, ProperVelocity};
+use lightcone_engine::physics::{Billiard, CollisionKind, PuckInit, overlap};
+use lightcone_engine::spacetime::ProperVelocity;
 use proptest::prelude::*;
 
 const R: f64 = 0.03;
@@ -34,25 +36,6 @@ fn billiard(c: f64, table: DVec2, restitution: f64, a: f64, pucks: Vec<PuckInit>
     let mut b = Billiard::new(c, table, restitution, 1.0, pucks);
     b.set_sliding_friction(a);
     b
-}
-
-fn assert_conserved(c: &Collision, rel: f64) {
-    let sum = |after: bool| {
-        c.pucks.iter().fold(FourMomentum::default(), |s, p| {
-            s + if after {
-                FourMomentum::of_body(p.mass_after, p.u_after)
-            } else {
-                FourMomentum::of_body(p.mass_before, p.u_before)
-            }
-        })
-    };
-    let (p0, p1) = (sum(false), sum(true));
-    let scale = p0.energy;
-    assert!(
-        (p0.energy - p1.energy).abs() <= rel * scale
-            && (p0.momentum - p1.momentum).length() <= rel * scale,
-        "4-momentum {p0:?} → {p1:?} in {c:?}"
-    );
 }
 
 #[test]
