@@ -621,7 +621,7 @@ fn panels(
                     ui.selectable_value(&mut mode, Some(ViewMode::Truth), "truth");
                     ui.selectable_value(&mut mode, Some(ViewMode::Split), "split");
                     if s.panes.is_some() {
-                        ui.selectable_label(true, "--views");
+                        let _ = ui.selectable_label(true, "--views");
                     }
                     if let Some(m) = mode
                         && (s.panes.is_some() || m != s.view)
