@@ -1062,6 +1062,11 @@ mod tests {
         let t1 = g.live_time;
         let live = g.apparent(v).unwrap().clone();
         assert!(live.eye.unwrap().u.0.length() > 0.5);
+        // The next thrust must come a frame later: a thrust at the live time
+        // puts a kink at exactly t1, and at a kink the worldline gives the
+        // later segment's velocity, which the picture taken at t1 (before
+        // the thrust) did not have.
+        frame(&mut g);
         for _ in 0..20 {
             g.thrust(DVec3::new(-0.04, 0.03, 0.01), DVec3::ZERO);
             frame(&mut g);
