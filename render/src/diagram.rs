@@ -607,7 +607,8 @@ mod tests {
                 assert_eq!((drawn.image.width, drawn.image.height), (320, 200));
                 // `observe` reports the centre at mid-height, found by the
                 // optics' closed form on the worldline's segments.
-                let report = crate::observe::report(&scene, &billiard, 0, t, scene.effects, false).unwrap();
+                let report =
+                    crate::observe::report(&scene, &billiard, 0, t, scene.effects, false).unwrap();
                 for (i, e) in drawn.emissions.iter().enumerate() {
                     let r = &report.pucks[i].centre.emission;
                     let reported = Event::new(r.t, DVec3::from(r.position));

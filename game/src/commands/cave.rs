@@ -82,7 +82,8 @@ pub fn run(
     if let Err(e) = std::fs::create_dir_all(out_dir) {
         return fail(format!("{}: {e}", out_dir.display()));
     }
-    let images = match cave::render_walls(&gpu, &mut game, &config, (head, DQuat::IDENTITY), scale) {
+    let images = match cave::render_walls(&gpu, &mut game, &config, (head, DQuat::IDENTITY), scale)
+    {
         Ok(i) => i,
         Err(e) => return fail(e),
     };

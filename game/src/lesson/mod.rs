@@ -721,7 +721,12 @@ mod tests {
         host.after_step(&mut game, before);
         assert!(host.error.is_none(), "{:?}", host.error);
         // The impulse made in on_frame changed the game that is shown.
-        let u1 = game.physics().worldline(0).proper_velocity_at(game.live_time).0.x;
+        let u1 = game
+            .physics()
+            .worldline(0)
+            .proper_velocity_at(game.live_time)
+            .0
+            .x;
         assert!((u1 - u0 - 0.1).abs() < 1e-12, "{u0} → {u1}");
         // Outside a hook the world has no game: a clear error, no crash.
         Python::attach(|py| {
