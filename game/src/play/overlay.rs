@@ -262,34 +262,6 @@ fn faded(colour: egui::Color32, alpha: u8) -> egui::Color32 {
     egui::Color32::from_rgba_unmultiplied(colour.r(), colour.g(), colour.b(), alpha)
 }
 
-/// Where an eye at `eye` (moving with `eye.u`) sees the centre of a body on
-/// `worldline` (`lift` above its reference point) with `effects`: for the
-/// seen trail, which draws where the puck was seen at earlier times (a
-/// history of the picture, not a picture, so it calls the optics kernels
-/// directly, as the schedule's systems do).
-fn seen_centre(
-    worldline: &lightcone_engine::worldline::Worldline,
-    lift: DVec3,
-    eye: &Eye,
-    effects: Effects,
-    c: f64,
-) -> Option<DVec3> {
-    use lightcone_engine::optics::view as kernel;
-    let (mut e, mut s) = (Vec::new(), Vec::new());
-    let offsets = [lift];
-    if effects.light_delay {
-        kernel::light_delayed(worldline, &offsets, effects.contraction, eye, &mut e);
-    } else {
-        kernel::simultaneous(worldline, &offsets, effects.contraction, eye, &mut e);
-    }
-    if effects.aberration {
-        kernel::aberrated(eye, c, &e, &mut s);
-    } else {
-        kernel::on_board(eye, &e, &mut s);
-    }
-    s.first().map(|s| s.position)
-}
-
 /// Trails, the truth ghost and velocity arrows of every puck in one view.
 fn physics_marks(
     state: &GameState,
@@ -344,22 +316,19 @@ fn physics_marks(
             }
             // Where it was seen: solid (light delay on).
             if seen_view {
-                let v_eye = eye.u.velocity(c);
-                let seen: Vec<Option<DVec2>> = times
-                    .iter()
-                    .map(|&t| {
-                        let then = Eye {
-                            event: lightcone_engine::spacetime::Event::new(
-                                t,
-                                eye.event.position - v_eye * (t_now - t),
-                            ),
-                            u: eye.u,
-                        };
-                        let s = seen_centre(w, lift, &then, effects, c)?;
+                // The view's own history: its eye then (on its observer's
+                // worldline) and its effects, through the schedule's
+                // kernels; drawn shifted with the eye since then.
+                let seen: Vec<Option<DVec2>> = state
+                    .sim
+                    .seen_history(shown.view, i, lift, &times)
+                    .into_iter()
+                    .map(|seen| {
+                        let (then, s) = seen?;
                         project(
                             &camera,
                             rect,
-                            s + (then.event.position - eye.event.position),
+                            s.position + (then.event.position - eye.event.position),
                         )
                     })
                     .collect();
