@@ -896,7 +896,19 @@ impl Billiard {
     /// The outcome of a contact found on the board (pucks `a`, `b` touching
     /// or overlapping there now, closing along `normal`), both kicks now.
     ///
-    /// An impulse along the board's penetration direction
+    /// Restitution 0: the pair moves together ([`resolve::together`]), the
+    /// outcome a pair-frame contact with restitution 0 has too (all the
+    /// kinetic energy of the relative motion becomes heat, whatever the
+    /// normal). Both then have one velocity and one contraction, so their
+    /// board shapes translate together: the overlap the kick leaves
+    /// (within the contact's bound: each shape grows by at most
+    /// `R (1 − 1/γ)`) never deepens and they never meet again until
+    /// something else changes one of them. An impulse along the normal
+    /// alone would leave them sliding past each other; at γ ≳ 10³ the
+    /// reshaped shapes could then slide back into each other (the seed-15
+    /// case of `collision_integrity`).
+    ///
+    /// Otherwise an impulse along the board's penetration direction
     /// ([`resolve::puck_puck_board`]);
     /// that kick changes both pucks' contraction at once, so the new shapes
     /// can still overlap and close along a new penetration direction: the
@@ -911,12 +923,14 @@ impl Billiard {
         normal: DVec3,
         restitution: f64,
     ) -> [Body; 2] {
+        if restitution <= 0.0 {
+            return resolve::together(before[0], before[1]);
+        }
         let mut after = resolve::puck_puck_board(before[0], before[1], normal, restitution);
         let t = self.time;
         let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
         let xa = Event::new(t, self.pucks[a].worldline.last().position_at(t));
         let xb = Event::new(t, self.pucks[b].worldline.last().position_at(t));
-        let mut open = false;
         for _ in 0..16 {
             let wa = Worldline::new(xa, after[0].u, self.c);
             let wb = Worldline::new(xb, after[1].u, self.c);
@@ -926,31 +940,14 @@ impl Billiard {
             let m = match overlap::penetration(sa, ra, sb, rb, t) {
                 // Still overlapping: closing along the new direction?
                 Some((_, m)) if m.dot(v_rel) < -still => m,
-                Some(_) => {
-                    open = true;
-                    break;
-                }
+                Some(_) => break,
                 // Apart: would sliding bring them together again?
                 None => match self.touch_again(xa, ra, after[0].u, xb, rb, after[1].u) {
                     Some(m) if m.dot(v_rel) < -still => m,
-                    _ => {
-                        open = true;
-                        break;
-                    }
+                    _ => break,
                 },
             };
             after = resolve::puck_puck_board(after[0], after[1], m, restitution);
-        }
-        if !open && restitution <= 0.0 {
-            // Restitution 0 and still closing: the pair moves together
-            // instead (at rest in its centre-of-momentum frame, as a
-            // pair-frame contact with restitution 0 leaves it), which keeps
-            // the overlap as it is.
-            let together =
-                resolve::puck_puck(before[0], before[1], normal, ProperVelocity::ZERO, 0.0);
-            if together != before {
-                return together;
-            }
         }
         after
     }
