@@ -358,16 +358,14 @@ mod tests {
         // The same as a restitution-0 pair-frame contact (any normal along
         // which they approach).
         let pair = puck_puck(a, b, DVec3::X, ProperVelocity::ZERO, 0.0);
-        for k in 0..2 {
-            assert!((pair[k].u.0 - out[k].u.0).length() < 1e-12, "{pair:?} {out:?}");
-            assert!((pair[k].mass - out[k].mass).abs() < 1e-12, "{pair:?} {out:?}");
-        }
+        let near = |x: [Body; 2], y: [Body; 2]| {
+            x.iter()
+                .zip(&y)
+                .all(|(p, q)| (p.u.0 - q.u.0).length() < 1e-12 && (p.mass - q.mass).abs() < 1e-12)
+        };
+        assert!(near(pair, out), "{pair:?} {out:?}");
         // Already together: unchanged, to rounding.
-        let again = together(out[0], out[1]);
-        for k in 0..2 {
-            assert!((again[k].u.0 - out[k].u.0).length() < 1e-12);
-            assert!((again[k].mass - out[k].mass).abs() < 1e-12);
-        }
+        assert!(near(together(out[0], out[1]), out));
         // At γ ≈ 5·10³ onto γ ≈ 4 (the seed-15 case): still exact.
         let fast = Body {
             mass: 0.2,
