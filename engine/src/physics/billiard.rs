@@ -173,16 +173,18 @@ struct Puck {
     /// collision's outcome, which separates, so they are not predicted
     /// again until one of them changes.
     settled: Option<(u32, u32, u32)>,
-    /// Board time of this puck's last pair contact and how many came in
-    /// quick succession (Zeno detection, O(1) per puck).
+    /// Board time of this puck's last contact (pair or cushion) and how
+    /// many came in quick succession (Zeno detection, O(1) per puck).
     quick: (f64, u32),
 }
 
 /// Consecutive contacts of one puck closer together than this (in units of
 /// the time light takes to cross the table) count towards a Zeno sequence.
 const ZENO_GAP: f64 = 1e-9;
-/// A puck that meets others this many times in such quick succession ends
-/// the sequence: its next collision is perfectly inelastic.
+/// A puck that meets others or a cushion this many times in such quick
+/// succession is in a Zeno sequence (inelastic collapse): its collisions
+/// with pucks are then perfectly inelastic, and a cushion stops the cluster
+/// pressing into it.
 const ZENO_COUNT: u32 = 64;
 
 /// What a puck's one pending event is about.
@@ -295,6 +297,9 @@ pub struct Billiard {
     history: Option<f64>,
     forgotten_before: Option<f64>,
     warnings: Vec<String>,
+    /// Whether a Zeno sequence has been reported (once, whichever kind
+    /// came first; every one is counted in the stats).
+    zeno_said: bool,
     stats: Stats,
 }
 
@@ -373,6 +378,7 @@ impl Billiard {
             history: None,
             forgotten_before: None,
             warnings: Vec::new(),
+            zeno_said: false,
             stats: Stats::default(),
         };
         billiard.start();
@@ -754,34 +760,97 @@ impl Billiard {
         let puck = &mut self.pucks[i];
         let t_kink = t.max(puck.worldline.last().start.t);
         let before = puck.worldline.last().u_at(t_kink);
-        let after = resolve::puck_cushion(before, cushion.outward(), self.cushion_restitution);
-        if puck.worldline.push(t_kink, after).is_err() {
-            return;
-        }
-        self.stats.cushion_contacts += 1;
-        if self.record {
-            let position = puck.worldline.position_at(t_kink);
-            let contact = position + puck_cushion::support_offset(puck.radius, before, cushion);
-            let outcome = PuckOutcome {
+        let outward = cushion.outward();
+        let zeno = self.quick_streak(i, t_kink) >= ZENO_COUNT;
+        // In a Zeno sequence against this cushion (pucks pressed into it by
+        // others moving with them): the cluster stops moving into the
+        // cushion, the limit of the sequence.
+        let cluster = if zeno {
+            self.pressed_cluster(i, before, t_kink)
+        } else {
+            vec![i]
+        };
+        let after = if zeno {
+            ProperVelocity(before.0 - outward * before.0.dot(outward))
+        } else {
+            resolve::puck_cushion(before, outward, self.cushion_restitution)
+        };
+        let mut outcomes = Vec::with_capacity(cluster.len());
+        for &k in &cluster {
+            let puck = &mut self.pucks[k];
+            if puck.worldline.push(t_kink, after).is_err() {
+                continue;
+            }
+            outcomes.push(PuckOutcome {
                 puck: puck.external as usize,
                 t: t_kink,
-                position,
+                position: puck.worldline.position_at(t_kink),
                 u_before: before,
                 u_after: after,
                 mass_before: puck.mass,
                 mass_after: puck.mass,
                 orientation_after: puck.worldline.last().orientation,
                 pending: false,
-            };
+            });
+        }
+        if outcomes.is_empty() {
+            return;
+        }
+        self.stats.cushion_contacts += 1;
+        if zeno {
+            self.stats.zeno_merges += 1;
+            if !self.zeno_said {
+                self.zeno_said = true;
+                self.warnings.push(format!(
+                    "t = {t_kink} s: puck \"{}\" was pressed into cushion {} {ZENO_COUNT} times within                      {:.3e} s (inelastic collapse); it and the {} puck(s) pressing it with one velocity                      stop moving into the cushion (said once; every one is counted)",
+                    self.pucks[i].name,
+                    cushion.name(),
+                    ZENO_GAP * self.table.length() / self.c,
+                    cluster.len() - 1
+                ));
+            }
+        }
+        if self.record {
+            let radius = self.pucks[i].radius;
+            let contact =
+                outcomes[0].position + puck_cushion::support_offset(radius, before, cushion);
             self.collisions.push(Collision {
                 kind: CollisionKind::Cushion(cushion),
                 t: t_kink,
                 contact,
-                pucks: vec![outcome],
+                pucks: outcomes,
                 overlap_bound: 0.0,
             });
         }
-        self.bump(i);
+        for k in cluster {
+            self.bump(k);
+        }
+    }
+
+    /// The pucks pressed into a cushion together with puck `i`: `i` and
+    /// every puck reached from it through touching pucks (centres at most
+    /// the sum of radii apart at board time `t`, m) that move with the same
+    /// proper velocity `u` and have no kick pending.
+    fn pressed_cluster(&self, i: usize, u: ProperVelocity, t: f64) -> Vec<usize> {
+        let same = |w: ProperVelocity| (w.0 - u.0).length() <= 1e-12 * u.0.length();
+        let centre = |k: usize| self.pucks[k].worldline.last().position_at(t);
+        let mut cluster = vec![i];
+        let mut k = 0;
+        while k < cluster.len() {
+            let (m, xm) = (cluster[k], centre(cluster[k]));
+            for j in 0..self.pucks.len() {
+                let p = &self.pucks[j];
+                if cluster.contains(&j) || !p.pending.is_empty() {
+                    continue;
+                }
+                let reach = (p.radius + self.pucks[m].radius) * (1.0 + 1e-9);
+                if (centre(j) - xm).length() <= reach && same(p.worldline.last().u_at(t)) {
+                    cluster.push(j);
+                }
+            }
+            k += 1;
+        }
+        cluster
     }
 
     /// Resolves the contact of pucks `a` < `b` that `next` predicted: kept
@@ -1108,29 +1177,37 @@ impl Billiard {
     /// in time), which is then ended by one perfectly inelastic collision.
     /// The first time, a warning says so.
     fn zeno_restitution(&mut self, a: usize, b: usize, t: f64) -> f64 {
-        let gap = ZENO_GAP * self.table.length() / self.c;
-        let mut streak = 0;
-        for i in [a, b] {
-            let quick = &mut self.pucks[i].quick;
-            quick.1 = if t - quick.0 < gap { quick.1 + 1 } else { 0 };
-            quick.0 = t;
-            streak = streak.max(quick.1);
-        }
+        let streak = self.quick_streak(a, t).max(self.quick_streak(b, t));
         if streak < ZENO_COUNT {
             return self.restitution;
         }
-        self.pucks[a].quick.1 = 0;
-        self.pucks[b].quick.1 = 0;
+        // Not reset: every contact of the sequence from here on is
+        // inelastic, until a pause longer than the Zeno gap (a sequence
+        // against a cushion ends there, see `cushion_contact`).
         self.stats.zeno_merges += 1;
-        if self.stats.zeno_merges == 1 {
+        if !self.zeno_said {
+            self.zeno_said = true;
             self.warnings.push(format!(
-                "t = {t} s: pucks \"{}\" and \"{}\" met others {ZENO_COUNT} times within {gap:.3e} s \
+                "t = {t} s: pucks \"{}\" and \"{}\" met others {ZENO_COUNT} times within {:.3e} s \
                  (inelastic collapse); such a collision is made perfectly inelastic so they move \
                  together (said once; every one is counted)",
-                self.pucks[a].name, self.pucks[b].name
+                self.pucks[a].name,
+                self.pucks[b].name,
+                ZENO_GAP * self.table.length() / self.c
             ));
         }
         0.0
+    }
+
+    /// Counts a contact of puck `i` at board time `t` (s) towards its Zeno
+    /// sequence: returns how many contacts in a row came within the Zeno gap
+    /// of the one before.
+    fn quick_streak(&mut self, i: usize, t: f64) -> u32 {
+        let gap = ZENO_GAP * self.table.length() / self.c;
+        let quick = &mut self.pucks[i].quick;
+        quick.1 = if t - quick.0 < gap { quick.1 + 1 } else { 0 };
+        quick.0 = t;
+        quick.1
     }
 }
 
