@@ -40,8 +40,10 @@ fn beta(bx: f64, by: f64) -> ProperVelocity {
     ProperVelocity::try_from_beta(DVec3::new(bx, by, 0.0)).unwrap()
 }
 
+/// The pair of a two-puck contact (a Zeno cluster's merge, three or more
+/// pucks, counts for each as a kick from something else).
 fn pair_of(c: &Collision) -> Option<(usize, usize)> {
-    (c.kind == CollisionKind::PuckPuck).then(|| {
+    (c.kind == CollisionKind::PuckPuck && c.pucks.len() == 2).then(|| {
         let (a, b) = (c.pucks[0].puck, c.pucks[1].puck);
         (a.min(b), a.max(b))
     })
@@ -61,7 +63,7 @@ fn check_invariants(b: &Billiard, until: f64, samples: usize) -> f64 {
                 times.push((p.t + 1e-9).min(until));
             }
         }
-        if pair_of(c).is_some() {
+        if c.kind == CollisionKind::PuckPuck {
             assert_conserved(c, 1e-12);
         }
         for p in &c.pucks {
@@ -631,10 +633,9 @@ fn bounded_history_forgets_and_says_so() {
 }
 
 /// The random scenes' seed: 3, or `LIGHTCONE_SCENE_SEED` (to try others
-/// locally). Seed 15 found the restitution-0 case now first in
-/// `found_cases_hold_the_invariants`; with the fix for it (a board contact
-/// with restitution 0 moves the pair together) the other seeds have not
-/// yet been tried again.
+/// locally: seeds 1–338, 1 000 and 12 345 pass; 339 finds the case of
+/// `known_unfixed_cases`). The cases other seeds found are kept in
+/// `found_cases_hold_the_invariants`.
 fn random_scene_seed() -> u64 {
     std::env::var("LIGHTCONE_SCENE_SEED")
         .ok()
@@ -703,7 +704,7 @@ fn random_scene(restitution: f64, raw: &[RandomPuck]) -> Billiard {
 /// Cases proptest found, kept as plain tests.
 #[test]
 fn found_cases_hold_the_invariants() {
-    let cases: [(f64, &[RandomPuck]); 12] = [
+    let cases: [(f64, &[RandomPuck]); 15] = [
         // Seed 15: restitution 0, a γ ≈ 5·10³ puck meets a γ ≈ 4 one near
         // a cushion. The board decides the contact (the pair frame moves at
         // u ≈ 73 on the board); an impulse along the board normal alone left
@@ -945,6 +946,85 @@ fn found_cases_hold_the_invariants() {
                 ),
             ],
         ),
+        // Seed 1 again: restitution 0, a light puck crushed between two
+        // heavy ones (γ ≈ 10⁵ before the heat of earlier contacts) that
+        // converge on it: it bounced between them at one board time, each
+        // inelastic pair contact only nudging the heavy one, for ever. The
+        // three now move together (`resolve::together_all`).
+        (
+            0.0,
+            &[
+                (
+                    0.6195177511598957,
+                    0.47537979005823894,
+                    3.4494960315719414,
+                    2.529918661069406,
+                ),
+                (
+                    1.4470578776559964,
+                    0.5112482509706696,
+                    5.210108548117238,
+                    2.8891142012662874,
+                ),
+                (
+                    0.09757907349361872,
+                    0.22264939059655411,
+                    3.76705141515649,
+                    4.326184128364379,
+                ),
+            ],
+        ),
+        // Seed 41: restitution 0; a pair moving together at γ ≈ 113 meets
+        // a cushion, one at a time: the first bounces back across the
+        // other's path, two thin shapes crossing. The pair frame finds no
+        // contact (its slice meets the first puck before its bounce) and the
+        // board's first-touch search stepped over the 9 ms overlap; it now
+        // scans the window when its golden section finds nothing.
+        (
+            0.0,
+            &[
+                (
+                    0.2760530816301697,
+                    0.6084330337883384,
+                    4.9578219338917915,
+                    4.204774163028545,
+                ),
+                (
+                    0.7162092328265648,
+                    0.5446119407391773,
+                    0.7475023277766294,
+                    4.0453998252280075,
+                ),
+            ],
+        ),
+        // Seed 103: restitution 0, a light puck pressed into a cushion by a
+        // heavy one moving with it; the pair's kicks came at the cushion's
+        // time but were counted at their contact's later time, so the
+        // sequence never looked quick at the cushion. Zeno counts at the
+        // processing time now.
+        (
+            0.0,
+            &[
+                (
+                    0.47813175116346945,
+                    0.2573983496760726,
+                    5.883777098843035,
+                    1.9290355578823186,
+                ),
+                (
+                    0.5859995054713428,
+                    0.6653957698665809,
+                    4.838532258193481,
+                    4.259452063303114,
+                ),
+                (
+                    0.653834843310941,
+                    0.5426540793278396,
+                    0.09220393989510296,
+                    1.8860930127276583,
+                ),
+            ],
+        ),
     ];
     for (k, (restitution, raw)) in cases.into_iter().enumerate() {
         if std::env::var("LIGHTCONE_CASE").is_ok_and(|c| c != k.to_string()) {
@@ -958,4 +1038,30 @@ fn found_cases_hold_the_invariants() {
         );
         check_invariants(&b, 2.0, 40);
     }
+}
+
+/// Found by seed 339 (seeds 1–338, 1 000 and 12 345 pass), not yet held:
+/// restitution 0.5, a γ ≈ 4·10⁵ puck and a γ ≈ 230 one; at t = 1.8 s they
+/// overlap by 77 µm with no contact predicted. `cargo test -- --ignored`
+/// runs it.
+#[test]
+#[ignore = "known unfixed: see the doc comment"]
+fn known_unfixed_cases() {
+    let raw: &[RandomPuck] = &[
+        (
+            0.8540298584951544,
+            0.8161294502033031,
+            5.590436241545552,
+            4.090866867524551,
+        ),
+        (
+            0.27200248861449977,
+            0.9193104815932086,
+            2.368049645386507,
+            1.7170676505306608,
+        ),
+    ];
+    let mut b = random_scene(0.5, raw);
+    assert!(b.step_until(2.0, 100_000));
+    check_invariants(&b, 2.0, 40);
 }

@@ -73,9 +73,11 @@ pub struct PuckOutcome {
 /// Which kind of collision.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CollisionKind {
-    /// Two pucks.
+    /// Two pucks (three or more when a Zeno sequence among them ends: they
+    /// move together, see `Billiard::stats().zeno_merges`).
     PuckPuck,
-    /// A puck and a cushion.
+    /// A puck and a cushion (with the pucks pressing it into the cushion
+    /// when a Zeno sequence there ends: they stop moving into it).
     Cushion(Cushion),
 }
 
@@ -88,10 +90,12 @@ pub struct Collision {
     pub t: f64,
     /// Contact point, m.
     pub contact: DVec3,
-    /// One outcome per puck involved (two for puck–puck, one for a cushion).
+    /// One outcome per puck involved: two for puck–puck, one for a cushion;
+    /// more when a Zeno sequence ends (see [`CollisionKind`]).
     pub pucks: Vec<PuckOutcome>,
     /// The most the two pucks may overlap in the board frame because of
-    /// this contact, m (0 for a cushion): what rigid bodies cannot avoid in
+    /// this contact, m (0 for a cushion and for a Zeno cluster's merge, whose
+    /// kicks come from no new approach): what rigid bodies cannot avoid in
     /// relativity, see [`overlap_bound`](crate::physics::overlap::bound).
     pub overlap_bound: f64,
 }
@@ -880,7 +884,15 @@ impl Billiard {
             body(&self.pucks[a], times[0]),
             body(&self.pucks[b], times[1]),
         ];
-        let restitution = self.zeno_restitution(a, b, hit.contact.t);
+        // Counted at the board time it is processed (its first kick), as a
+        // cushion contact is: a contact's own time can lie later (between
+        // the kicks), and a sequence alternating with a cushion would then
+        // never look quick.
+        let zeno = self.in_zeno_sequence(a, b, self.time);
+        if zeno && hit.on_board && self.merge_zeno_cluster(a, b, hit.contact.position) {
+            return;
+        }
+        let restitution = if zeno { 0.0 } else { self.restitution };
         let after = if hit.on_board {
             self.board_push(a, b, before, hit.normal, restitution)
         } else {
@@ -1172,14 +1184,14 @@ impl Billiard {
         self.bump(i);
     }
 
-    /// Restitution for this contact: the scene's, unless one of the pucks
-    /// is in a Zeno sequence (inelastic collapse: contacts closer and closer
-    /// in time), which is then ended by one perfectly inelastic collision.
-    /// The first time, a warning says so.
-    fn zeno_restitution(&mut self, a: usize, b: usize, t: f64) -> f64 {
+    /// Whether this contact of `a` and `b` at board time `t` is part of a
+    /// Zeno sequence (inelastic collapse: contacts closer and closer in
+    /// time); it is then perfectly inelastic. The first time, a warning says
+    /// so.
+    fn in_zeno_sequence(&mut self, a: usize, b: usize, t: f64) -> bool {
         let streak = self.quick_streak(a, t).max(self.quick_streak(b, t));
         if streak < ZENO_COUNT {
-            return self.restitution;
+            return false;
         }
         // Not reset: every contact of the sequence from here on is
         // inelastic, until a pause longer than the Zeno gap (a sequence
@@ -1196,7 +1208,87 @@ impl Billiard {
                 ZENO_GAP * self.table.length() / self.c
             ));
         }
-        0.0
+        true
+    }
+
+    /// Ends a Zeno sequence of three or more pucks at once (a light puck
+    /// crushed between two heavy ones converging: pairwise inelastic
+    /// contacts only approach the end, for ever): the cluster of touching
+    /// pucks in the sequence (each had a contact within the Zeno gap; none
+    /// has a kick pending), reached from `a` and `b`, moves together
+    /// ([`resolve::together_all`]), now. One collision record holds every
+    /// puck of the cluster. Returns `false` (nothing done) if the cluster is
+    /// just the pair.
+    fn merge_zeno_cluster(&mut self, a: usize, b: usize, contact: DVec3) -> bool {
+        let t = self.time;
+        let gap = ZENO_GAP * self.table.length() / self.c;
+        let centre = |k: usize| self.pucks[k].worldline.last().position_at(t);
+        let mut cluster = vec![a, b];
+        let mut k = 0;
+        while k < cluster.len() {
+            let (m, xm) = (cluster[k], centre(cluster[k]));
+            for j in 0..self.pucks.len() {
+                let p = &self.pucks[j];
+                if cluster.contains(&j) || !p.pending.is_empty() || t - p.quick.0 >= gap {
+                    continue;
+                }
+                let reach = (p.radius + self.pucks[m].radius) * (1.0 + 1e-9);
+                if (centre(j) - xm).length() <= reach {
+                    cluster.push(j);
+                }
+            }
+            k += 1;
+        }
+        if cluster.len() < 3
+            || cluster[..2]
+                .iter()
+                .any(|&i| !self.pucks[i].pending.is_empty())
+        {
+            return false;
+        }
+        let before: Vec<Body> = cluster
+            .iter()
+            .map(|&i| Body {
+                mass: self.pucks[i].mass,
+                u: self.pucks[i].worldline.last().u_at(t),
+            })
+            .collect();
+        let after = resolve::together_all(&before);
+        self.stats.pair_contacts += 1;
+        self.contacts_made += 1;
+        let mut outcomes = Vec::with_capacity(cluster.len());
+        for (k, &i) in cluster.iter().enumerate() {
+            let puck = &mut self.pucks[i];
+            if puck.worldline.push(t, after[k].u).is_err() {
+                continue;
+            }
+            puck.mass = after[k].mass;
+            self.stats.kicks += 1;
+            outcomes.push(PuckOutcome {
+                puck: puck.external as usize,
+                t,
+                position: puck.worldline.position_at(t),
+                u_before: before[k].u,
+                u_after: after[k].u,
+                mass_before: before[k].mass,
+                mass_after: after[k].mass,
+                orientation_after: puck.worldline.last().orientation,
+                pending: false,
+            });
+        }
+        if self.record {
+            self.collisions.push(Collision {
+                kind: CollisionKind::PuckPuck,
+                t,
+                contact,
+                pucks: outcomes,
+                overlap_bound: 0.0,
+            });
+        }
+        for i in cluster {
+            self.bump(i);
+        }
+        true
     }
 
     /// Counts a contact of puck `i` at board time `t` (s) towards its Zeno

@@ -219,6 +219,38 @@ pub fn together(a: Body, b: Body) -> [Body; 2] {
     ]
 }
 
+/// [`together`] for any number of bodies (an inelastic collapse of a
+/// cluster, which pairwise contacts would only approach, for ever): all move
+/// at the cluster's centre-of-momentum velocity `P/M`, rest masses
+/// `mᵢ′ = M mᵢ / Σ m`. `M` is built pair by pair with
+/// [`FourMomentum::pair_invariant_mass`] (each step combines the bodies so
+/// far, as one body of mass `M` at `P/M`, with the next), which keeps its
+/// digits when the relative motion is slow. 4-momentum conserved exactly,
+/// as for two. Empty in, empty out.
+pub fn together_all(bodies: &[Body]) -> Vec<Body> {
+    if let &[a, b] = bodies {
+        return together(a, b).to_vec();
+    }
+    let Some((&first, rest)) = bodies.split_first() else {
+        return Vec::new();
+    };
+    let whole = rest.iter().fold(first, |acc, &next| {
+        let [x, y] = together(acc, next);
+        Body {
+            mass: x.mass + y.mass,
+            u: x.u,
+        }
+    });
+    let sum: f64 = bodies.iter().map(|b| b.mass).sum();
+    bodies
+        .iter()
+        .map(|b| Body {
+            mass: whole.mass * (b.mass / sum),
+            u: whole.u,
+        })
+        .collect()
+}
+
 /// Outcome of a puck meeting a cushion whose outward unit normal (from the
 /// table into the cushion) is `outward`, board frame.
 pub fn puck_cushion(u: ProperVelocity, outward: DVec3, restitution: f64) -> ProperVelocity {
@@ -378,6 +410,30 @@ mod tests {
         let out = together(fast, slow);
         conserved([fast, slow], out);
         assert_eq!(out[0].u, out[1].u);
+    }
+
+    #[test]
+    fn together_all_conserves_4_momentum_and_is_together_for_two() {
+        let (a, b, c) = (
+            body(0.2, 0.8, 0.3),
+            body(0.5, -0.4, 0.1),
+            body(0.3, 0.0, -0.9),
+        );
+        let two = together_all(&[a, b]);
+        assert_eq!(two, together(a, b).to_vec());
+        let three = together_all(&[a, b, c]);
+        let sum = |x: &[Body]| {
+            x.iter()
+                .fold(FourMomentum::default(), |s, b| s + b.momentum())
+        };
+        let (p0, p1) = (sum(&[a, b, c]), sum(&three));
+        assert!((p0.energy - p1.energy).abs() <= 1e-12 * p0.energy);
+        assert!((p0.momentum - p1.momentum).length() <= 1e-12 * p0.energy);
+        assert!(three.iter().all(|x| x.u == three[0].u));
+        // Heat: the rest masses grow, in proportion.
+        assert!((three[0].mass / three[1].mass - 0.2 / 0.5).abs() < 1e-12);
+        assert!(three[0].mass > 0.2);
+        assert!(together_all(&[]).is_empty());
     }
 
     #[test]
