@@ -288,13 +288,23 @@ enum PlayView {
     Split,
 }
 
-/// Mesa's and the windowing libraries' clients print `XDG_RUNTIME_DIR is
-/// invalid or not set` (twice) when it is missing, as under `xvfb-run` or
-/// `su`: give them a private one (mode 0700) before any thread starts.
+/// Mesa's Vulkan device-select layer (`VK_LAYER_MESA_device_select`, an
+/// implicit layer) asks the Wayland compositor for the default GPU each
+/// time an instance enumerates its adapters, through libwayland-client's
+/// `wl_display_connect`, which prints `error: XDG_RUNTIME_DIR is invalid or
+/// not set in the environment.` when that variable is unset or not an
+/// absolute path (as under `xvfb-run`, `su` or CI): twice a run, on stderr.
+/// Give it a private runtime directory (`$TMPDIR/lightcone-runtime-UID`,
+/// mode 0700, ours) before any thread starts: the connection then fails
+/// quietly (no compositor socket there) and the layer falls back to X11 or
+/// the first adapter, as before. A directory that exists but is not ours
+/// or is open to others is left alone (and the warning stays).
 fn private_runtime_dir() {
     use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
     let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| {
-        std::fs::metadata(&d).is_ok_and(|m| m.is_dir() && m.permissions().mode() & 0o077 == 0)
+        std::path::Path::new(&d).is_absolute()
+            && std::fs::metadata(&d)
+                .is_ok_and(|m| m.is_dir() && m.permissions().mode() & 0o077 == 0)
     });
     if valid {
         return;
