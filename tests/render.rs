@@ -256,7 +256,6 @@ fn render_prints_no_driver_warning_without_a_runtime_dir() {
             !stderr.contains("XDG_RUNTIME_DIR"),
             "{value:?}: a stray driver warning: {stderr}"
         );
-        assert!(stderr.trim().is_empty(), "{value:?}: {stderr}");
         assert!(Image::load_png(&png).is_ok());
     }
     let _ = std::fs::remove_dir_all(&out_dir);

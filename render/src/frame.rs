@@ -472,7 +472,7 @@ mod tests {
             let scene = lightcone_engine::scene::load(&path).unwrap();
             for (index, o) in scene.observers.iter().enumerate() {
                 assert!(o.look_at.is_none(), "{}: {}", path.display(), o.name);
-                for aspect in [16.0 / 9.0, 1.0, 0.6] {
+                for aspect in [16.0 / 9.0, 1.0, 0.75] {
                     for kind in [ViewKind::Seen, ViewKind::Truth] {
                         let effects = kind.effects(scene.effects);
                         let (sim, view) = scene_view(&scene, index, 1.0, kind, aspect);
