@@ -605,7 +605,7 @@ impl Scene {
             ));
         }
         if !(observer.position.is_finite()
-            && observer.look_at.is_finite()
+            && observer.look_at.is_none_or(|p| p.is_finite())
             && observer.u.is_finite())
         {
             return Err(format!(
@@ -613,7 +613,9 @@ impl Scene {
             ));
         }
         if observer.position.abs().max_element() > MAX_OBSERVER_DISTANCE
-            || observer.look_at.abs().max_element() > MAX_OBSERVER_DISTANCE
+            || observer
+                .look_at
+                .is_some_and(|p| p.abs().max_element() > MAX_OBSERVER_DISTANCE)
         {
             return Err(format!(
                 "observer \"{name}\": keep position and look_at within ±{} m",
