@@ -289,12 +289,7 @@ pub fn view_of(
                     .into_iter()
                     .map(|p| eye.see_static(p, scene.c, effects.aberration).position)
                     .collect();
-            super::camera::fit(
-                &points,
-                aspect,
-                lightcone_engine::camera::FIT_MARGIN,
-                zoom,
-            )
+            super::camera::fit(&points, aspect, lightcone_engine::camera::FIT_MARGIN, zoom)
         }
     };
     (eye, camera)
