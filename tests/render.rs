@@ -26,10 +26,7 @@ fn one_puck(
         title: "test".into(),
         description: String::new(),
         c: 1.42,
-        table: TableSpec {
-            size: DVec2::new(2.84, 1.42),
-            cushion_restitution: 1.0,
-        },
+        table: TableSpec::frictionless(DVec2::new(2.84, 1.42), 1.0),
         restitution: 1.0,
         effects,
         optics: Default::default(),

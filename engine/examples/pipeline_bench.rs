@@ -46,10 +46,7 @@ fn lanes(n: usize) -> Scene {
         title: "lanes".into(),
         description: String::new(),
         c: size.x / 2.0,
-        table: TableSpec {
-            size,
-            cushion_restitution: 1.0,
-        },
+        table: TableSpec::frictionless(size, 1.0),
         restitution: 1.0,
         effects: Effects::NONE,
         optics: Default::default(),

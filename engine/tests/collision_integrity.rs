@@ -11,10 +11,12 @@
 //! * 4-momentum conserved to 1e-12 relative in every puck–puck contact;
 //! * every position and velocity finite.
 
+mod common;
+use common::assert_conserved;
 use glam::{DVec2, DVec3};
 use lightcone_engine::physics::predict::puck_puck;
 use lightcone_engine::physics::{Billiard, Collision, CollisionKind, PuckInit, overlap};
-use lightcone_engine::spacetime::{FourMomentum, ProperVelocity};
+use lightcone_engine::spacetime::ProperVelocity;
 use lightcone_engine::worldline::{Segment, Worldline};
 use proptest::prelude::*;
 
@@ -43,26 +45,6 @@ fn pair_of(c: &Collision) -> Option<(usize, usize)> {
         let (a, b) = (c.pucks[0].puck, c.pucks[1].puck);
         (a.min(b), a.max(b))
     })
-}
-
-/// 4-momentum of a pair contact, before and after, conserved to `rel`.
-fn assert_conserved(c: &Collision, rel: f64) {
-    let sum = |after: bool| {
-        c.pucks.iter().fold(FourMomentum::default(), |s, p| {
-            s + if after {
-                FourMomentum::of_body(p.mass_after, p.u_after)
-            } else {
-                FourMomentum::of_body(p.mass_before, p.u_before)
-            }
-        })
-    };
-    let (p0, p1) = (sum(false), sum(true));
-    let scale = p0.energy;
-    assert!(
-        (p0.energy - p1.energy).abs() <= rel * scale
-            && (p0.momentum - p1.momentum).length() <= rel * scale,
-        "4-momentum {p0:?} → {p1:?} in {c:?}"
-    );
 }
 
 /// Checks every invariant on a run kept whole (history on), at the given

@@ -1,6 +1,8 @@
 //! The physics against physics: closed forms of Special Relativity,
 //! conservation laws, and the paper's claims, with stated tolerances.
 
+mod common;
+use common::assert_conserved;
 use glam::{DVec2, DVec3};
 use lightcone_engine::physics::{Billiard, Collision, CollisionKind, Cushion, PuckInit};
 use lightcone_engine::spacetime::{FourMomentum, ProperVelocity};
@@ -54,29 +56,6 @@ fn shot(u: ProperVelocity, impact: f64) -> Collision {
     assert_eq!(c.len(), 1, "{:?}", b.collisions());
     assert!(c[0].pucks.iter().all(|p| !p.pending), "{:?}", c[0]);
     c[0].clone()
-}
-
-fn momentum_before_after(c: &Collision) -> (FourMomentum, FourMomentum) {
-    let before = c.pucks.iter().fold(FourMomentum::default(), |s, p| {
-        s + FourMomentum::of_body(p.mass_before, p.u_before)
-    });
-    let after = c.pucks.iter().fold(FourMomentum::default(), |s, p| {
-        s + FourMomentum::of_body(p.mass_after, p.u_after)
-    });
-    (before, after)
-}
-
-fn assert_conserved(c: &Collision, rel: f64) {
-    let (p0, p1) = momentum_before_after(c);
-    let scale = p0.energy;
-    assert!(
-        (p0.energy - p1.energy).abs() <= rel * scale,
-        "energy {p0:?} → {p1:?}"
-    );
-    assert!(
-        (p0.momentum - p1.momentum).length() <= rel * scale,
-        "momentum {p0:?} → {p1:?}"
-    );
 }
 
 #[test]

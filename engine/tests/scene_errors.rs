@@ -527,3 +527,29 @@ fn a_hundred_thousand_pucks_check_in_well_under_a_second() {
     assert_eq!(scene::first_overlaps(&p).len(), 100_000 - 1);
     assert!(start.elapsed().as_secs_f64() < 0.5);
 }
+
+#[test]
+fn friction_and_gravity_out_of_range() {
+    expect_one("[table]\nfriction = -0.2\n", 2, "table.friction", "from 0");
+    expect_one("[table]\nfriction = nan\n", 2, "table.friction", "finite");
+    expect_one("[table]\nfriction = inf\n", 2, "table.friction", "finite");
+    expect_one("[table]\ngravity = 0.0\n", 2, "table.gravity", "positive");
+    expect_one("[table]\ngravity = -9.81\n", 2, "table.gravity", "positive");
+    expect_one("[table]\ngravity = nan\n", 2, "table.gravity", "positive");
+    // A puck larger than the braking's Rindler horizon c²/(μg) cannot stop
+    // rigidly: c = 0.1 m/s, μg ≈ 1.96 m/s², horizon ≈ 5 mm.
+    expect_one(
+        "c = 0.1\n[table]\nfriction = 0.2\n[[puck]]\nposition = [0.5, 0.5]\n",
+        3,
+        "table.friction",
+        "cannot brake rigidly",
+    );
+    // Defaults: frictionless, standard gravity; given values are kept.
+    let s = lightcone_engine::scene::parse("", "ok.toml").unwrap();
+    assert_eq!(s.table.friction, 0.0);
+    assert_eq!(s.table.gravity, 9.80665);
+    let s = lightcone_engine::scene::parse("[table]\nfriction = 0.2\ngravity = 1.62\n", "ok.toml")
+        .unwrap();
+    assert_eq!((s.table.friction, s.table.gravity), (0.2, 1.62));
+    assert!((s.table.deceleration() - 0.324).abs() < 1e-15);
+}

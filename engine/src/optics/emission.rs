@@ -17,6 +17,14 @@
 //! (binary search, O(log S)). At a kink the contracted offset jumps; if the
 //! jump carries the vertex across the light cone the emission is taken at
 //! the kink.
+//!
+//! On a **braking** segment (sliding friction) every material point of the
+//! Born-rigid body moves on a braking hyperbola of its own
+//! ([`crate::worldline::sliding::Braking::material_point`]), and its
+//! emission event is the intersection of the past light cone with that
+//! hyperbola, a stable quadratic
+//! ([`crate::worldline::sliding::Braking::emission_time`]); after the stop
+//! the point rests.
 
 use glam::DVec3;
 
@@ -39,7 +47,7 @@ pub struct Emission {
 fn start_position(s: &Segment, offset: DVec3, contracted: bool) -> DVec3 {
     s.start.position
         + if contracted {
-            s.place(offset)
+            s.place_at(s.start.t, offset)
         } else {
             s.rotate(offset)
         }
@@ -102,6 +110,9 @@ pub fn solve_on_segment(
     let segments = worldline.segments();
     let s = &segments[k];
     let c = worldline.speed_of_light();
+    if s.is_braking() {
+        return solve_on_braking(worldline, k, offset, contracted, observation);
+    }
     let a = start_position(s, offset, contracted);
     let v = s.velocity();
     let since_start = observation.t - s.start.t;
@@ -119,6 +130,68 @@ pub fn solve_on_segment(
         u: s.u,
         segment: k,
     }
+}
+
+/// [`solve_on_segment`] on a braking segment: the point's own braking
+/// hyperbola (Born-rigid body, or the centre's shifted by the offset when
+/// contraction is off), its emission in closed form; uniform backwards
+/// before the first segment's start, at rest after the stop.
+fn solve_on_braking(
+    worldline: &Worldline,
+    k: usize,
+    offset: DVec3,
+    contracted: bool,
+    observation: Event,
+) -> Emission {
+    let segments = worldline.segments();
+    let s = &segments[k];
+    let c = worldline.speed_of_light();
+    let n = s.direction();
+    let centre = s.braking_law();
+    let r = s.rotate(offset);
+    let (start, law) = if contracted {
+        let along = n.dot(r);
+        let across = r - n * along;
+        match centre.material_point(along) {
+            Ok((off0, law)) => (s.start.position + across + n * off0, law),
+            Err(_) => (s.start.position + s.place_at(s.start.t, offset), centre),
+        }
+    } else {
+        (s.start.position + r, centre)
+    };
+    let t_obs = observation.t - s.start.t;
+    let end = segments
+        .get(k + 1)
+        .map_or(f64::INFINITY, |next| next.start.t - s.start.t);
+    let at = |dt: f64| {
+        let dt = dt.min(end);
+        Emission {
+            event: Event::new(s.start.t + dt, start + n * law.distance_at(dt)),
+            u: ProperVelocity(n * law.proper_speed_at(dt)),
+            segment: k,
+        }
+    };
+    if let Some(dt) = law.emission_time(start, n, observation.position, t_obs) {
+        return at(dt);
+    }
+    // Not on the hyperbola: before the start, or after the stop.
+    if c * t_obs < (observation.position - start).length() {
+        if k > 0 {
+            return at(0.0);
+        }
+        // Before the first segment: its start motion extends back.
+        let v = s.velocity();
+        let d = observation.position - (start + v * t_obs);
+        let dt = t_obs - light_catch_up(d, v, c, s.gamma());
+        return Emission {
+            event: Event::new(s.start.t + dt, start + v * dt),
+            u: s.u,
+            segment: k,
+        };
+    }
+    let rest = start + n * law.stopping_distance();
+    let dt = t_obs - (observation.position - rest).length() / c;
+    at(dt.max(law.stop_time()))
 }
 
 /// The emission event of the point at rest-frame `offset` from the
@@ -167,13 +240,13 @@ pub fn simultaneous(worldline: &Worldline, offset: DVec3, contracted: bool, t: f
     let k = worldline.segment_index_at(t);
     let s = &worldline.segments()[k];
     let r = if contracted {
-        s.place(offset)
+        s.place_at(t, offset)
     } else {
         s.rotate(offset)
     };
     Emission {
         event: Event::new(t, s.position_at(t) + r),
-        u: s.u,
+        u: s.u_at(t),
         segment: k,
     }
 }
@@ -292,5 +365,46 @@ mod tests {
         for (r, e) in offsets.iter().zip(&shared) {
             assert_eq!(*e, solve(&w, *r, true, obs));
         }
+    }
+
+    #[test]
+    fn on_a_braking_worldline_the_emission_is_on_the_cone_and_the_body() {
+        // A puck braking to rest (μg = 1.5 m/s², c = 1.42 m/s), then resting
+        // (explicit rest segment). For the centre and rim points, at times
+        // before, during and after the stop, the emission event lies on the
+        // observation's past light cone (1e-12) and on the point's own
+        // worldline: the centre's plus the Born-rigid offset then (1e-12).
+        let u = ProperVelocity(DVec3::new(2.0, 0.8, 0.0));
+        let mut w = Worldline::braking(Event::new(0.0, DVec3::new(0.4, 0.3, 0.0)), u, C, 1.5);
+        let stop = w.come_to_rest().unwrap();
+        let eye = DVec3::new(1.2, -1.0, 0.7);
+        let mut last_t = f64::NEG_INFINITY;
+        for i in 0..300 {
+            let t0 = 0.5 + 0.02 * f64::from(i);
+            for r in [
+                DVec3::ZERO,
+                DVec3::new(0.03, 0.0, 0.0),
+                DVec3::new(-0.02, 0.02, 0.01),
+            ] {
+                let e = solve(&w, r, true, Event::new(t0, eye));
+                let on_cone = C * (t0 - e.event.t) - (eye - e.event.position).length();
+                assert!(on_cone.abs() < 1e-12, "{t0} {r}: {on_cone}");
+                let s = w.segment_at(e.event.t);
+                let body = w.position_at(e.event.t) + s.place_at(e.event.t, r);
+                assert!(
+                    (body - e.event.position).length() < 1e-12,
+                    "{t0} {r}: {body} vs {}",
+                    e.event.position
+                );
+                if r == DVec3::ZERO {
+                    assert!(e.event.t >= last_t);
+                    last_t = e.event.t;
+                    // Proper velocity then: the braking law's.
+                    let expect = w.proper_velocity_at(e.event.t);
+                    assert!((e.u.0 - expect.0).length() < 1e-12);
+                }
+            }
+        }
+        assert!(last_t > stop, "the run should see the puck at rest");
     }
 }

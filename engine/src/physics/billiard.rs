@@ -11,7 +11,7 @@ use super::broadphase::BroadPhase;
 use super::calendar::{Calendar, Key, Rank};
 use super::overlap;
 use super::predict::puck_puck::PairContact;
-use super::predict::{Cushion, puck_cushion, puck_puck};
+use super::predict::{Cushion, braking, puck_cushion, puck_puck};
 use super::resolve::{self, Body};
 use crate::scene::Scene;
 use crate::spacetime::{Event, ProperVelocity, rotation_of_velocity_change};
@@ -201,6 +201,8 @@ enum What {
     },
     /// The puck's centre leaves its broad-phase shell.
     Shell,
+    /// The puck's braking segment ends: it comes to rest (sliding friction).
+    Stop,
 }
 
 /// A puck's pending event: what, and for a pair the winning prediction,
@@ -222,6 +224,8 @@ struct Hot {
     x0: DVec2,
     v: DVec2,
     radius: f64,
+    /// On a braking segment: the uniform bound does not apply.
+    braking: bool,
 }
 
 impl Hot {
@@ -232,6 +236,7 @@ impl Hot {
             x0: s.start.position.truncate(),
             v: s.velocity().truncate(),
             radius: puck.radius,
+            braking: s.is_braking(),
         }
     }
 
@@ -405,6 +410,19 @@ impl Billiard {
         self.start();
     }
 
+    /// Puts sliding friction on the table: every moving puck brakes with
+    /// proper deceleration `deceleration` (`μ g`, m/s², board frame; 0 is
+    /// frictionless), from its state at board time 0 (see
+    /// `predict::braking`). Call before running; a non-finite or negative
+    /// value is taken as 0.
+    pub fn set_sliding_friction(&mut self, deceleration: f64) {
+        for puck in &mut self.pucks {
+            let first = puck.worldline.segments()[0];
+            puck.worldline = Worldline::braking(first.start, first.u, self.c, deceleration);
+        }
+        self.start();
+    }
+
     /// The billiard of a validated scene.
     pub fn from_scene(scene: &Scene) -> Self {
         let pucks = scene.pucks.iter().map(PuckInit::from).collect();
@@ -415,6 +433,9 @@ impl Billiard {
             scene.table.cushion_restitution,
             pucks,
         );
+        if scene.table.deceleration() > 0.0 {
+            billiard.set_sliding_friction(scene.table.deceleration());
+        }
         // `before_start = "rest"`: each puck rests until struck at t = 0.
         if scene.before_start == crate::scene::BeforeStart::Rest {
             for puck in &mut billiard.pucks {
@@ -563,7 +584,10 @@ impl Billiard {
     /// collisions; cushions change it (they are external).
     pub fn total_momentum(&self) -> crate::spacetime::FourMomentum {
         let bodies = self.pucks.iter().fold(Default::default(), |sum, p| {
-            sum + crate::spacetime::FourMomentum::of_body(p.mass, p.worldline.last().u)
+            sum + crate::spacetime::FourMomentum::of_body(
+                p.mass,
+                p.worldline.last().u_at(self.time),
+            )
         });
         self.kicks.iter().flatten().fold(bodies, |sum, k| {
             sum + (k.after.momentum() - k.before.momentum())
@@ -629,7 +653,7 @@ impl Billiard {
         self.advance_to(t);
         self.flush_pending(i);
         let puck = &mut self.pucks[i];
-        let u = ProperVelocity(puck.worldline.last().u.0 + du);
+        let u = ProperVelocity(puck.worldline.last().u_at(t).0 + du);
         puck.worldline
             .push(t.max(puck.worldline.last().start.t), u)?;
         self.bump(i);
@@ -673,6 +697,12 @@ impl Billiard {
                 }
             }
             What::Shell => self.move_shell(i),
+            What::Stop => {
+                // The motion is unchanged (a braking segment rests after its
+                // stop): no new version, predictions made stay valid.
+                self.pucks[i].worldline.come_to_rest();
+                self.hot[i] = Hot::of(&self.pucks[i]);
+            }
         }
         // Unchanged (a stale entry, a shell move): predicted again; changed
         // pucks were predicted as they changed.
@@ -722,9 +752,9 @@ impl Billiard {
     fn cushion_contact(&mut self, i: usize, cushion: Cushion, t: f64) {
         self.time = self.time.max(t);
         let puck = &mut self.pucks[i];
-        let before = puck.worldline.last().u;
-        let after = resolve::puck_cushion(before, cushion.outward(), self.cushion_restitution);
         let t_kink = t.max(puck.worldline.last().start.t);
+        let before = puck.worldline.last().u_at(t_kink);
+        let after = resolve::puck_cushion(before, cushion.outward(), self.cushion_restitution);
         if puck.worldline.push(t_kink, after).is_err() {
             return;
         }
@@ -769,11 +799,18 @@ impl Billiard {
         self.stats.pair_contacts += 1;
         self.contacts_made += 1;
         let contact_id = self.contacts_made;
-        let body = |p: &Puck| Body {
+        // Kick times: never before now (a contact found already
+        // overlapping is resolved at once).
+        let times = [hit.kicks[0].t.max(self.time), hit.kicks[1].t.max(self.time)];
+        // Each puck's state at its own kick (it may be braking meanwhile).
+        let body = |p: &Puck, t: f64| Body {
             mass: p.mass,
-            u: p.worldline.last().u,
+            u: p.worldline.last().u_at(t),
         };
-        let before = [body(&self.pucks[a]), body(&self.pucks[b])];
+        let before = [
+            body(&self.pucks[a], times[0]),
+            body(&self.pucks[b], times[1]),
+        ];
         let restitution = self.zeno_restitution(a, b, hit.contact.t);
         let after = if hit.on_board {
             self.board_push(a, b, before, hit.normal, restitution)
@@ -786,18 +823,15 @@ impl Billiard {
                 restitution,
             )
         };
-        // Kick times: never before now (a contact found already
-        // overlapping is resolved at once).
-        let times = [hit.kicks[0].t.max(self.time), hit.kicks[1].t.max(self.time)];
         let overlap_bound = {
             let first = if times[0] <= times[1] { 0 } else { 1 };
             let second = 1 - first;
             let closing = after[first].u.velocity(self.c) - before[second].u.velocity(self.c);
             let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
             let early = overlap::depth(
-                self.pucks[a].worldline.last(),
+                &self.pucks[a].worldline.last().tangent_at(times[first]),
                 ra,
-                self.pucks[b].worldline.last(),
+                &self.pucks[b].worldline.last().tangent_at(times[first]),
                 rb,
                 times[first],
             );
@@ -1000,18 +1034,27 @@ impl Billiard {
         let i = kick.puck as usize;
         let puck = &mut self.pucks[i];
         puck.pending.retain(|&k| k != id);
+        // At its scheduled time, or now if it lands early (flushed).
+        let t = kick.t.min(self.time).max(puck.worldline.last().start.t);
         let now = Body {
             mass: puck.mass,
-            u: puck.worldline.last().u,
+            u: puck.worldline.last().u_at(t),
         };
-        let next = if puck.version == kick.version_at_contact {
+        // Unchanged since the contact and (on a braking segment) landing at
+        // its own time: the scheduled outcome. A braking puck whose kick
+        // lands early (flushed) has not yet slowed to the state the outcome
+        // was worked from: it takes the contact's transfer as below.
+        let as_scheduled = now.u == kick.before.u;
+        let next = if puck.version == kick.version_at_contact && as_scheduled {
             kick.after
         } else {
             // The puck was changed again before this kick's board time: add
             // this contact's 4-momentum transfer to its present 4-momentum.
             // Energy and momentum stay exactly conserved; the difference
             // from a rigid body's outcome shows as a change of rest mass.
-            self.stats.overlapping_kicks += 1;
+            if puck.version != kick.version_at_contact {
+                self.stats.overlapping_kicks += 1;
+            }
             let p = now.momentum() + (kick.after.momentum() - kick.before.momentum());
             let mass = p.invariant_mass();
             if mass > 1e-3 * now.mass && p.energy > 0.0 {
@@ -1026,8 +1069,6 @@ impl Billiard {
                 }
             }
         };
-        // At its scheduled time, or now if it lands early (flushed).
-        let t = kick.t.min(self.time).max(puck.worldline.last().start.t);
         if puck.worldline.push(t, next.u).is_err() {
             return;
         }
@@ -1126,6 +1167,9 @@ impl Billiard {
     fn contact_of(&self, a: usize, b: usize, now: f64) -> Option<PairContact> {
         let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
         let (sa, sb) = (pa.worldline.last(), pb.worldline.last());
+        if sa.is_braking() || sb.is_braking() {
+            return braking::pair(self.mover(a), self.mover(b), self.c, now);
+        }
         let on_board = |t: f64, m: DVec3, depth: f64| PairContact {
             contact: Event::new(
                 t,
@@ -1286,8 +1330,7 @@ impl Billiard {
         }
         let segment = puck.worldline.last();
         for (k, cushion) in Cushion::ALL.into_iter().enumerate() {
-            if let Some(hit) = puck_cushion::predict(segment, puck.radius, self.table, cushion, now)
-            {
+            if let Some(hit) = braking::cushion(segment, puck.radius, self.table, cushion, now) {
                 let key = Key {
                     t: hit.t,
                     rank: Rank::cushion(i as u32, k as u32),
@@ -1307,6 +1350,16 @@ impl Billiard {
             best = key;
             next.what = What::Shell;
         }
+        if let Some(stop) = segment.stop_time() {
+            let key = Key {
+                t: stop.max(now),
+                rank: Rank::stop(i as u32),
+            };
+            if key.before(&best) {
+                best = key;
+                next.what = What::Stop;
+            }
+        }
         let partners = if self.reference {
             self.pucks.len()
         } else {
@@ -1323,7 +1376,8 @@ impl Billiard {
             };
             let (a, b) = (i.min(j), i.max(j));
             let limit = best.t.min(self.exits[j]);
-            if !self.reference {
+            // (No cheap bound for a braking puck: every candidate is solved.)
+            if !self.reference && !self.hot[a].braking && !self.hot[b].braking {
                 match disc_touch(&self.hot[a], &self.hot[b], now) {
                     Some(t) if t <= limit => {}
                     _ => {
@@ -1375,6 +1429,9 @@ impl Billiard {
     /// leaves its shell (infinite if it never does).
     fn shell_exit(&self, i: usize) -> f64 {
         let s = self.pucks[i].worldline.last();
+        if s.is_braking() {
+            return braking::shell_exit(s, self.shells[i], self.margin, self.time);
+        }
         let v = s.velocity().truncate();
         let vv = v.length_squared();
         if vv == 0.0 {

@@ -34,6 +34,10 @@ impl Rank {
     pub fn shell(i: u32) -> Self {
         Self(3 << 62 | i as u64)
     }
+    /// Puck `i`'s braking segment ends (after its shell exit at that time).
+    pub fn stop(i: u32) -> Self {
+        Self(3 << 62 | 1 << 32 | i as u64)
+    }
 }
 
 /// A key: board time (s), then rank.

@@ -42,6 +42,11 @@ pub const LENGTH_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
 pub const MASS_RANGE: std::ops::RangeInclusive<f64> = 1e-9..=1e9;
 /// Speed of light, m/s (the real one, 299 792 458, included).
 pub const C_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e9;
+/// Largest coefficient of sliding friction a scene may give (`table.friction`).
+pub const MAX_FRICTION: f64 = 100.0;
+/// Range of the gravitational acceleration a scene may give
+/// (`table.gravity`), m/s².
+pub const GRAVITY_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
 /// Largest coordinate of an observer's eye or `look_at`, m.
 pub const MAX_OBSERVER_DISTANCE: f64 = 1e9;
 /// Most pucks in one scene.
@@ -116,6 +121,17 @@ pub struct TableSpec {
     pub size: DVec2,
     /// Puck–cushion restitution in [0, 1].
     pub cushion_restitution: f64,
+    /// Coefficient of sliding friction between pucks and cloth, `μ ≥ 0`
+    /// (dimensionless; 0, the default, is a frictionless table). A sliding
+    /// puck feels `dp/dt = −μ m g v̂` in the board frame: constant proper
+    /// deceleration `μ g` (see [`crate::worldline::sliding`]). A carom
+    /// cloth's sliding value is about [`Self::CAROM_CLOTH_FRICTION`].
+    #[serde(default)]
+    pub friction: f64,
+    /// Gravitational acceleration pressing the pucks on the cloth, m/s²
+    /// (default [`Self::STANDARD_GRAVITY`]).
+    #[serde(default = "TableSpec::standard_gravity")]
+    pub gravity: f64,
 }
 
 /// One puck at board time 0.
@@ -399,6 +415,32 @@ impl PuckSpec {
 }
 
 impl TableSpec {
+    /// Sliding friction coefficient of a carom cloth (ball on new woollen
+    /// cloth, sliding phase: about 0.2; the rolling value is ~100× smaller).
+    pub const CAROM_CLOTH_FRICTION: f64 = 0.2;
+    /// Standard gravity, m/s².
+    pub const STANDARD_GRAVITY: f64 = 9.806_65;
+
+    fn standard_gravity() -> f64 {
+        Self::STANDARD_GRAVITY
+    }
+
+    /// A frictionless table of `size` metres, cushions of restitution
+    /// `cushion_restitution`.
+    pub fn frictionless(size: DVec2, cushion_restitution: f64) -> Self {
+        Self {
+            size,
+            cushion_restitution,
+            friction: 0.0,
+            gravity: Self::STANDARD_GRAVITY,
+        }
+    }
+
+    /// The proper deceleration of a sliding puck, `μ g`, m/s².
+    pub fn deceleration(&self) -> f64 {
+        self.friction * self.gravity
+    }
+
     /// Why the puck does not fit on the table at t = 0, if it does not.
     /// Touching a cushion is allowed.
     pub fn misplaced(&self, puck: &PuckSpec) -> Option<String> {
@@ -533,10 +575,7 @@ impl Scene {
             title: "scene".to_owned(),
             description: String::new(),
             c,
-            table: TableSpec {
-                size,
-                cushion_restitution: 1.0,
-            },
+            table: TableSpec::frictionless(size, 1.0),
             restitution: 1.0,
             effects: Effects::default(),
             optics: OpticsSpec::default(),

@@ -33,6 +33,8 @@ pub struct RawScene {
 pub struct RawTable {
     pub size: Option<At<Vec<f64>>>,
     pub cushion_restitution: Option<At<f64>>,
+    pub friction: Option<At<f64>>,
+    pub gravity: Option<At<f64>>,
 }
 
 /// `[physics]`.

@@ -7,9 +7,9 @@ use std::collections::{BTreeMap, HashSet};
 
 use super::error::number;
 use super::model::{
-    C_RANGE, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE, LENGTH_RANGE, MASS_RANGE,
-    MAX_DICHOTOMY_STEPS, MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS,
-    MAX_U, first_overlaps, magnitude,
+    C_RANGE, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE, GRAVITY_RANGE,
+    LENGTH_RANGE, MASS_RANGE, MAX_DICHOTOMY_STEPS, MAX_FRICTION, MAX_HISTORY_FRAMES,
+    MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS, MAX_U, first_overlaps, magnitude,
 };
 use super::raw::{At, RawObserver, RawPuck, RawScene};
 use super::{Color, Effects, ObserverSpec, PuckSpec, Scene, SceneError, SceneErrors, TableSpec};
@@ -320,9 +320,39 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         "table.cushion_restitution",
         1.0,
     );
+    let table_raw = raw.table.as_ref();
+    let friction = match table_raw.and_then(|t| t.friction.as_ref()) {
+        None => 0.0,
+        Some(v) => {
+            let x = *v.get_ref();
+            if (0.0..=MAX_FRICTION).contains(&x) {
+                x
+            } else {
+                ck.error(
+                    v,
+                    "table.friction",
+                    format!(
+                        "{} must be a finite number from 0 (frictionless) to {MAX_FRICTION} \
+                         (a carom cloth slides at about 0.2)",
+                        number(x)
+                    ),
+                );
+                0.0
+            }
+        }
+    };
+    let gravity = ck.in_range(
+        table_raw.and_then(|t| t.gravity.as_ref()),
+        "table.gravity",
+        TableSpec::STANDARD_GRAVITY,
+        GRAVITY_RANGE,
+        "m/s²",
+    );
     let table = TableSpec {
         size,
         cushion_restitution,
+        friction,
+        gravity,
     };
     let c = ck.in_range(raw.c.as_ref(), "c", Scene::default_c(size), C_RANGE, "m/s");
     let restitution = ck.unit_interval(
@@ -362,6 +392,28 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         }
         pucks.push(p);
         puck_spans.push((i, at));
+    }
+    // Born-rigid braking needs every puck shorter than c²/(μg) (the
+    // braking's Rindler horizon; see worldline::sliding).
+    if let Some(v) = table_raw.and_then(|t| t.friction.as_ref())
+        && table.deceleration() > 0.0
+    {
+        let horizon = c * c / table.deceleration();
+        if let Some(p) = pucks.iter().find(|p| p.radius >= horizon) {
+            ck.error(
+                v,
+                "table.friction",
+                format!(
+                    "puck \"{}\" (radius {} m) cannot brake rigidly: with friction {} and \
+                     gravity {} m/s² a puck must be smaller than c²/(μg) = {} m",
+                    p.name,
+                    number(p.radius),
+                    number(table.friction),
+                    number(table.gravity),
+                    number(horizon)
+                ),
+            );
+        }
     }
     for (i, j) in first_overlaps(&pucks) {
         let (a, b) = (&pucks[i], &pucks[j]);

@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use super::sliding::Braking;
 use crate::spacetime::{Event, ProperVelocity, rotation_of_velocity_change};
 
 /// Why a kink cannot be appended to a worldline.
@@ -22,8 +23,23 @@ pub enum WorldlineError {
     NotFinite,
 }
 
-/// One straight piece of a worldline: from event `start` on, the body moves
-/// with constant proper velocity `u`.
+/// One piece of a worldline, of one of three kinds, all along a straight
+/// line in closed form:
+///
+/// * **uniform**: from event `start` on the body moves with constant proper
+///   velocity `u`;
+/// * **braking**: it starts with proper velocity `u` and slides under
+///   constant proper deceleration [`Self::deceleration`] (`μ g`, board-frame
+///   sliding friction; see [`crate::worldline::sliding`]): a hyperbola in
+///   `(t, s)`, proper speed falling linearly in board time until
+///   [`Self::stop_time`], then at rest where it stopped;
+/// * **rest**: `u = 0`.
+///
+/// `u`, [`Self::velocity`], [`Self::gamma`], [`Self::contract`] and
+/// [`Self::place`] are the values at the segment's **start**; the `_at`
+/// methods give any board time. Before its start a segment extends back
+/// uniformly with its start velocity (what the first segment does before
+/// `t = 0`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
     /// Where and when this segment begins (board frame).
@@ -50,6 +66,10 @@ pub struct Segment {
     gamma: f64,
     /// `(cos, sin)` of `orientation` (cached).
     turn: (f64, f64),
+    /// Proper deceleration of the reference point, m/s² (0: uniform or rest).
+    deceleration: f64,
+    /// Speed of light, m/s.
+    c: f64,
 }
 
 impl Segment {
@@ -70,7 +90,125 @@ impl Segment {
             },
             gamma,
             turn: orientation.sin_cos(),
+            deceleration: 0.0,
+            c,
         }
+    }
+
+    /// A segment that brakes with proper deceleration `deceleration` (m/s²,
+    /// ≥ 0) from its start; a rest segment (`u = 0`) or a zero deceleration
+    /// gives a uniform segment.
+    fn braking(
+        start: Event,
+        u: ProperVelocity,
+        proper_time: f64,
+        orientation: f64,
+        c: f64,
+        deceleration: f64,
+    ) -> Self {
+        let mut s = Self::new(start, u, proper_time, orientation, c);
+        if u.0 != DVec3::ZERO && deceleration > 0.0 {
+            s.deceleration = deceleration;
+        }
+        s
+    }
+
+    /// Proper deceleration of the reference point along this segment, m/s²
+    /// (0 for a uniform or rest segment).
+    #[inline]
+    pub fn deceleration(&self) -> f64 {
+        self.deceleration
+    }
+
+    /// Whether this is a braking segment (moving, decelerating).
+    #[inline]
+    pub fn is_braking(&self) -> bool {
+        self.deceleration > 0.0
+    }
+
+    /// Whether this is a rest segment.
+    #[inline]
+    pub fn is_rest(&self) -> bool {
+        self.u.0 == DVec3::ZERO
+    }
+
+    /// The reference point's braking along this segment in closed form
+    /// (times from the segment start; deceleration 0 for uniform motion).
+    #[inline]
+    pub fn braking_law(&self) -> Braking {
+        Braking::new(self.u.0.length(), self.deceleration, self.c)
+    }
+
+    /// Board time at which a braking segment's reference point comes to
+    /// rest, s: `t₀ + c|u|/a`. `None` for uniform and rest segments.
+    pub fn stop_time(&self) -> Option<f64> {
+        self.is_braking()
+            .then(|| self.start.t + self.braking_law().stop_time())
+    }
+
+    /// Unit direction of motion (zero at rest), board frame.
+    #[inline]
+    pub fn direction(&self) -> DVec3 {
+        self.direction
+    }
+
+    /// Proper velocity at board time `t` (the start's before the start).
+    #[inline]
+    pub fn u_at(&self, t: f64) -> ProperVelocity {
+        let dt = t - self.start.t;
+        if self.deceleration == 0.0 || dt <= 0.0 {
+            return self.u;
+        }
+        ProperVelocity(self.direction * self.braking_law().proper_speed_at(dt))
+    }
+
+    /// Board-frame velocity at board time `t`, m/s.
+    #[inline]
+    pub fn velocity_at(&self, t: f64) -> DVec3 {
+        if self.deceleration == 0.0 {
+            return self.velocity;
+        }
+        self.u_at(t).velocity(self.c)
+    }
+
+    /// The uniform segment tangent to this one at board time `t`: same
+    /// event, proper velocity, proper time and orientation there (this
+    /// segment itself when it is uniform). Its contraction is the body's
+    /// instantaneous Lorentz contraction.
+    pub fn tangent_at(&self, t: f64) -> Segment {
+        if self.deceleration == 0.0 {
+            return *self;
+        }
+        Segment::new(
+            Event::new(t, self.position_at(t)),
+            self.u_at(t),
+            self.proper_time_at(t),
+            self.orientation,
+            self.c,
+        )
+    }
+
+    /// Where the point of the body at rest-frame offset `r` lies from the
+    /// reference point at board time `t`: [`Self::place`] on a uniform
+    /// segment; on a braking one the Born-rigid body's offset
+    /// ([`Braking::contracted_offset_at`]: `r∥/γ` without friction, `r∥` at
+    /// rest), falling back to the instantaneous Lorentz contraction for a
+    /// point beyond the braking's Rindler horizon (`r∥ ≥ c²/a`, which
+    /// scene validation refuses).
+    pub fn place_at(&self, t: f64, r: DVec3) -> DVec3 {
+        if self.deceleration == 0.0 {
+            return self.place(r);
+        }
+        let r = self.rotate(r);
+        let n = self.direction;
+        let along = n.dot(r);
+        let across = r - n * along;
+        let dt = (t - self.start.t).max(0.0);
+        let law = self.braking_law();
+        let moved = law
+            .contracted_offset_at(dt, along)
+            .unwrap_or_else(|_| along / law.gamma_at(dt));
+        across + n * moved
     }
 
     /// Lorentz factor along the segment.
@@ -117,13 +255,23 @@ impl Segment {
     /// is taken relative to the segment start before it multiplies anything.
     #[inline]
     pub fn position_at(&self, t: f64) -> DVec3 {
-        self.start.position + self.velocity * (t - self.start.t)
+        let dt = t - self.start.t;
+        if self.deceleration == 0.0 || dt <= 0.0 {
+            return self.start.position + self.velocity * dt;
+        }
+        self.start.position + self.direction * self.braking_law().distance_at(dt)
     }
 
-    /// Proper time at board time `t`: `τ₀ + (t − t₀)/γ` (time dilation).
+    /// Proper time at board time `t`: `τ₀ + (t − t₀)/γ` (time dilation) on
+    /// a uniform segment, `τ₀ + (c/a)(asinh u₀ − asinh u)` on a braking one
+    /// ([`Braking::proper_time_at`]).
     #[inline]
     pub fn proper_time_at(&self, t: f64) -> f64 {
-        self.proper_time + (t - self.start.t) * self.inverse_gamma
+        let dt = t - self.start.t;
+        if self.deceleration == 0.0 || dt <= 0.0 {
+            return self.proper_time + dt * self.inverse_gamma;
+        }
+        self.proper_time + self.braking_law().proper_time_at(dt)
     }
 }
 
@@ -160,6 +308,9 @@ pub struct BodyState {
 pub struct Worldline {
     segments: Vec<Segment>,
     c: f64,
+    /// Proper deceleration of every moving segment begun from now on, m/s²
+    /// (sliding friction `μ g`; 0 on a frictionless table).
+    deceleration: f64,
 }
 
 impl Worldline {
@@ -169,7 +320,30 @@ impl Worldline {
         Self {
             segments: vec![Segment::new(start, u, 0.0, 0.0, c)],
             c,
+            deceleration: 0.0,
         }
+    }
+
+    /// A worldline through `start` with proper velocity `u` that slides
+    /// under sliding friction: every moving segment, the first included,
+    /// brakes with proper deceleration `deceleration` (`μ g`, m/s², ≥ 0; 0 is
+    /// [`Self::new`]).
+    pub fn braking(start: Event, u: ProperVelocity, c: f64, deceleration: f64) -> Self {
+        let deceleration = if deceleration.is_finite() {
+            deceleration.max(0.0)
+        } else {
+            0.0
+        };
+        Self {
+            segments: vec![Segment::braking(start, u, 0.0, 0.0, c, deceleration)],
+            c,
+            deceleration,
+        }
+    }
+
+    /// The proper deceleration its moving segments get, m/s².
+    pub fn deceleration(&self) -> f64 {
+        self.deceleration
     }
 
     /// The speed of light the segments' velocities were derived with, m/s.
@@ -208,7 +382,7 @@ impl Worldline {
     /// Proper velocity `u = γβ` (dimensionless, board frame) at board time
     /// `t` (the later segment's at a kink).
     pub fn proper_velocity_at(&self, t: f64) -> ProperVelocity {
-        self.segment_at(t).u
+        self.segment_at(t).u_at(t)
     }
 
     /// Former name of [`Self::proper_velocity_at`] (kept until the game's
@@ -228,7 +402,7 @@ impl Worldline {
         let s = self.segment_at(t);
         BodyState {
             position: s.position_at(t),
-            u: s.u,
+            u: s.u_at(t),
             proper_time: s.proper_time_at(t),
             orientation: s.orientation,
         }
@@ -266,7 +440,10 @@ impl Worldline {
     ///
     /// `t` must not precede the last segment's start. A kink at exactly the
     /// last start replaces that segment's velocity (two impulses at one
-    /// instant add up), keeping the worldline a function of time.
+    /// instant add up), keeping the worldline a function of time. On a
+    /// braking worldline ([`Self::braking`]) a moving new segment brakes too;
+    /// the Wigner rotation is that of the change from the velocity the body
+    /// has at `t`.
     pub fn push(&mut self, t: f64, u: ProperVelocity) -> Result<(), WorldlineError> {
         if !(t.is_finite() && u.is_finite()) {
             return Err(WorldlineError::NotFinite);
@@ -280,21 +457,34 @@ impl Worldline {
         }
         // Torque-free: the new rest frame is the old one boosted within
         // itself; two changes at one instant compose in turn.
-        let orientation = last.orientation + rotation_of_velocity_change(last.u, u);
+        let orientation = last.orientation + rotation_of_velocity_change(last.u_at(t), u);
+        let a = self.deceleration;
         if t == last.start.t {
             let i = self.segments.len() - 1;
-            self.segments[i] = Segment::new(last.start, u, last.proper_time, orientation, self.c);
+            self.segments[i] =
+                Segment::braking(last.start, u, last.proper_time, orientation, self.c, a);
         } else {
             let start = Event::new(t, last.position_at(t));
-            self.segments.push(Segment::new(
+            self.segments.push(Segment::braking(
                 start,
                 u,
                 last.proper_time_at(t),
                 orientation,
                 self.c,
+                a,
             ));
         }
         Ok(())
+    }
+
+    /// Ends a braking last segment with a rest segment at its stop time (the
+    /// motion is unchanged: a braking segment rests after its stop; the rest
+    /// segment makes that explicit). Returns the stop time, or `None` if the
+    /// last segment is not braking.
+    pub fn come_to_rest(&mut self) -> Option<f64> {
+        let t = self.last().stop_time()?;
+        self.push(t, ProperVelocity::ZERO).ok()?;
+        Some(t)
     }
 
     /// Keeps only the current (last) segment. For long headless runs that

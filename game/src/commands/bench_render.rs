@@ -23,10 +23,7 @@ fn large(n: usize) -> Scene {
         title: format!("{n} pucks"),
         description: String::new(),
         c: size.x / 2.0,
-        table: TableSpec {
-            size,
-            cushion_restitution: 1.0,
-        },
+        table: TableSpec::frictionless(size, 1.0),
         restitution: 1.0,
         effects: Effects::default(),
         optics: Default::default(),

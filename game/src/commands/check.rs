@@ -73,6 +73,18 @@ pub fn summary(path: &Path, s: &Scene) -> String {
         s.restitution,
         s.table.cushion_restitution
     );
+    if s.table.friction > 0.0 {
+        let a = s.table.deceleration();
+        let _ = writeln!(
+            out,
+            "  sliding friction μ = {} at g = {} m/s²: pucks brake at μg = {} m/s² \
+             (a puck at γ stops after (c²/μg)(γ − 1) = {} m × (γ − 1))",
+            number(s.table.friction),
+            number(s.table.gravity),
+            number((a * 1e6).round() / 1e6),
+            number((s.c * s.c / a * 1e6).round() / 1e6)
+        );
+    }
     let _ = writeln!(out, "  effects on: {}; off: {}", list(&on), list(&off));
     let _ = writeln!(out, "  {} puck(s):", s.pucks.len());
     for p in &s.pucks {

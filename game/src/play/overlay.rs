@@ -299,7 +299,8 @@ fn physics_marks(
                 }
             }
         }
-        let segment = w.segment_at(t_now);
+        // The motion now (the tangent of a braking segment).
+        let segment = w.segment_at(t_now).tangent_at(t_now);
         if show.ghost && seen_view {
             // The truth now, contracted: a faint outline and fill.
             let centre = w.position_at(t_now) + lift;

@@ -1,5 +1,6 @@
 //! Collision prediction in closed form, one kernel per pair of shapes.
 
+pub mod braking;
 pub mod puck_cushion;
 pub mod puck_puck;
 

@@ -1,0 +1,641 @@
+//! Contacts on decelerating worldlines (sliding friction): puck–cushion and
+//! puck–puck prediction when at least one puck is on a braking segment
+//! ([`crate::worldline::sliding`]), exact to the last bits of the time, with
+//! a root isolation that cannot miss a contact.
+//!
+//! ## The shapes
+//!
+//! At board time `t` a puck is taken as its rest disc contracted by its
+//! *instantaneous* `1/γ(t)` along its (fixed) direction of motion: the shape
+//! of the uniform motion tangent to its worldline then
+//! ([`Segment::tangent_at`]). The Born-rigid braking body
+//! (`worldline::sliding`) differs from it by at most `R ρ β²/2` along the
+//! motion, `ρ = R μg/c²` (1.5·10⁻³ R for the paper's table with μ = 0.2,
+//! 10⁻¹⁴ R at c = 10⁶ m/s); optics draws the Born-rigid body.
+//!
+//! ## Puck–cushion: a monotone gap
+//!
+//! Along an axis-aligned cushion's normal `k` the gap is
+//! `G(t) = s (L − x_k(t)) − h_k(t)`, with `h_k = R √(1 + u⊥²)/γ` the
+//! half-width ([`puck_cushion::half_width`]). A braking puck moves along a
+//! fixed line, so if it heads for the cushion `x_k` only grows; and
+//! `h_k² = R² (1 + u² sin²φ)/(1 + u²)` grows as `u` falls. So `G` is
+//! *decreasing*: it has at most one root on `[now, t_stop]`, bracketed by
+//! `G(now) > 0 ≥ G(t_stop)` and found by bisection to adjacent floats. A
+//! puck that stops with `G(t_stop) ≥ 0` never touches it (it may rest
+//! against it with no event).
+//!
+//! ## Puck–puck: Lipschitz root isolation
+//!
+//! The *separation* `σ(t)` is minus the signed gap of the two board shapes
+//! ([`overlap::gap`]): positive while they are apart, and then a lower
+//! bound of their distance (the line-of-centres axis, or the minimising
+//! one). The distance changes no faster than
+//!
+//! ```text
+//! L = |v_a(now)| + |v_b(now)| + 0.385 (R_a a_a + R_b a_b)/c
+//! ```
+//!
+//! (board speeds only fall while braking; the support `R|contract(m)|`
+//! changes at `R |d(1/γ)/dt| = R (a/c) u/γ³ ≤ 0.385 R a/c`, and the distance
+//! of convex bodies is 1-Lipschitz in each body's support). Hence on an
+//! interval `[t₁, t₂]` with `σ(t₁) + σ(t₂) > L (t₂ − t₁)` the shapes cannot
+//! touch (`σ(t) ≥ max(σ(t₁) − L(t − t₁), σ(t₂) − L(t₂ − t))` there). The
+//! search ([`first_contact`]) splits `[now, t_end]` depth-first, earliest
+//! half first, discarding intervals so excluded: the first interval whose
+//! end overlaps contains the *first* contact (every earlier time was
+//! excluded), and it is halved down to adjacent floats. No fixed step is
+//! taken: an interval is only ever discarded by the bound. The window ends
+//! when the last braking puck stops (then both rest, or the rest of the
+//! motion is uniform and the closed form of [`puck_puck::predict`] takes
+//! over).
+//!
+//! A touch at which the pucks are not closing along the contact normal (a
+//! puck that comes to rest against another) is no contact: it rests there
+//! with no event, so there is no Zeno sequence of ever smaller bounces.
+//!
+//! ## Limits
+//!
+//! * A touch at which the pair is not closing ends the search of that
+//!   window (a graze, or a puck stopping against another); a later contact
+//!   of the same pair on the same segments would be missed. Uniform motion
+//!   cannot graze and then meet; braking motion could, in contrived cases.
+//! * Pucks overlapping and opening at `now` are searched from the first
+//!   time a doubling step finds them apart, not from a proven bracket.
+//! * No cheap lower bound prunes braking pairs in the event loop: every
+//!   broad-phase candidate gets this search (cost not yet benchmarked).
+//!
+//! ## The collision convention
+//!
+//! Unchanged: the contact event is where the board shapes first touch; each
+//! puck's velocity changes at the event on its centre's worldline that is
+//! *simultaneous with the contact in the pair frame* (the normalised sum of
+//! the two 4-velocities, taken at the kicks themselves: a fixed point found
+//! by a few iterations, each moving the kicks by `O(a R/c²)` of the last);
+//! the normal is the pair frame's, the gradient of the summed similar
+//! ellipses at the centres' separation there, as in [`puck_puck`].
+
+use glam::{DVec2, DVec3};
+
+use super::puck_cushion::{self, Cushion, CushionContact};
+use super::puck_puck::{self, Mover, PairContact};
+use crate::physics::overlap;
+use crate::spacetime::{Boost, Event, FourVector, ProperVelocity};
+use crate::worldline::Segment;
+
+/// Bound on `R |d(1/γ)/dt| / (R a / c)`: `max u/(1 + u²)^{3/2} = 2/(3√3)`.
+const SHAPE_RATE: f64 = 0.385;
+
+/// The next contact, at board time ≥ `now`, of a puck on `segment` (any
+/// kind) with `cushion`; for a braking segment by the monotone gap (module
+/// doc), otherwise [`puck_cushion::predict`].
+pub fn cushion(
+    segment: &Segment,
+    radius: f64,
+    table: DVec2,
+    cushion: Cushion,
+    now: f64,
+) -> Option<CushionContact> {
+    if !segment.is_braking() {
+        return puck_cushion::predict(segment, radius, table, cushion, now);
+    }
+    let k = cushion.axis();
+    let s = cushion.outward_sign();
+    if segment.direction()[k] * s <= 0.0 {
+        return None; // moving away or along: the direction never changes
+    }
+    let end = segment.stop_time()?;
+    if now >= end {
+        return None;
+    }
+    let line = cushion.line(table);
+    let gap = |t: f64| {
+        s * (line - segment.position_at(t)[k])
+            - puck_cushion::half_width(radius, segment.u_at(t), k)
+    };
+    let t = if gap(now) <= 0.0 {
+        now // touching (or past, by rounding) and moving in
+    } else {
+        if gap(end) >= -1e-12 * radius {
+            return None; // stops short of it, or against it (to rounding)
+        }
+        bisect(gap, now, end)
+    };
+    Some(CushionContact {
+        t,
+        point: segment.position_at(t)
+            + puck_cushion::support_offset(radius, segment.u_at(t), cushion),
+    })
+}
+
+/// Bisection for a decreasing `f` with `f(lo) > 0 ≥ f(hi)`, to adjacent
+/// floats: the first float at which `f ≤ 0`.
+fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+    for _ in 0..2000 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    hi
+}
+
+/// The first board time in `[t0, t1]` at which `sep` (a separation, > 0
+/// while apart) is ≤ 0, for a `sep` that changes no faster than `lip` per
+/// second where it is positive: Lipschitz root isolation (module doc).
+/// `None` if it stays positive. `sep(t0)` must be > 0.
+///
+/// An interval shorter than a few ulps of its time on which `sep` stays
+/// positive at both ends but cannot be excluded is a touch deeper than
+/// `lip` × that width at most; it is taken as no contact.
+pub fn first_contact(sep: impl Fn(f64) -> f64, t0: f64, t1: f64, lip: f64) -> Option<f64> {
+    if t1.is_nan() || t0.is_nan() || t1 <= t0 {
+        return None;
+    }
+    let s1 = sep(t1);
+    // Depth-first, earliest first: a stack of intervals (a, σa, b, σb).
+    let mut stack = vec![(t0, sep(t0), t1, s1)];
+    let mut evaluations = 0usize;
+    while let Some((a, sa, b, sb)) = stack.pop() {
+        if sb > 0.0 && sa + sb > lip * (b - a) {
+            continue; // no touch anywhere in [a, b]
+        }
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            if sb <= 0.0 {
+                return Some(b);
+            }
+            continue; // a graze shallower than lip × ulp
+        }
+        evaluations += 1;
+        if evaluations > 200_000 {
+            // Never met in tests; a bound against a pathological `sep`.
+            return (sb <= 0.0).then_some(b);
+        }
+        let sm = sep(m);
+        stack.push((m, sm, b, sb));
+        if sm <= 0.0 {
+            // The first touch is in [a, m]: nothing later matters.
+            stack.clear();
+        }
+        stack.push((a, sa, m, sm));
+    }
+    None
+}
+
+/// The board speed of a segment at `t` (its largest from `t` on), m/s.
+fn speed_at(s: &Segment, t: f64) -> f64 {
+    s.velocity_at(t).length()
+}
+
+/// Separation of the two board shapes at `t` (> 0 apart; a lower bound of
+/// their distance) and the unit axis, from `a` towards `b`.
+fn separation(a: &Segment, ra: f64, b: &Segment, rb: f64, t: f64) -> (f64, DVec3) {
+    let (ta, tb) = (a.tangent_at(t), b.tangent_at(t));
+    let d = b.position_at(t) - a.position_at(t);
+    let (g, m) = overlap::gap(&ta, ra, &tb, rb, d);
+    (-g, m)
+}
+
+/// The pair frame of two proper velocities: the normalised sum of their
+/// 4-velocities.
+fn pair_frame(ua: ProperVelocity, ub: ProperVelocity) -> ProperVelocity {
+    let gamma_rel = Boost::into_frame(ua).apply_velocity(ub).gamma();
+    ProperVelocity((ua.0 + ub.0) / (2.0 + 2.0 * gamma_rel).sqrt())
+}
+
+/// The event on `segment` simultaneous with `contact` in the frame moving
+/// with `frame`: the root of `φ(t) = c (t − t_c) − β·(x(t) − x_c)`, which
+/// increases (`φ′ = c − β·v > 0`), bracketed by doubling steps and bisected
+/// to adjacent floats.
+fn simultaneous(segment: &Segment, contact: Event, frame: ProperVelocity, c: f64) -> Event {
+    let beta = frame.beta();
+    let phi = |t: f64| c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
+    let scale = (segment.position_at(contact.t) - contact.position).length() / c;
+    let mut step =
+        scale.max(1e-300) * frame.gamma() * frame.gamma() + f64::EPSILON * contact.t.abs();
+    let (mut lo, mut hi) = (contact.t, contact.t);
+    for _ in 0..2100 {
+        if phi(lo) <= 0.0 {
+            break;
+        }
+        lo = contact.t - step;
+        step *= 2.0;
+    }
+    step = scale.max(1e-300) * frame.gamma() * frame.gamma() + f64::EPSILON * contact.t.abs();
+    for _ in 0..2100 {
+        if phi(hi) >= 0.0 {
+            break;
+        }
+        hi = contact.t + step;
+        step *= 2.0;
+    }
+    let t = if phi(lo) == 0.0 {
+        lo
+    } else {
+        bisect(|t| -phi(t), lo, hi)
+    };
+    Event::new(t, segment.position_at(t))
+}
+
+/// The next contact of two pucks, at least one on a braking segment, from
+/// board time `now` (module doc). `None` if they never touch while closing.
+///
+/// Pucks overlapping on the board at `now` and closing there (a contact that
+/// rounding placed just past) meet at once, as in the frictionless loop: a
+/// board contact (`on_board`) at `now` along the penetration direction.
+pub fn pair(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
+    let (sa, sb) = (a.segment, b.segment);
+    let (ra, rb) = (a.radius, b.radius);
+    let end = [sa, sb]
+        .iter()
+        .filter_map(|s| s.stop_time())
+        .fold(now, f64::max);
+    let still = |t: f64| 1e-12 * (speed_at(sa, t) + speed_at(sb, t)).max(f64::MIN_POSITIVE);
+    let closing = |t: f64, m: DVec3| m.dot(sb.velocity_at(t) - sa.velocity_at(t)) < -still(t);
+    let (s0, m0) = separation(sa, ra, sb, rb, now);
+    let mut from = now;
+    if s0 <= 0.0 && !closing(now, m0) {
+        // Overlapping (or touching) and opening: no event while they part.
+        // Braking can turn the relative motion, so look on from the first
+        // time they are apart (steps doubling from a rounding-sized one).
+        let mut h = 1e-12 * (end - now).max(f64::MIN_POSITIVE);
+        loop {
+            from = now + h;
+            if from >= end {
+                return None;
+            }
+            if separation(sa, ra, sb, rb, from).0 > 0.0 {
+                break;
+            }
+            h *= 2.0;
+        }
+    } else if s0 <= 0.0 {
+        let (ta, tb) = (sa.tangent_at(now), sb.tangent_at(now));
+        return Some(PairContact {
+            contact: Event::new(
+                now,
+                sa.position_at(now) + m0 * (ra * ta.contract(m0).length() + 0.5 * s0),
+            ),
+            kicks: [
+                Event::new(now, sa.position_at(now)),
+                Event::new(now, sb.position_at(now)),
+            ],
+            gamma_pair: ta.gamma().max(tb.gamma()),
+            on_board: true,
+            normal: m0,
+            pair_frame: ProperVelocity::ZERO,
+        });
+    }
+    if end > from {
+        let lip = (speed_at(sa, from) + speed_at(sb, from)) * (1.0 + 1e-9)
+            + SHAPE_RATE * (ra * sa.deceleration() + rb * sb.deceleration()) / c;
+        let sep = |t: f64| separation(sa, ra, sb, rb, t).0;
+        if let Some(t) = first_contact(sep, from, end, lip) {
+            let (_, m) = separation(sa, ra, sb, rb, t);
+            // A braking puck that would stop within rounding of the touch
+            // rests against the other: no event (no Zeno bounces).
+            let left = |s: &Segment| {
+                if s.is_braking() {
+                    let law = s.braking_law();
+                    law.stopping_distance() - law.distance_at(t - s.start.t)
+                } else if s.is_rest() {
+                    0.0
+                } else {
+                    f64::INFINITY
+                }
+            };
+            let scale = 1e-12 * (ra + rb) + 1e-15 * sa.position_at(t).length();
+            if closing(t, m) && left(sa).max(left(sb)) > scale {
+                let ta = sa.tangent_at(t);
+                let point = sa.position_at(t) + m * (ra * ta.contract(m).length());
+                return Some(in_pair_frame(sa, sb, Event::new(t, point), c));
+            }
+            // Touching without closing: comes to rest against it. Nothing
+            // later on this window either (the braking puck stops there).
+            return None;
+        }
+    }
+    // Both at rest, or what still moves moves uniformly: the closed form.
+    let (ta, tb) = (sa.tangent_at(end), sb.tangent_at(end));
+    if ta.is_rest() && tb.is_rest() {
+        return None;
+    }
+    puck_puck::predict(
+        Mover {
+            segment: &ta,
+            radius: ra,
+        },
+        Mover {
+            segment: &tb,
+            radius: rb,
+        },
+        c,
+        end,
+    )
+}
+
+/// The kicks, normal and pair frame of a contact at `contact` (board) of the
+/// pucks on `sa`, `sb` (module doc, "The collision convention").
+fn in_pair_frame(sa: &Segment, sb: &Segment, contact: Event, c: f64) -> PairContact {
+    // The kicks in `frame`, then the pair frame of the velocities there,
+    // until it no longer moves beyond rounding (each round shrinks the
+    // change by a factor ~ a R/c², 0.03 on the paper's table; at most 32).
+    let mut frame = pair_frame(sa.u_at(contact.t), sb.u_at(contact.t));
+    let mut rounds = 0;
+    let kicks = loop {
+        let kicks = [
+            simultaneous(sa, contact, frame, c),
+            simultaneous(sb, contact, frame, c),
+        ];
+        let next = pair_frame(sa.u_at(kicks[0].t), sb.u_at(kicks[1].t));
+        rounds += 1;
+        let moved = (next.0 - frame.0).length();
+        if moved <= 1e-15 * (1.0 + frame.0.length()) || rounds == 32 {
+            break kicks;
+        }
+        frame = next;
+    };
+    let to_pair = Boost::into_frame(frame);
+    let (ua, ub) = (
+        to_pair.apply_velocity(sa.u_at(kicks[0].t)),
+        to_pair.apply_velocity(sb.u_at(kicks[1].t)),
+    );
+    let w = 0.5 * (ua.0 - ub.0);
+    let w_len = w.length();
+    let gamma = 1.0f64.hypot(w_len);
+    let rel = |e: Event| {
+        to_pair
+            .apply(FourVector::new(
+                c * (e.t - contact.t),
+                e.position - contact.position,
+            ))
+            .space
+    };
+    let r = rel(kicks[1]) - rel(kicks[0]);
+    let normal = if w_len > 0.0 {
+        let n = w / w_len;
+        let along = r.dot(n);
+        (n * (gamma * gamma * along) + (r - n * along)).normalize()
+    } else {
+        r.normalize()
+    };
+    PairContact {
+        contact,
+        kicks,
+        gamma_pair: gamma,
+        on_board: false,
+        normal,
+        pair_frame: frame,
+    }
+}
+
+/// The board time at which the centre of a puck on the braking `segment`
+/// leaves the disc of radius `margin` about `shell` (∞ if it stops inside),
+/// from `now` on: the line meets the circle at a path length found by a
+/// stable quadratic, and the braking law is inverted in closed form,
+/// `t(s) = (s/c)(2γ₀ − s a/c²)/(u₀ + u(s))`, `u(s)² = (γ₀ − s a/c²)² − 1`.
+pub fn shell_exit(segment: &Segment, shell: DVec2, margin: f64, now: f64) -> f64 {
+    let Some(stop) = segment.stop_time() else {
+        return f64::INFINITY;
+    };
+    if now >= stop {
+        return f64::INFINITY;
+    }
+    let d = segment.position_at(now).truncate() - shell;
+    let q = d.length_squared() - margin * margin;
+    if q >= 0.0 {
+        return now;
+    }
+    let n = segment.direction().truncate();
+    let nn = n.length_squared();
+    let p = d.dot(n);
+    let root = (p * p - nn * q).sqrt();
+    let sigma = if p >= 0.0 {
+        -q / (p + root)
+    } else {
+        (root - p) / nn
+    };
+    let law = segment.braking_law();
+    let s = law.distance_at(now - segment.start.t) + sigma;
+    if s >= law.stopping_distance() {
+        return f64::INFINITY;
+    }
+    let c = law.c;
+    let x = s * law.deceleration / (c * c);
+    let g = law.gamma0() - x;
+    let u = ((g - 1.0) * (g + 1.0)).max(0.0).sqrt();
+    let t = (s / c) * (2.0 * law.gamma0() - x) / (law.u0 + u);
+    (segment.start.t + t).max(now)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::worldline::Worldline;
+
+    const C: f64 = 1.42;
+    const R: f64 = 0.0305;
+    const TABLE: DVec2 = DVec2::new(2.84, 1.42);
+
+    fn braking(x: f64, y: f64, u: DVec3, a: f64) -> Worldline {
+        Worldline::braking(
+            Event::new(0.0, DVec3::new(x, y, 0.0)),
+            ProperVelocity(u),
+            C,
+            a,
+        )
+    }
+
+    #[test]
+    fn cushion_contact_head_on_matches_the_closed_form() {
+        // Along x towards x1: the front at x0 + s(t) + R/γ(t) reaches W.
+        // s(t) + R/γ(t) = W − x0 solved independently by bisection on the
+        // closed forms of sliding.rs (distance, γ).
+        for (u0, a) in [(0.3, 1.962), (3.0, 1.962), (300.0, 0.5), (1e4, 1.0)] {
+            let x0 = 1.0;
+            let w = braking(x0, 0.7, DVec3::new(u0, 0.0, 0.0), a);
+            let s = w.last();
+            let law = s.braking_law();
+            let target = TABLE.x - x0;
+            let reach = |t: f64| law.distance_at(t) + R / law.gamma_at(t) - target;
+            if reach(law.stop_time()) < 0.0 {
+                assert!(cushion(s, R, TABLE, Cushion::X1, 0.0).is_none(), "{u0}");
+                continue;
+            }
+            let (mut lo, mut hi) = (0.0, law.stop_time());
+            for _ in 0..300 {
+                let mid = 0.5 * (lo + hi);
+                if reach(mid) < 0.0 { lo = mid } else { hi = mid }
+            }
+            let hit = cushion(s, R, TABLE, Cushion::X1, 0.0).expect("reaches the cushion");
+            assert!((hit.t - hi).abs() <= 1e-12 * hi, "{u0}: {} vs {hi}", hit.t);
+            assert!((hit.point.x - TABLE.x).abs() < 1e-12);
+            assert!(cushion(s, R, TABLE, Cushion::X0, 0.0).is_none());
+        }
+    }
+
+    #[test]
+    fn a_puck_that_stops_short_or_against_a_cushion_never_meets_it() {
+        // u₀ small: stops after (c²/a)(γ₀ − 1) ≈ 0.0257 m.
+        let a = 1.962;
+        let w = braking(1.0, 0.7, DVec3::new(0.1, 0.0, 0.0), a);
+        let stop = w.last().braking_law().stopping_distance();
+        // A table whose cushion is exactly where it stops.
+        let table = DVec2::new(1.0 + stop + R, 1.42);
+        assert!(cushion(w.last(), R, table, Cushion::X1, 0.0).is_none());
+        let table = DVec2::new(1.0 + stop + R + 1e-6, 1.42);
+        assert!(cushion(w.last(), R, table, Cushion::X1, 0.0).is_none());
+        let table = DVec2::new(1.0 + stop + R - 1e-6, 1.42);
+        assert!(cushion(w.last(), R, table, Cushion::X1, 0.0).is_some());
+    }
+
+    /// The exact separation, sampled densely and bisected: the reference.
+    fn reference_pair(a: &Segment, b: &Segment, end: f64) -> Option<f64> {
+        let sep = |t: f64| separation(a, R, b, R, t).0;
+        let n = 20_000;
+        let mut prev = 0.0;
+        for k in 1..=n {
+            let t = end * k as f64 / n as f64;
+            if sep(t) <= 0.0 {
+                let (mut lo, mut hi) = (prev, t);
+                for _ in 0..200 {
+                    let mid = 0.5 * (lo + hi);
+                    if sep(mid) > 0.0 { lo = mid } else { hi = mid }
+                }
+                return Some(hi);
+            }
+            prev = t;
+        }
+        None
+    }
+
+    #[test]
+    fn pair_contact_on_braking_worldlines_matches_a_bisection_on_the_gap() {
+        let a_dec = 1.962;
+        let mut checked = 0;
+        for (ua, ub, pb) in [
+            (
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::ZERO,
+                DVec3::new(1.8, 0.7, 0.0),
+            ),
+            (
+                DVec3::new(2.0, 0.3, 0.0),
+                DVec3::new(-0.5, 0.0, 0.0),
+                DVec3::new(1.6, 0.75, 0.0),
+            ),
+            (
+                DVec3::new(20.0, 0.0, 0.0),
+                DVec3::new(-3.0, 1.0, 0.0),
+                DVec3::new(2.2, 0.62, 0.0),
+            ),
+            (
+                DVec3::new(0.8, 0.8, 0.0),
+                DVec3::new(0.0, -0.4, 0.0),
+                DVec3::new(1.4, 1.1, 0.0),
+            ),
+        ] {
+            let wa = braking(1.0, 0.7, ua, a_dec);
+            let wb = braking(pb.x, pb.y, ub, a_dec);
+            let (sa, sb) = (wa.last(), wb.last());
+            let end = sa.stop_time().unwrap().max(sb.stop_time().unwrap_or(0.0));
+            let ours = pair(
+                Mover {
+                    segment: sa,
+                    radius: R,
+                },
+                Mover {
+                    segment: sb,
+                    radius: R,
+                },
+                C,
+                0.0,
+            );
+            let reference = reference_pair(sa, sb, end);
+            match (ours, reference) {
+                (Some(hit), Some(t)) => {
+                    assert!(
+                        (hit.contact.t - t).abs() <= 1e-12 * t,
+                        "{ua}: {} vs {t}",
+                        hit.contact.t
+                    );
+                    checked += 1;
+                }
+                (None, None) => {}
+                (x, y) => panic!("{ua}: {x:?} vs {y:?}"),
+            }
+        }
+        assert!(checked >= 3, "{checked}");
+    }
+
+    #[test]
+    fn kicks_are_simultaneous_with_the_contact_in_the_pair_frame() {
+        let wa = braking(1.0, 0.7, DVec3::new(5.0, 0.4, 0.0), 1.962);
+        let wb = braking(2.0, 0.75, DVec3::new(-1.0, 0.0, 0.0), 1.962);
+        let hit = pair(
+            Mover {
+                segment: wa.last(),
+                radius: R,
+            },
+            Mover {
+                segment: wb.last(),
+                radius: R,
+            },
+            C,
+            0.0,
+        )
+        .expect("they meet");
+        let to_pair = Boost::into_frame(hit.pair_frame);
+        let time = |e: Event| to_pair.apply(FourVector::new(C * e.t, e.position)).ct;
+        let tc = time(hit.contact);
+        for k in hit.kicks {
+            assert!(
+                (time(k) - tc).abs() < 1e-12 * tc.abs(),
+                "{} vs {tc}",
+                time(k)
+            );
+        }
+        // The pair frame is that of the velocities at the kicks: equal and
+        // opposite there.
+        let ua = to_pair.apply_velocity(wa.proper_velocity_at(hit.kicks[0].t));
+        let ub = to_pair.apply_velocity(wb.proper_velocity_at(hit.kicks[1].t));
+        assert!(
+            (ua.0 + ub.0).length() < 1e-12 * ua.0.length(),
+            "{ua:?} {ub:?}"
+        );
+    }
+
+    #[test]
+    fn first_contact_never_misses_a_brief_dip() {
+        // σ(t) = |t − 0.5| − 1e-4 + …: a dip below zero of width 2e-4 in
+        // [0, 10], with Lipschitz constant 1. A fixed step of 1e-3 would
+        // miss it.
+        let sep = |t: f64| (t - 0.5).abs() - 1e-4;
+        let t = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
+        assert!((t - (0.5 - 1e-4)).abs() < 1e-15, "{t}");
+        // And an earlier dip wins over a deeper later one.
+        let sep = |t: f64| ((t - 0.5).abs() - 1e-6).min((t - 3.0).abs() - 0.5);
+        let t = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
+        assert!((t - (0.5 - 1e-6)).abs() < 1e-15, "{t}");
+        assert!(first_contact(|t: f64| (t - 0.5).abs() + 1e-9, 0.0, 10.0, 1.0).is_none());
+    }
+
+    #[test]
+    fn shell_exit_inverts_the_braking_law() {
+        let w = braking(1.0, 0.7, DVec3::new(2.0, 1.0, 0.0), 1.962);
+        let s = w.last();
+        let shell = DVec2::new(1.0, 0.7);
+        let t = shell_exit(s, shell, 0.05, 0.0);
+        assert!(t.is_finite() && t > 0.0);
+        let r = (s.position_at(t).truncate() - shell).length();
+        assert!((r - 0.05).abs() < 1e-13, "{r}");
+        // A margin beyond the stopping point: never.
+        assert_eq!(shell_exit(s, shell, 10.0, 0.0), f64::INFINITY);
+    }
+}
