@@ -288,33 +288,12 @@ enum PlayView {
     Split,
 }
 
-/// Mesa's Vulkan device-select layer (`VK_LAYER_MESA_device_select`, an
-/// implicit layer) asks the Wayland compositor for the default GPU each
-/// time an instance enumerates its adapters, through libwayland-client's
-/// `wl_display_connect`, which prints `error: XDG_RUNTIME_DIR is invalid or
-/// not set in the environment.` when that variable is unset or not an
-/// absolute path (as under `xvfb-run`, `su` or CI): twice a run, on stderr.
-/// Give it a private runtime directory (`$TMPDIR/lightcone-runtime-UID`,
-/// mode 0700, ours) before any thread starts: the connection then fails
-/// quietly (no compositor socket there) and the layer falls back to X11 or
-/// the first adapter, as before. A directory that exists but is not ours
-/// or is open to others is left alone (and the warning stays).
+/// Gives Mesa's device-select layer a private `XDG_RUNTIME_DIR` when the
+/// environment has no valid one (see
+/// [`lightcone_render::gpu::private_runtime_dir`]), so no GPU command prints
+/// libwayland's `XDG_RUNTIME_DIR is invalid` warning.
 fn private_runtime_dir() {
-    use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
-    let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| {
-        std::path::Path::new(&d).is_absolute()
-            && std::fs::metadata(&d)
-                .is_ok_and(|m| m.is_dir() && m.permissions().mode() & 0o077 == 0)
-    });
-    if valid {
-        return;
-    }
-    let uid = std::fs::metadata("/proc/self").map_or(0, |m| m.uid());
-    let dir = std::env::temp_dir().join(format!("lightcone-runtime-{uid}"));
-    let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
-    let ours = std::fs::metadata(&dir)
-        .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o077 == 0);
-    if ours {
+    if let Some(dir) = lightcone_render::gpu::private_runtime_dir() {
         // SAFETY: called first thing in `main`, before any thread exists,
         // so nothing reads the environment concurrently.
         unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
