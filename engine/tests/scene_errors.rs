@@ -312,7 +312,7 @@ fn scenes_built_in_code_get_the_same_checks() {
     let eye = ObserverSpec {
         name: "me".into(),
         position: DVec3::new(1.0, -1.0, 1.0),
-        look_at: DVec3::ZERO,
+        look_at: Some(DVec3::ZERO),
         u: ProperVelocity::ZERO,
     };
     s.add_observer(eye.clone()).unwrap();

@@ -211,7 +211,7 @@ impl GameState {
     /// looking where it looks.
     fn eye_at_observer(scene: &Scene, i: usize) -> FlyingEye {
         let o = &scene.observers[i.min(scene.observers.len() - 1)];
-        let f = (o.look_at - o.position).normalize_or(DVec3::Y);
+        let f = (o.target(scene.table.size) - o.position).normalize_or(DVec3::Y);
         FlyingEye {
             position: o.position,
             u: ProperVelocity::ZERO,
@@ -247,7 +247,7 @@ impl GameState {
         {
             let (eye, _) = lightcone_render::frame::eye_of(&self.scene, i, self.view_time);
             let o = &self.scene.observers[i];
-            let f = (o.look_at - o.position).normalize_or(DVec3::Y);
+            let f = (o.target(self.scene.table.size) - o.position).normalize_or(DVec3::Y);
             self.eye = FlyingEye {
                 position: eye.event.position,
                 u: eye.u,

@@ -245,7 +245,10 @@ pub fn build(
 }
 
 /// The eye of observer `index` of `scene` at board time `t` (constant
-/// velocity from its position at t = 0), and its camera.
+/// velocity from its position at t = 0), and the way it faces: towards its
+/// `look_at` (else the table's centre) with a 60° field. That is where a
+/// free eye taken over from it starts looking; to draw what it sees, use
+/// [`view_of`], which frames the table as every view does.
 pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
     let o = &scene.observers[index];
     let eye = Eye {
@@ -253,8 +256,41 @@ pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
         u: o.u,
     };
     let camera = Camera {
-        forward: o.look_at - o.position,
+        forward: o.target(scene.table.size) - o.position,
         fovy: std::f64::consts::FRAC_PI_3,
+    };
+    (eye, camera)
+}
+
+/// The eye of observer `index` of `scene` at board time `t` and the camera
+/// to draw what it sees with `effects` in an image of `aspect` = width /
+/// height: along its `look_at` with a 60° field if the scene names one,
+/// else fitted to the whole table (cushions included, as this eye sees it:
+/// aberration moves it) with the engine's margin
+/// ([`lightcone_engine::scene::ObserverSpec::framing`], the framing of the
+/// window and of the frame schedule's views).
+pub fn view_of(
+    scene: &Scene,
+    index: usize,
+    t: f64,
+    effects: &Effects,
+    aspect: f64,
+) -> (Eye, Camera) {
+    let (eye, _) = eye_of(scene, index, t);
+    let camera = match scene.observers[index].framing(aspect) {
+        Framing::Look {
+            forward,
+            fovy,
+            zoom,
+        } => super::camera::zoomed(forward, fovy, zoom),
+        Framing::Fit { aspect, zoom, .. } => {
+            let points: Vec<DVec3> =
+                super::camera::table_corners(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH)
+                    .into_iter()
+                    .map(|p| eye.see_static(p, scene.c, effects.aberration).position)
+                    .collect();
+            super::camera::fit(&points, aspect, lightcone_engine::camera::FIT_MARGIN, zoom)
+        }
     };
     (eye, camera)
 }
@@ -384,9 +420,17 @@ pub fn build_view(apparent: &Apparent, meshes: &ViewMeshes, out: &mut Vec<FrameV
 
 /// A simulation of `scene` at board time `t` with one view of observer
 /// `index`: the scene's effects for [`ViewKind::Seen`], the truth's for
-/// [`ViewKind::Truth`], its camera looking at the observer's `look_at`
-/// with a 60° field (as `lightcone render` has always framed it).
-pub fn scene_view(scene: &Scene, index: usize, t: f64, kind: ViewKind) -> (Simulation, Entity) {
+/// [`ViewKind::Truth`], its camera aimed as the observer's
+/// [`lightcone_engine::scene::ObserverSpec::framing`] says for an image of
+/// `aspect` = width / height (fitted to the whole table unless the scene
+/// names a `look_at`).
+pub fn scene_view(
+    scene: &Scene,
+    index: usize,
+    t: f64,
+    kind: ViewKind,
+    aspect: f64,
+) -> (Simulation, Entity) {
     let mut sim = Simulation::new(scene);
     let o = &scene.observers[index];
     let view = sim.views()[index];
@@ -394,14 +438,7 @@ pub fn scene_view(scene: &Scene, index: usize, t: f64, kind: ViewKind) -> (Simul
     for e in lightcone_engine::scene::Effect::ALL {
         sim.set_view_effect(view, e, effects.is_on(e));
     }
-    sim.set_framing(
-        view,
-        Framing::Look {
-            forward: o.look_at - o.position,
-            fovy: std::f64::consts::FRAC_PI_3,
-            zoom: 1.0,
-        },
-    );
+    sim.set_framing(view, o.framing(aspect));
     sim.advance_to(t);
     (sim, view)
 }
@@ -409,6 +446,67 @@ pub fn scene_view(scene: &Scene, index: usize, t: f64, kind: ViewKind) -> (Simul
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The scene's table corners (cushions included) as `eye` sees them.
+    fn corners_seen(scene: &Scene, eye: &Eye, aberration: bool) -> Vec<DVec3> {
+        crate::camera::table_corners(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH)
+            .into_iter()
+            .map(|p| eye.see_static(p, scene.c, aberration).position)
+            .collect()
+    }
+
+    #[test]
+    fn headless_views_frame_the_whole_table_as_the_schedule_does() {
+        // Every shipped scene names no `look_at`: `render` (the schedule's
+        // view), Python's `render` and `record` (`view_of`) fit the whole
+        // table with the engine's margin, tight on one axis, alike.
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        let tight = 1.0 / (1.0 + lightcone_engine::camera::FIT_MARGIN);
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let scene = lightcone_engine::scene::load(&path).unwrap();
+            for (index, o) in scene.observers.iter().enumerate() {
+                assert!(o.look_at.is_none(), "{}: {}", path.display(), o.name);
+                for aspect in [16.0 / 9.0, 1.0, 0.75] {
+                    for kind in [ViewKind::Seen, ViewKind::Truth] {
+                        let effects = kind.effects(scene.effects);
+                        let (sim, view) = scene_view(&scene, index, 1.0, kind, aspect);
+                        let theirs = sim.camera(view).unwrap();
+                        let (eye, ours) = view_of(&scene, index, 1.0, &effects, aspect);
+                        let what = format!("{} {} {aspect} {kind:?}", path.display(), o.name);
+                        assert!(
+                            (theirs.forward.normalize() - ours.forward.normalize()).length() < 1e-9
+                                && (theirs.fovy - ours.fovy).abs() < 1e-9,
+                            "{what}: {theirs:?} vs {ours:?}"
+                        );
+                        let mut widest = 0.0f64;
+                        for p in corners_seen(&scene, &eye, effects.aberration) {
+                            let (x, y) = crate::camera::ndc(&ours, aspect, p).unwrap();
+                            assert!(x.abs() <= tight + 1e-9 && y.abs() <= tight + 1e-9, "{what}");
+                            widest = widest.max(x.abs()).max(y.abs());
+                        }
+                        assert!(widest > tight - 1e-3, "{what}: {widest}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_named_look_at_keeps_its_sixty_degree_camera() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../assets/scenes/paper_carom.toml");
+        let mut scene = lightcone_engine::scene::load(&path).unwrap();
+        let target = DVec3::new(0.5, 0.3, 0.0);
+        scene.observers[0].look_at = Some(target);
+        let forward = (target - scene.observers[0].position).normalize();
+        let (_, cam) = view_of(&scene, 0, 1.0, &scene.effects, 2.0);
+        let (sim, view) = scene_view(&scene, 0, 1.0, ViewKind::Seen, 2.0);
+        for c in [cam, sim.camera(view).unwrap().into()] {
+            assert!((c.forward.normalize() - forward).length() < 1e-12);
+            assert!((c.fovy - std::f64::consts::FRAC_PI_3).abs() < 1e-12);
+        }
+    }
 
     #[test]
     fn every_vertex_is_finite_in_every_shipped_scene() {

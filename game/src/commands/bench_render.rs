@@ -49,7 +49,7 @@ fn large(n: usize) -> Scene {
         observers: vec![ObserverSpec {
             name: "eye".into(),
             position: DVec3::new(size.x / 2.0, -1.5, 2.0),
-            look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
+            look_at: Some(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0)),
             u: ProperVelocity::ZERO,
         }],
     }
@@ -90,7 +90,7 @@ pub fn run(quick: bool) -> ExitCode {
             let t = f as f64 / 60.0;
             let start = Instant::now();
             billiard.advance_to(t);
-            let (eye, camera) = frame::eye_of(&scene, 0, t);
+            let (eye, camera) = frame::view_of(&scene, 0, t, &scene.effects, 1280.0 / 720.0);
             frame::build(&billiard, &meshes, &eye, scene.effects, &mut vertices);
             let mid = Instant::now();
             if let Err(e) = target.draw(&gpu, &vertices, &camera) {

@@ -243,19 +243,15 @@ pub fn run(req: Request<'_>) -> ExitCode {
     let mut billiard = Billiard::from_scene(&scene);
     let mut target = Offscreen::new(&gpu, width, height);
     let mut vertices = Vec::new();
+    let aspect = f64::from(width) / f64::from(height);
     let progress = crate::progress::steps(count, "record");
     for k in 0..count {
         let t = k as f64 / req.fps;
         progress.step(&format!("t = {t:.3} s"));
         billiard.advance_to(t);
-        let (eye, camera) = frame::eye_of(&scene, index, t);
-        frame::build(
-            &billiard,
-            &meshes,
-            &eye,
-            req.view.effects(scene.effects),
-            &mut vertices,
-        );
+        let effects = req.view.effects(scene.effects);
+        let (eye, camera) = frame::view_of(&scene, index, t, &effects, aspect);
+        frame::build(&billiard, &meshes, &eye, effects, &mut vertices);
         let pushed = target
             .draw(&gpu, &vertices, &camera)
             .and_then(|mut image| sink.push(&mut image));
