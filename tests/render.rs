@@ -43,7 +43,7 @@ fn one_puck(
         observers: vec![ObserverSpec {
             name: "eye".into(),
             position: eye,
-            look_at,
+            look_at: Some(look_at),
             u: ProperVelocity::ZERO,
         }],
     }
@@ -181,14 +181,78 @@ fn golden_images() {
 }
 
 #[test]
+fn a_default_render_shows_the_whole_table() {
+    // No `look_at` in the scene: the camera frames the whole table
+    // (cushions included) with a margin, at any image shape.
+    let gpu = gpu::headless().expect("a graphics adapter");
+    let scene = scene::load(&repo().join("assets/scenes/paper_carom.toml")).unwrap();
+    for (w, h) in [(320u32, 180u32), (200, 240)] {
+        for kind in [ViewKind::Seen, ViewKind::Truth] {
+            let img = headless::render_scene(&gpu, &scene, 0.5, 0, kind, w, h).unwrap();
+            // The bounding box of the cloth's and cushions' greens.
+            let (mut x0, mut x1, mut y0, mut y1) = (u32::MAX, 0, u32::MAX, 0);
+            for y in 0..h {
+                for x in 0..w {
+                    let p = img.pixel(x, y).map(i32::from);
+                    if p[1] > 45 && p[1] > p[0] + 12 && p[1] > p[2] + 12 {
+                        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+                    }
+                }
+            }
+            let what = format!("{w}×{h} {kind:?}: table [{x0}, {x1}] × [{y0}, {y1}]");
+            assert!(x1 > x0 && y1 > y0, "{what}");
+            // Inside with a margin on every side...
+            assert!(x0 >= 3 && y0 >= 3 && x1 + 3 < w && y1 + 3 < h, "{what}");
+            // ...and filling the image on one axis (8 % margin each side).
+            let (fw, fh) = (
+                f64::from(x1 - x0) / f64::from(w),
+                f64::from(y1 - y0) / f64::from(h),
+            );
+            assert!(fw > 0.8 || fh > 0.8, "{what}: fills {fw:.2} × {fh:.2}");
+        }
+    }
+}
+
+#[test]
 fn the_meshes_cover_every_shipped_scene() {
     for entry in std::fs::read_dir(repo().join("assets/scenes")).unwrap() {
         let scene = scene::load(&entry.unwrap().path()).unwrap();
-        let (mut sim, view) = frame::scene_view(&scene, 0, 2.0, ViewKind::Seen);
+        let (mut sim, view) = frame::scene_view(&scene, 0, 2.0, ViewKind::Seen, 16.0 / 9.0);
         let meshes = frame::ViewMeshes::new(&mut sim);
         let mut out = Vec::new();
         frame::build_view(sim.apparent(view).unwrap(), &meshes, &mut out);
         assert!(!out.is_empty());
         assert_eq!(out.len() % 3, 0);
     }
+}
+
+#[test]
+fn render_prints_no_driver_warning_without_a_runtime_dir() {
+    // Mesa's device-select layer reaches libwayland, which prints
+    // "error: XDG_RUNTIME_DIR is invalid or not set in the environment."
+    // when the variable is unset or relative; `lightcone` gives it a
+    // private one first.
+    let out_dir = std::env::temp_dir().join(format!("lightcone-xdg-{}", std::process::id()));
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let png = out_dir.join("shot.png");
+    for value in [None, Some("relative/dir")] {
+        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_lightcone"));
+        cmd.args(["render", "--at", "0.5", "--size", "64x36", "-o"])
+            .arg(&png)
+            .arg(repo().join("assets/scenes/paper_carom.toml"))
+            .env_remove("WAYLAND_DISPLAY");
+        match value {
+            None => cmd.env_remove("XDG_RUNTIME_DIR"),
+            Some(v) => cmd.env("XDG_RUNTIME_DIR", v),
+        };
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{value:?}: {stderr}");
+        assert!(
+            !stderr.contains("XDG_RUNTIME_DIR"),
+            "{value:?}: a stray driver warning: {stderr}"
+        );
+        assert!(Image::load_png(&png).is_ok());
+    }
+    let _ = std::fs::remove_dir_all(&out_dir);
 }

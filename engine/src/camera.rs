@@ -60,10 +60,14 @@ pub enum Framing {
     },
 }
 
+/// The viewport aspect (width / height) a framing assumes until told the
+/// real one: 16:9.
+pub const DEFAULT_ASPECT: f64 = 16.0 / 9.0;
+
 impl Default for Framing {
     fn default() -> Self {
         Self::Fit {
-            aspect: 16.0 / 9.0,
+            aspect: DEFAULT_ASPECT,
             zoom: 1.0,
             follow: None,
         }

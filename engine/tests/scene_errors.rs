@@ -312,7 +312,7 @@ fn scenes_built_in_code_get_the_same_checks() {
     let eye = ObserverSpec {
         name: "me".into(),
         position: DVec3::new(1.0, -1.0, 1.0),
-        look_at: DVec3::ZERO,
+        look_at: Some(DVec3::ZERO),
         u: ProperVelocity::ZERO,
     };
     s.add_observer(eye.clone()).unwrap();
@@ -500,7 +500,9 @@ fn a_hundred_thousand_pucks_check_in_well_under_a_second() {
     let s = scene::parse(&text, "ok.toml").unwrap();
     let took = start.elapsed().as_secs_f64();
     assert_eq!(s.pucks.len(), 100_000);
-    assert!(took < 2.0, "{took} s");
+    // Linear: ≈ 0.2 s here; a quadratic search would take minutes. The
+    // bound leaves room for a loaded machine.
+    assert!(took < 5.0, "{took} s");
     // The overlap search alone, along x, along y, diagonally, all at one
     // point (one pair per puck, not N²/2).
     let pucks = |step: f64, dir: (f64, f64)| -> Vec<scene::PuckSpec> {
@@ -520,12 +522,12 @@ fn a_hundred_thousand_pucks_check_in_well_under_a_second() {
         let start = Instant::now();
         assert!(scene::first_overlaps(&p).is_empty());
         let took = start.elapsed().as_secs_f64();
-        assert!(took < 0.5, "{dir:?}: overlap search {took} s");
+        assert!(took < 1.5, "{dir:?}: overlap search {took} s");
     }
     let p = pucks(0.0, (1.0, 0.0));
     let start = Instant::now();
     assert_eq!(scene::first_overlaps(&p).len(), 100_000 - 1);
-    assert!(start.elapsed().as_secs_f64() < 0.5);
+    assert!(start.elapsed().as_secs_f64() < 1.5);
 }
 
 #[test]

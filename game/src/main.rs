@@ -294,23 +294,12 @@ enum PlayView {
     Split,
 }
 
-/// Mesa's and the windowing libraries' clients print `XDG_RUNTIME_DIR is
-/// invalid or not set` (twice) when it is missing, as under `xvfb-run` or
-/// `su`: give them a private one (mode 0700) before any thread starts.
+/// Gives Mesa's device-select layer a private `XDG_RUNTIME_DIR` when the
+/// environment has no valid one (see
+/// [`lightcone_render::gpu::private_runtime_dir`]), so no GPU command prints
+/// libwayland's `XDG_RUNTIME_DIR is invalid` warning.
 fn private_runtime_dir() {
-    use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
-    let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| {
-        std::fs::metadata(&d).is_ok_and(|m| m.is_dir() && m.permissions().mode() & 0o077 == 0)
-    });
-    if valid {
-        return;
-    }
-    let uid = std::fs::metadata("/proc/self").map_or(0, |m| m.uid());
-    let dir = std::env::temp_dir().join(format!("lightcone-runtime-{uid}"));
-    let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
-    let ours = std::fs::metadata(&dir)
-        .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o077 == 0);
-    if ours {
+    if let Some(dir) = lightcone_render::gpu::private_runtime_dir() {
         // SAFETY: called first thing in `main`, before any thread exists,
         // so nothing reads the environment concurrently.
         unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };

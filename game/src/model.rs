@@ -370,7 +370,7 @@ impl GameState {
     /// looking where it looks.
     fn eye_at_observer(scene: &Scene, i: usize) -> FlyingEye {
         let o = &scene.observers[i.min(scene.observers.len() - 1)];
-        let f = (o.look_at - o.position).normalize_or(DVec3::Y);
+        let f = (o.target(scene.table.size) - o.position).normalize_or(DVec3::Y);
         FlyingEye {
             position: o.position,
             u: ProperVelocity::ZERO,
@@ -411,7 +411,7 @@ impl GameState {
         {
             let st = w.state_at(self.view_time);
             let o = &self.scene.observers[i];
-            let f = (o.look_at - o.position).normalize_or(DVec3::Y);
+            let f = (o.target(self.scene.table.size) - o.position).normalize_or(DVec3::Y);
             self.eye = FlyingEye {
                 position: st.position,
                 u: st.u,
@@ -1104,8 +1104,13 @@ mod tests {
             g.run_seen();
         }
         let v = g.run_seen();
-        let (sim, view) =
-            lightcone_render::frame::scene_view(&g.scene, 0, g.view_time, ViewKind::Seen);
+        let (sim, view) = lightcone_render::frame::scene_view(
+            &g.scene,
+            0,
+            g.view_time,
+            ViewKind::Seen,
+            16.0 / 9.0,
+        );
         same_picture(g.apparent(v).unwrap(), sim.apparent(view).unwrap(), 1e-12);
     }
 

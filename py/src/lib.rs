@@ -189,6 +189,29 @@ fn observation<'py>(
     to_record(py, "Observation", &report)
 }
 
+/// Before the first graphics device opens: gives Mesa's device-select layer
+/// a private `XDG_RUNTIME_DIR` when the environment has no valid one
+/// ([`lightcone_render::gpu::private_runtime_dir`]), so rendering prints no
+/// libwayland `XDG_RUNTIME_DIR is invalid` warning, as the `lightcone`
+/// command does. Set through Python's `os.environ`, holding the GIL, as any
+/// Python code sets a variable: `os.environ` and the process environment
+/// (and so child processes) agree.
+fn quiet_runtime_dir(py: Python<'_>) -> PyResult<()> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static DONE: AtomicBool = AtomicBool::new(false);
+    if DONE.swap(true, Ordering::Relaxed) {
+        return Ok(());
+    }
+    if let Some(dir) = lightcone_render::gpu::private_runtime_dir()
+        && let Some(dir) = dir.to_str()
+    {
+        py.import("os")?
+            .getattr("environ")?
+            .set_item("XDG_RUNTIME_DIR", dir)?;
+    }
+    Ok(())
+}
+
 /// The headless graphics device, opened once per process.
 fn gpu() -> Result<&'static lightcone_render::gpu::Gpu, String> {
     static GPU: std::sync::OnceLock<Result<lightcone_render::gpu::Gpu, String>> =
@@ -224,6 +247,7 @@ fn render_frame(
         )));
     }
     let index = observer_index(scene, observer)?;
+    quiet_runtime_dir(py)?;
     let image = py.detach(|| {
         let gpu = gpu().map_err(NoAdapterError::new_err)?;
         lightcone_render::headless::render_billiard(

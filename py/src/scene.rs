@@ -132,8 +132,9 @@ impl Scene {
     }
 
     /// Adds an observer with its eye at `position` (x, y, z) m, looking at
-    /// `look_at` (default: the table's centre), moving at `beta` (v/c,
-    /// three numbers); the first observer replaces the default eye.
+    /// `look_at` with a 60° field (default: none, its views framed to show
+    /// the whole table), moving at `beta` (v/c, three numbers); the first
+    /// observer replaces the default eye.
     #[pyo3(signature = (name, position, look_at = None, beta = None))]
     fn add_observer(
         &mut self,
@@ -145,10 +146,7 @@ impl Scene {
         let name = checked_name("observer", name)?;
         let look_at = optional::<3>("look_at", look_at)?;
         let beta = optional::<3>("beta", beta)?;
-        let size = self.inner.table.size;
-        let look_at = look_at.map_or(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0), |v| {
-            DVec3::from(v.triple())
-        });
+        let look_at = look_at.map(|v| DVec3::from(v.triple()));
         let u = match beta {
             None => ProperVelocity::ZERO,
             Some(b) => ProperVelocity::try_from_beta(DVec3::from(b.triple()))

@@ -189,7 +189,9 @@ impl Simulation {
     /// Renders what `observer` (default: the first) sees at board time `at`
     /// (default: now) headless, and returns the frame (shown inline in
     /// Jupyter); with `path`, also saves it as a PNG. `view` is "seen" or
-    /// "truth"; `size` is (width, height) in pixels. Raises NoAdapterError
+    /// "truth"; `size` is (width, height) in pixels. Framed as
+    /// `lightcone render` frames it: the whole table with a margin, unless
+    /// the observer has a `look_at`. Raises NoAdapterError
     /// when there is no graphics adapter (install mesa-vulkan-drivers).
     #[pyo3(signature = (path = None, observer = None, size = (1280, 720), view = "seen", at = None))]
     fn render(

@@ -9,7 +9,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Mat4, Vec3};
-use lightcone_engine::ecs::{Apparent, BodyRef, Entity, Framing, Simulation};
+use lightcone_engine::ecs::{Apparent, BodyRef, Entity, Simulation};
 use lightcone_engine::optics::Eye;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{Color, Effects, Scene};
@@ -114,7 +114,10 @@ fn marked(shape: &RestShape, tri: [u32; 3]) -> bool {
 }
 
 /// The eye of observer `index` of `scene` at board time `t` (constant
-/// velocity from its position at t = 0), and its camera.
+/// velocity from its position at t = 0), and the way it faces: towards its
+/// `look_at` (else the table's centre) with a 60° field. That is where a
+/// free eye taken over from it starts looking; to draw what it sees, use
+/// [`scene_view`], which frames the table as every view does.
 pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
     let o = &scene.observers[index];
     let eye = Eye {
@@ -122,7 +125,7 @@ pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
         u: o.u,
     };
     let camera = Camera {
-        forward: o.look_at - o.position,
+        forward: o.target(scene.table.size) - o.position,
         fovy: std::f64::consts::FRAC_PI_3,
     };
     (eye, camera)
@@ -253,10 +256,18 @@ pub fn build_view(apparent: &Apparent, meshes: &ViewMeshes, out: &mut Vec<FrameV
 
 /// A simulation of `scene` at board time `t` with one view of observer
 /// `index`: the scene's effects for [`ViewKind::Seen`], the truth's for
-/// [`ViewKind::Truth`], its camera looking at the observer's `look_at`
-/// with a 60° field (as `lightcone render` has always framed it).
-pub fn scene_view(scene: &Scene, index: usize, t: f64, kind: ViewKind) -> (Simulation, Entity) {
-    view_of(scene, None, index, t, kind)
+/// [`ViewKind::Truth`], its camera aimed as the observer's
+/// [`lightcone_engine::scene::ObserverSpec::framing`] says for an image of
+/// `aspect` = width / height (fitted to the whole table, as this eye sees
+/// it, unless the scene names a `look_at`).
+pub fn scene_view(
+    scene: &Scene,
+    index: usize,
+    t: f64,
+    kind: ViewKind,
+    aspect: f64,
+) -> (Simulation, Entity) {
+    simulation_view(scene, None, index, t, kind, aspect)
 }
 
 /// As [`scene_view`], for the pucks of `billiard` (of `scene`, run at least
@@ -268,16 +279,18 @@ pub fn billiard_view(
     index: usize,
     t: f64,
     kind: ViewKind,
+    aspect: f64,
 ) -> (Simulation, Entity) {
-    view_of(scene, Some(billiard), index, t, kind)
+    simulation_view(scene, Some(billiard), index, t, kind, aspect)
 }
 
-fn view_of(
+fn simulation_view(
     scene: &Scene,
     billiard: Option<&Billiard>,
     index: usize,
     t: f64,
     kind: ViewKind,
+    aspect: f64,
 ) -> (Simulation, Entity) {
     let mut sim = Simulation::new(scene);
     if let Some(b) = billiard {
@@ -289,14 +302,7 @@ fn view_of(
     for e in lightcone_engine::scene::Effect::ALL {
         sim.set_view_effect(view, e, effects.is_on(e));
     }
-    sim.set_framing(
-        view,
-        Framing::Look {
-            forward: o.look_at - o.position,
-            fovy: std::f64::consts::FRAC_PI_3,
-            zoom: 1.0,
-        },
-    );
+    sim.set_framing(view, o.framing(aspect));
     sim.advance_to(t);
     (sim, view)
 }
@@ -304,6 +310,61 @@ fn view_of(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The scene's table corners (cushions included) as `eye` sees them.
+    fn corners_seen(scene: &Scene, eye: &Eye, aberration: bool) -> Vec<DVec3> {
+        crate::camera::table_corners(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH)
+            .into_iter()
+            .map(|p| eye.see_static(p, scene.c, aberration).position)
+            .collect()
+    }
+
+    #[test]
+    fn headless_views_frame_the_whole_table() {
+        // Every shipped scene names no `look_at`: `render`, Python's
+        // `render` and `record` (all the schedule's views, `scene_view`)
+        // fit the whole table as the view's eye sees it, with the engine's
+        // margin, tight on one axis.
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        let tight = 1.0 / (1.0 + lightcone_engine::camera::FIT_MARGIN);
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let scene = lightcone_engine::scene::load(&path).unwrap();
+            for (index, o) in scene.observers.iter().enumerate() {
+                assert!(o.look_at.is_none(), "{}: {}", path.display(), o.name);
+                for aspect in [16.0 / 9.0, 1.0, 0.75] {
+                    for kind in [ViewKind::Seen, ViewKind::Truth] {
+                        let effects = kind.effects(scene.effects);
+                        let (sim, view) = scene_view(&scene, index, 1.0, kind, aspect);
+                        let camera: Camera = sim.camera(view).unwrap().into();
+                        let eye = sim.apparent(view).unwrap().eye.unwrap();
+                        let what = format!("{} {} {aspect} {kind:?}", path.display(), o.name);
+                        let mut widest = 0.0f64;
+                        for p in corners_seen(&scene, &eye, effects.aberration) {
+                            let (x, y) = crate::camera::ndc(&camera, aspect, p).unwrap();
+                            assert!(x.abs() <= tight + 1e-9 && y.abs() <= tight + 1e-9, "{what}");
+                            widest = widest.max(x.abs()).max(y.abs());
+                        }
+                        assert!(widest > tight - 1e-3, "{what}: {widest}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_named_look_at_keeps_its_sixty_degree_camera() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../assets/scenes/paper_carom.toml");
+        let mut scene = lightcone_engine::scene::load(&path).unwrap();
+        let target = DVec3::new(0.5, 0.3, 0.0);
+        scene.observers[0].look_at = Some(target);
+        let forward = (target - scene.observers[0].position).normalize();
+        let (sim, view) = scene_view(&scene, 0, 1.0, ViewKind::Seen, 2.0);
+        let c: Camera = sim.camera(view).unwrap().into();
+        assert!((c.forward.normalize() - forward).length() < 1e-12);
+        assert!((c.fovy - std::f64::consts::FRAC_PI_3).abs() < 1e-12);
+    }
 
     #[test]
     fn every_vertex_is_finite_in_every_shipped_scene() {
@@ -319,7 +380,7 @@ mod tests {
             none.effects = Effects::NONE;
             let mut out = Vec::new();
             for s in [&scene, &all, &none] {
-                let (mut sim, view) = scene_view(s, 0, 0.0, ViewKind::Seen);
+                let (mut sim, view) = scene_view(s, 0, 0.0, ViewKind::Seen, 16.0 / 9.0);
                 let meshes = ViewMeshes::new(&mut sim);
                 for t in [0.0, 1.0, 5.0] {
                     sim.advance_to(t);

@@ -62,3 +62,48 @@ pub fn open(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Re
         handle: adapter,
     })
 }
+
+/// A private runtime directory to give Mesa's Vulkan device-select layer,
+/// or `None` when the environment's `XDG_RUNTIME_DIR` will do.
+///
+/// The layer (`VK_LAYER_MESA_device_select`, an implicit layer) asks the
+/// Wayland compositor for the default GPU each time an instance enumerates
+/// its adapters, through libwayland-client's `wl_display_connect`, which
+/// prints `error: XDG_RUNTIME_DIR is invalid or not set in the environment.`
+/// when that variable is unset or not an absolute path (as under
+/// `xvfb-run`, `su` or CI): twice per instance, on stderr. With
+/// `XDG_RUNTIME_DIR` set to the directory returned here
+/// (`$TMPDIR/lightcone-runtime-UID`, created mode 0700 if missing, owned by
+/// this user) the connection fails quietly (no compositor socket there)
+/// and the layer falls back to X11 or the first adapter, as before.
+///
+/// Returns `None` when `XDG_RUNTIME_DIR` is an absolute path to a directory
+/// closed to others (nothing to do), or when the private directory exists
+/// but is not this user's or is open to others (left alone: the warning
+/// stays). Setting the variable is the caller's: it must happen before
+/// anything else in the process reads the environment concurrently (the
+/// CLI: first thing in `main`; Python: through `os.environ`).
+#[cfg(unix)]
+pub fn private_runtime_dir() -> Option<std::path::PathBuf> {
+    use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
+    let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| {
+        std::path::Path::new(&d).is_absolute()
+            && std::fs::metadata(&d)
+                .is_ok_and(|m| m.is_dir() && m.permissions().mode() & 0o077 == 0)
+    });
+    if valid {
+        return None;
+    }
+    let uid = std::fs::metadata("/proc/self").map_or(0, |m| m.uid());
+    let dir = std::env::temp_dir().join(format!("lightcone-runtime-{uid}"));
+    let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
+    let ours = std::fs::metadata(&dir)
+        .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o077 == 0);
+    ours.then_some(dir)
+}
+
+/// Not Unix: no Mesa device-select layer to quieten.
+#[cfg(not(unix))]
+pub fn private_runtime_dir() -> Option<std::path::PathBuf> {
+    None
+}

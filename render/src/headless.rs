@@ -252,7 +252,9 @@ pub fn draw(
     Offscreen::new(gpu, width, height).draw(gpu, vertices, camera)
 }
 
-/// Renders what observer `observer` of `scene` sees at board time `t`.
+/// Renders what observer `observer` of `scene` sees at board time `t`,
+/// its camera framed as [`frame::scene_view`] says (the whole table unless
+/// the scene names a `look_at`).
 pub fn render_scene(
     gpu: &Gpu,
     scene: &Scene,
@@ -262,7 +264,8 @@ pub fn render_scene(
     width: u32,
     height: u32,
 ) -> Result<Image, String> {
-    let (mut sim, view) = frame::scene_view(scene, observer, t, kind);
+    let aspect = f64::from(width) / f64::from(height);
+    let (mut sim, view) = frame::scene_view(scene, observer, t, kind, aspect);
     render_view(gpu, &mut sim, view, width, height)
 }
 
@@ -285,7 +288,7 @@ pub fn render_view(
 }
 
 /// Renders what observer `observer` sees at board time `t` of a billiard
-/// already run (at least) that far.
+/// already run (at least) that far, framed as [`frame::scene_view`] says.
 #[allow(clippy::too_many_arguments)]
 pub fn render_billiard(
     gpu: &Gpu,
@@ -300,7 +303,8 @@ pub fn render_billiard(
     if observer >= scene.observers.len() {
         return Err(format!("no observer {observer}"));
     }
-    let (mut sim, view) = frame::billiard_view(scene, billiard, observer, t, kind);
+    let aspect = f64::from(width) / f64::from(height);
+    let (mut sim, view) = frame::billiard_view(scene, billiard, observer, t, kind, aspect);
     render_view(gpu, &mut sim, view, width, height)
 }
 

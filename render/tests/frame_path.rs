@@ -17,7 +17,7 @@ fn the_frame_path_and_observe_see_the_same_vertices() {
     let scene = scene::load(std::path::Path::new(path)).unwrap();
     for kind in [ViewKind::Seen, ViewKind::Truth] {
         for t in [0.5, 2.2, 4.0] {
-            let (mut sim, view) = frame::scene_view(&scene, 0, t, kind);
+            let (mut sim, view) = frame::scene_view(&scene, 0, t, kind, 16.0 / 9.0);
             let meshes = ViewMeshes::new(&mut sim);
             let apparent = sim.apparent(view).unwrap().clone();
             let corners = frame::view_corners(&apparent, &meshes);

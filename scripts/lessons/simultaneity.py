@@ -20,7 +20,7 @@ def setup(world):
     scene = lightcone.Scene(title="Apparent simultaneity")
     scene.add_puck("left", (1.02, 0.71), beta=(-BETA, 0.0), color="yellow")
     scene.add_puck("right", (1.82, 0.71), beta=(BETA, 0.0), color="red")
-    scene.add_observer("near the left cushion", EYE, look_at=(1.42, 0.71, 0.0))
+    scene.add_observer("near the left cushion", EYE)
     world.start(scene)
     world.observer = "near the left cushion"
     world.hits = {}

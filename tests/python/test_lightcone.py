@@ -125,6 +125,36 @@ def test_render_writes_a_png(tmp_path):
         sim.render(str(out), view="sideways")
 
 
+@pytest.mark.parametrize("runtime_dir", [None, "relative/dir"])
+def test_render_prints_no_driver_warning_without_a_runtime_dir(runtime_dir):
+    # Mesa's device-select layer reaches libwayland, which prints
+    # "error: XDG_RUNTIME_DIR is invalid or not set in the environment."
+    # when the variable is unset or relative; the wheel gives it a private
+    # one (through os.environ) before its first device, as `lightcone` does.
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items() if k not in ("XDG_RUNTIME_DIR", "WAYLAND_DISPLAY")}
+    if runtime_dir is not None:
+        env["XDG_RUNTIME_DIR"] = runtime_dir
+    code = (
+        "import os, lightcone\n"
+        f"sim = lightcone.Simulation(lightcone.Scene.load({os.path.join(SCENES, 'paper_carom.toml')!r}))\n"
+        "sim.run_until(0.5)\n"
+        "try:\n"
+        "    print(sim.render(size=(64, 36)).width)\n"
+        "except lightcone.NoAdapterError:\n"
+        "    print('no adapter')\n"
+        "print(os.path.isabs(os.environ['XDG_RUNTIME_DIR']))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    if out.stdout.startswith("no adapter"):
+        pytest.skip("no graphics adapter")
+    assert out.stdout.split() == ["64", "True"], out.stdout
+    assert "XDG_RUNTIME_DIR" not in out.stderr, out.stderr
+
+
 def test_world_is_only_made_by_the_game():
     """Lessons receive a World from `lightcone play`; Python cannot make one."""
     assert "World" in lightcone.__all__

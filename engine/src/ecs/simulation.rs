@@ -14,7 +14,7 @@ use super::resources::{
 use super::schedule::frame_schedule;
 use super::systems::input;
 use super::systems::optics::eye_at;
-use crate::camera::{self, Camera, Framing};
+use crate::camera::{self, Camera, DEFAULT_ASPECT, Framing};
 use crate::optics::view as kernel;
 use crate::optics::{Eye, SampledHistory, Seen};
 use crate::physics::Billiard;
@@ -45,8 +45,13 @@ pub struct Simulation {
 impl Simulation {
     /// Builds the world for `scene`: one entity per puck, per table part
     /// (fixtures at rest) and per observer, each observer with a worldline
-    /// starting at board time 0 and one view with the scene's effects and
-    /// camera, named after it. Runs the frame at board time 0.
+    /// starting at board time 0 and one view with the scene's effects,
+    /// named after it, its camera aimed by [`ObserverSpec::framing`] (along
+    /// the observer's `look_at` if the scene names one, else fitted to the
+    /// whole table in a 16:9 viewport: set the view's framing for another
+    /// aspect). Runs the frame at board time 0.
+    ///
+    /// [`ObserverSpec::framing`]: crate::scene::ObserverSpec::framing
     pub fn new(scene: &Scene) -> Self {
         let mut world = World::new();
         world.insert_resource(Clock::default());
@@ -109,7 +114,7 @@ impl Simulation {
             views: Vec::new(),
         };
         for o in &scene.observers {
-            let forward = (o.look_at - o.position).normalize_or(DVec3::Y);
+            let forward = (o.target(scene.table.size) - o.position).normalize_or(DVec3::Y);
             let observer = sim.add_observer(
                 &o.name,
                 Worldline::new(Event::new(0.0, o.position), o.u, scene.c),
@@ -119,7 +124,7 @@ impl Simulation {
                 &o.name,
                 observer,
                 scene.effects,
-                Framing::default(),
+                o.framing(DEFAULT_ASPECT),
                 Vantage::OnWorldline,
             );
         }

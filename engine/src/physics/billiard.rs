@@ -73,9 +73,11 @@ pub struct PuckOutcome {
 /// Which kind of collision.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CollisionKind {
-    /// Two pucks.
+    /// Two pucks (three or more when a Zeno sequence among them ends: they
+    /// move together, see `Billiard::stats().zeno_merges`).
     PuckPuck,
-    /// A puck and a cushion.
+    /// A puck and a cushion (with the pucks pressing it into the cushion
+    /// when a Zeno sequence there ends: they stop moving into it).
     Cushion(Cushion),
 }
 
@@ -88,10 +90,12 @@ pub struct Collision {
     pub t: f64,
     /// Contact point, m.
     pub contact: DVec3,
-    /// One outcome per puck involved (two for puck–puck, one for a cushion).
+    /// One outcome per puck involved: two for puck–puck, one for a cushion;
+    /// more when a Zeno sequence ends (see [`CollisionKind`]).
     pub pucks: Vec<PuckOutcome>,
     /// The most the two pucks may overlap in the board frame because of
-    /// this contact, m (0 for a cushion): what rigid bodies cannot avoid in
+    /// this contact, m (0 for a cushion and for a Zeno cluster's merge, whose
+    /// kicks come from no new approach): what rigid bodies cannot avoid in
     /// relativity, see [`overlap_bound`](crate::physics::overlap::bound).
     pub overlap_bound: f64,
 }
@@ -173,16 +177,18 @@ struct Puck {
     /// collision's outcome, which separates, so they are not predicted
     /// again until one of them changes.
     settled: Option<(u32, u32, u32)>,
-    /// Board time of this puck's last pair contact and how many came in
-    /// quick succession (Zeno detection, O(1) per puck).
+    /// Board time of this puck's last contact (pair or cushion) and how
+    /// many came in quick succession (Zeno detection, O(1) per puck).
     quick: (f64, u32),
 }
 
 /// Consecutive contacts of one puck closer together than this (in units of
 /// the time light takes to cross the table) count towards a Zeno sequence.
 const ZENO_GAP: f64 = 1e-9;
-/// A puck that meets others this many times in such quick succession ends
-/// the sequence: its next collision is perfectly inelastic.
+/// A puck that meets others or a cushion this many times in such quick
+/// succession is in a Zeno sequence (inelastic collapse): its collisions
+/// with pucks are then perfectly inelastic, and a cushion stops the cluster
+/// pressing into it.
 const ZENO_COUNT: u32 = 64;
 
 /// What a puck's one pending event is about.
@@ -296,6 +302,9 @@ pub struct Billiard {
     history: Option<f64>,
     forgotten_before: Option<f64>,
     warnings: Vec<String>,
+    /// Whether a Zeno sequence has been reported (once, whichever kind
+    /// came first; every one is counted in the stats).
+    zeno_said: bool,
     stats: Stats,
 }
 
@@ -374,6 +383,7 @@ impl Billiard {
             history: None,
             forgotten_before: None,
             warnings: Vec::new(),
+            zeno_said: false,
             stats: Stats::default(),
         };
         billiard.start();
@@ -755,34 +765,97 @@ impl Billiard {
         let puck = &mut self.pucks[i];
         let t_kink = t.max(puck.worldline.last().start.t);
         let before = puck.worldline.last().u_at(t_kink);
-        let after = resolve::puck_cushion(before, cushion.outward(), self.cushion_restitution);
-        if puck.worldline.push(t_kink, after).is_err() {
-            return;
-        }
-        self.stats.cushion_contacts += 1;
-        if self.record {
-            let position = puck.worldline.position_at(t_kink);
-            let contact = position + puck_cushion::support_offset(puck.radius, before, cushion);
-            let outcome = PuckOutcome {
+        let outward = cushion.outward();
+        let zeno = self.quick_streak(i, t_kink) >= ZENO_COUNT;
+        // In a Zeno sequence against this cushion (pucks pressed into it by
+        // others moving with them): the cluster stops moving into the
+        // cushion, the limit of the sequence.
+        let cluster = if zeno {
+            self.pressed_cluster(i, before, t_kink)
+        } else {
+            vec![i]
+        };
+        let after = if zeno {
+            ProperVelocity(before.0 - outward * before.0.dot(outward))
+        } else {
+            resolve::puck_cushion(before, outward, self.cushion_restitution)
+        };
+        let mut outcomes = Vec::with_capacity(cluster.len());
+        for &k in &cluster {
+            let puck = &mut self.pucks[k];
+            if puck.worldline.push(t_kink, after).is_err() {
+                continue;
+            }
+            outcomes.push(PuckOutcome {
                 puck: puck.external as usize,
                 t: t_kink,
-                position,
+                position: puck.worldline.position_at(t_kink),
                 u_before: before,
                 u_after: after,
                 mass_before: puck.mass,
                 mass_after: puck.mass,
                 orientation_after: puck.worldline.last().orientation,
                 pending: false,
-            };
+            });
+        }
+        if outcomes.is_empty() {
+            return;
+        }
+        self.stats.cushion_contacts += 1;
+        if zeno {
+            self.stats.zeno_merges += 1;
+            if !self.zeno_said {
+                self.zeno_said = true;
+                self.warnings.push(format!(
+                    "t = {t_kink} s: puck \"{}\" was pressed into cushion {} {ZENO_COUNT} times within                      {:.3e} s (inelastic collapse); it and the {} puck(s) pressing it with one velocity                      stop moving into the cushion (said once; every one is counted)",
+                    self.pucks[i].name,
+                    cushion.name(),
+                    ZENO_GAP * self.table.length() / self.c,
+                    cluster.len() - 1
+                ));
+            }
+        }
+        if self.record {
+            let radius = self.pucks[i].radius;
+            let contact =
+                outcomes[0].position + puck_cushion::support_offset(radius, before, cushion);
             self.collisions.push(Collision {
                 kind: CollisionKind::Cushion(cushion),
                 t: t_kink,
                 contact,
-                pucks: vec![outcome],
+                pucks: outcomes,
                 overlap_bound: 0.0,
             });
         }
-        self.bump(i);
+        for k in cluster {
+            self.bump(k);
+        }
+    }
+
+    /// The pucks pressed into a cushion together with puck `i`: `i` and
+    /// every puck reached from it through touching pucks (centres at most
+    /// the sum of radii apart at board time `t`, m) that move with the same
+    /// proper velocity `u` and have no kick pending.
+    fn pressed_cluster(&self, i: usize, u: ProperVelocity, t: f64) -> Vec<usize> {
+        let same = |w: ProperVelocity| (w.0 - u.0).length() <= 1e-12 * u.0.length();
+        let centre = |k: usize| self.pucks[k].worldline.last().position_at(t);
+        let mut cluster = vec![i];
+        let mut k = 0;
+        while k < cluster.len() {
+            let (m, xm) = (cluster[k], centre(cluster[k]));
+            for j in 0..self.pucks.len() {
+                let p = &self.pucks[j];
+                if cluster.contains(&j) || !p.pending.is_empty() {
+                    continue;
+                }
+                let reach = (p.radius + self.pucks[m].radius) * (1.0 + 1e-9);
+                if (centre(j) - xm).length() <= reach && same(p.worldline.last().u_at(t)) {
+                    cluster.push(j);
+                }
+            }
+            k += 1;
+        }
+        cluster
     }
 
     /// Resolves the contact of pucks `a` < `b` that `next` predicted: kept
@@ -812,7 +885,15 @@ impl Billiard {
             body(&self.pucks[a], times[0]),
             body(&self.pucks[b], times[1]),
         ];
-        let restitution = self.zeno_restitution(a, b, hit.contact.t);
+        // Counted at the board time it is processed (its first kick), as a
+        // cushion contact is: a contact's own time can lie later (between
+        // the kicks), and a sequence alternating with a cushion would then
+        // never look quick.
+        let zeno = self.in_zeno_sequence(a, b, self.time);
+        if zeno && hit.on_board && self.merge_zeno_cluster(a, b, hit.contact.position) {
+            return;
+        }
+        let restitution = if zeno { 0.0 } else { self.restitution };
         let after = if hit.on_board {
             self.board_push(a, b, before, hit.normal, restitution)
         } else {
@@ -931,7 +1012,19 @@ impl Billiard {
     /// The outcome of a contact found on the board (pucks `a`, `b` touching
     /// or overlapping there now, closing along `normal`), both kicks now.
     ///
-    /// An impulse along the board's penetration direction
+    /// Restitution 0: the pair moves together ([`resolve::together`]), the
+    /// outcome a pair-frame contact with restitution 0 has too (all the
+    /// kinetic energy of the relative motion becomes heat, whatever the
+    /// normal). Both then have one velocity and one contraction, so their
+    /// board shapes translate together: the overlap the kick leaves
+    /// (within the contact's bound: each shape grows by at most
+    /// `R (1 − 1/γ)`) never deepens and they never meet again until
+    /// something else changes one of them. An impulse along the normal
+    /// alone would leave them sliding past each other; at γ ≳ 10³ the
+    /// reshaped shapes could then slide back into each other (the seed-15
+    /// case of `collision_integrity`).
+    ///
+    /// Otherwise an impulse along the board's penetration direction
     /// ([`resolve::puck_puck_board`]);
     /// that kick changes both pucks' contraction at once, so the new shapes
     /// can still overlap and close along a new penetration direction: the
@@ -946,12 +1039,14 @@ impl Billiard {
         normal: DVec3,
         restitution: f64,
     ) -> [Body; 2] {
+        if restitution <= 0.0 {
+            return resolve::together(before[0], before[1]);
+        }
         let mut after = resolve::puck_puck_board(before[0], before[1], normal, restitution);
         let t = self.time;
         let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
         let xa = Event::new(t, self.pucks[a].worldline.last().position_at(t));
         let xb = Event::new(t, self.pucks[b].worldline.last().position_at(t));
-        let mut open = false;
         for _ in 0..16 {
             let wa = Worldline::new(xa, after[0].u, self.c);
             let wb = Worldline::new(xb, after[1].u, self.c);
@@ -961,31 +1056,14 @@ impl Billiard {
             let m = match overlap::penetration(sa, ra, sb, rb, t) {
                 // Still overlapping: closing along the new direction?
                 Some((_, m)) if m.dot(v_rel) < -still => m,
-                Some(_) => {
-                    open = true;
-                    break;
-                }
+                Some(_) => break,
                 // Apart: would sliding bring them together again?
                 None => match self.touch_again(xa, ra, after[0].u, xb, rb, after[1].u) {
                     Some(m) if m.dot(v_rel) < -still => m,
-                    _ => {
-                        open = true;
-                        break;
-                    }
+                    _ => break,
                 },
             };
             after = resolve::puck_puck_board(after[0], after[1], m, restitution);
-        }
-        if !open && restitution <= 0.0 {
-            // Restitution 0 and still closing: the pair moves together
-            // instead (at rest in its centre-of-momentum frame, as a
-            // pair-frame contact with restitution 0 leaves it), which keeps
-            // the overlap as it is.
-            let together =
-                resolve::puck_puck(before[0], before[1], normal, ProperVelocity::ZERO, 0.0);
-            if together != before {
-                return together;
-            }
         }
         after
     }
@@ -1107,34 +1185,122 @@ impl Billiard {
         self.bump(i);
     }
 
-    /// Restitution for this contact: the scene's, unless one of the pucks
-    /// is in a Zeno sequence (inelastic collapse: contacts closer and closer
-    /// in time), which is then ended by one perfectly inelastic collision.
-    /// The first time, a warning says so.
-    fn zeno_restitution(&mut self, a: usize, b: usize, t: f64) -> f64 {
-        let gap = ZENO_GAP * self.table.length() / self.c;
-        let mut streak = 0;
-        for i in [a, b] {
-            let quick = &mut self.pucks[i].quick;
-            quick.1 = if t - quick.0 < gap { quick.1 + 1 } else { 0 };
-            quick.0 = t;
-            streak = streak.max(quick.1);
-        }
+    /// Whether this contact of `a` and `b` at board time `t` is part of a
+    /// Zeno sequence (inelastic collapse: contacts closer and closer in
+    /// time); it is then perfectly inelastic. The first time, a warning says
+    /// so.
+    fn in_zeno_sequence(&mut self, a: usize, b: usize, t: f64) -> bool {
+        let streak = self.quick_streak(a, t).max(self.quick_streak(b, t));
         if streak < ZENO_COUNT {
-            return self.restitution;
+            return false;
         }
-        self.pucks[a].quick.1 = 0;
-        self.pucks[b].quick.1 = 0;
+        // Not reset: every contact of the sequence from here on is
+        // inelastic, until a pause longer than the Zeno gap (a sequence
+        // against a cushion ends there, see `cushion_contact`).
         self.stats.zeno_merges += 1;
-        if self.stats.zeno_merges == 1 {
+        if !self.zeno_said {
+            self.zeno_said = true;
             self.warnings.push(format!(
-                "t = {t} s: pucks \"{}\" and \"{}\" met others {ZENO_COUNT} times within {gap:.3e} s \
+                "t = {t} s: pucks \"{}\" and \"{}\" met others {ZENO_COUNT} times within {:.3e} s \
                  (inelastic collapse); such a collision is made perfectly inelastic so they move \
                  together (said once; every one is counted)",
-                self.pucks[a].name, self.pucks[b].name
+                self.pucks[a].name,
+                self.pucks[b].name,
+                ZENO_GAP * self.table.length() / self.c
             ));
         }
-        0.0
+        true
+    }
+
+    /// Ends a Zeno sequence of three or more pucks at once (a light puck
+    /// crushed between two heavy ones converging: pairwise inelastic
+    /// contacts only approach the end, for ever): the cluster of touching
+    /// pucks in the sequence (each had a contact within the Zeno gap; none
+    /// has a kick pending), reached from `a` and `b`, moves together
+    /// ([`resolve::together_all`]), now. One collision record holds every
+    /// puck of the cluster. Returns `false` (nothing done) if the cluster is
+    /// just the pair.
+    fn merge_zeno_cluster(&mut self, a: usize, b: usize, contact: DVec3) -> bool {
+        let t = self.time;
+        let gap = ZENO_GAP * self.table.length() / self.c;
+        let centre = |k: usize| self.pucks[k].worldline.last().position_at(t);
+        let mut cluster = vec![a, b];
+        let mut k = 0;
+        while k < cluster.len() {
+            let (m, xm) = (cluster[k], centre(cluster[k]));
+            for j in 0..self.pucks.len() {
+                let p = &self.pucks[j];
+                if cluster.contains(&j) || !p.pending.is_empty() || t - p.quick.0 >= gap {
+                    continue;
+                }
+                let reach = (p.radius + self.pucks[m].radius) * (1.0 + 1e-9);
+                if (centre(j) - xm).length() <= reach {
+                    cluster.push(j);
+                }
+            }
+            k += 1;
+        }
+        if cluster.len() < 3
+            || cluster[..2]
+                .iter()
+                .any(|&i| !self.pucks[i].pending.is_empty())
+        {
+            return false;
+        }
+        let before: Vec<Body> = cluster
+            .iter()
+            .map(|&i| Body {
+                mass: self.pucks[i].mass,
+                u: self.pucks[i].worldline.last().u_at(t),
+            })
+            .collect();
+        let after = resolve::together_all(&before);
+        self.stats.pair_contacts += 1;
+        self.contacts_made += 1;
+        let mut outcomes = Vec::with_capacity(cluster.len());
+        for (k, &i) in cluster.iter().enumerate() {
+            let puck = &mut self.pucks[i];
+            if puck.worldline.push(t, after[k].u).is_err() {
+                continue;
+            }
+            puck.mass = after[k].mass;
+            self.stats.kicks += 1;
+            outcomes.push(PuckOutcome {
+                puck: puck.external as usize,
+                t,
+                position: puck.worldline.position_at(t),
+                u_before: before[k].u,
+                u_after: after[k].u,
+                mass_before: before[k].mass,
+                mass_after: after[k].mass,
+                orientation_after: puck.worldline.last().orientation,
+                pending: false,
+            });
+        }
+        if self.record {
+            self.collisions.push(Collision {
+                kind: CollisionKind::PuckPuck,
+                t,
+                contact,
+                pucks: outcomes,
+                overlap_bound: 0.0,
+            });
+        }
+        for i in cluster {
+            self.bump(i);
+        }
+        true
+    }
+
+    /// Counts a contact of puck `i` at board time `t` (s) towards its Zeno
+    /// sequence: returns how many contacts in a row came within the Zeno gap
+    /// of the one before.
+    fn quick_streak(&mut self, i: usize, t: f64) -> u32 {
+        let gap = ZENO_GAP * self.table.length() / self.c;
+        let quick = &mut self.pucks[i].quick;
+        quick.1 = if t - quick.0 < gap { quick.1 + 1 } else { 0 };
+        quick.0 = t;
+        quick.1
     }
 }
 

@@ -149,9 +149,13 @@ pub fn puck_puck(
 /// unchanged (the lost kinetic energy stays as rest mass, as in
 /// [`puck_puck`]). Here `e` is Newton's coefficient on the normal momentum
 /// (a fraction `e²` of the normal part of the kinetic energy is kept), not
-/// the energy fraction of [`puck_puck`]; the two agree for `e = 1` and
-/// `e = 0`; 4-momentum is conserved exactly, and an elastic pair
-/// leaves opening along `normal` on the board. Not closing: unchanged.
+/// the energy fraction of [`puck_puck`]; the two agree for `e = 1`. For
+/// `e = 0` this removes only the normal part of the relative motion, while
+/// [`puck_puck`] with `e = 0` removes all of it (the pair moves together):
+/// that outcome is [`together`], which the billiard uses for a board
+/// contact with restitution 0. 4-momentum is conserved exactly, and an
+/// elastic pair leaves opening along `normal` on the board. Not closing:
+/// unchanged.
 pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Body; 2] {
     // In closed form on the board: an impulse `J n` to `a` (`−J n` to `b`)
     // carries energy `J k`, `k = (P·n)/E`, the frame's β along `n`. The
@@ -187,6 +191,64 @@ pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Bo
         }
     };
     [out(a, pa, j_e), out(b, pb, -j_e)]
+}
+
+/// The perfectly inelastic outcome, whatever the geometry: both bodies
+/// move together at the pair's centre-of-momentum velocity `P/M` (`P` the
+/// total 4-momentum, `M` its invariant mass), and all the kinetic energy
+/// of the relative motion becomes rest mass, shared in proportion to the
+/// rest masses (`mᵢ′ = M mᵢ / (m_a + m_b)`). This is [`puck_puck`] with
+/// restitution 0 for an approaching pair, in closed form and without its
+/// approach test: a pair already moving together is unchanged (to
+/// rounding). 4-momentum is conserved exactly: `Σ mᵢ′ u = M (P/M) = P` and
+/// `Σ mᵢ′ γ = M γ_cm = E`.
+pub fn together(a: Body, b: Body) -> [Body; 2] {
+    let total = a.momentum() + b.momentum();
+    let invariant = FourMomentum::pair_invariant_mass(a.mass, a.u, b.mass, b.u);
+    let u = ProperVelocity(total.momentum / invariant);
+    let sum = a.mass + b.mass;
+    [
+        Body {
+            mass: invariant * (a.mass / sum),
+            u,
+        },
+        Body {
+            mass: invariant * (b.mass / sum),
+            u,
+        },
+    ]
+}
+
+/// [`together`] for any number of bodies (an inelastic collapse of a
+/// cluster, which pairwise contacts would only approach, for ever): all move
+/// at the cluster's centre-of-momentum velocity `P/M`, rest masses
+/// `mᵢ′ = M mᵢ / Σ m`. `M` is built pair by pair with
+/// [`FourMomentum::pair_invariant_mass`] (each step combines the bodies so
+/// far, as one body of mass `M` at `P/M`, with the next), which keeps its
+/// digits when the relative motion is slow. 4-momentum conserved exactly,
+/// as for two. Empty in, empty out.
+pub fn together_all(bodies: &[Body]) -> Vec<Body> {
+    if let &[a, b] = bodies {
+        return together(a, b).to_vec();
+    }
+    let Some((&first, rest)) = bodies.split_first() else {
+        return Vec::new();
+    };
+    let whole = rest.iter().fold(first, |acc, &next| {
+        let [x, y] = together(acc, next);
+        Body {
+            mass: x.mass + y.mass,
+            u: x.u,
+        }
+    });
+    let sum: f64 = bodies.iter().map(|b| b.mass).sum();
+    bodies
+        .iter()
+        .map(|b| Body {
+            mass: whole.mass * (b.mass / sum),
+            u: whole.u,
+        })
+        .collect()
 }
 
 /// Outcome of a puck meeting a cushion whose outward unit normal (from the
@@ -317,6 +379,61 @@ mod tests {
         }
         // Opening already: unchanged.
         assert_eq!(puck_puck_board(a, b, -n, 1.0), [a, b]);
+    }
+
+    #[test]
+    fn together_is_the_pair_frame_outcome_of_restitution_zero() {
+        let (a, b) = (body(0.2, 0.8, 0.3), body(0.5, -0.4, 0.1));
+        let out = together(a, b);
+        conserved([a, b], out);
+        assert_eq!(out[0].u, out[1].u);
+        // The same as a restitution-0 pair-frame contact (any normal along
+        // which they approach).
+        let pair = puck_puck(a, b, DVec3::X, ProperVelocity::ZERO, 0.0);
+        let near = |x: [Body; 2], y: [Body; 2]| {
+            x.iter()
+                .zip(&y)
+                .all(|(p, q)| (p.u.0 - q.u.0).length() < 1e-12 && (p.mass - q.mass).abs() < 1e-12)
+        };
+        assert!(near(pair, out), "{pair:?} {out:?}");
+        // Already together: unchanged, to rounding.
+        assert!(near(together(out[0], out[1]), out));
+        // At γ ≈ 5·10³ onto γ ≈ 4 (the seed-15 case): still exact.
+        let fast = Body {
+            mass: 0.2,
+            u: ProperVelocity(DVec3::new(4734.0, -551.0, 0.0)),
+        };
+        let slow = Body {
+            mass: 0.2,
+            u: ProperVelocity(DVec3::new(3.4, -1.9, 0.0)),
+        };
+        let out = together(fast, slow);
+        conserved([fast, slow], out);
+        assert_eq!(out[0].u, out[1].u);
+    }
+
+    #[test]
+    fn together_all_conserves_4_momentum_and_is_together_for_two() {
+        let (a, b, c) = (
+            body(0.2, 0.8, 0.3),
+            body(0.5, -0.4, 0.1),
+            body(0.3, 0.0, -0.9),
+        );
+        let two = together_all(&[a, b]);
+        assert_eq!(two, together(a, b).to_vec());
+        let three = together_all(&[a, b, c]);
+        let sum = |x: &[Body]| {
+            x.iter()
+                .fold(FourMomentum::default(), |s, b| s + b.momentum())
+        };
+        let (p0, p1) = (sum(&[a, b, c]), sum(&three));
+        assert!((p0.energy - p1.energy).abs() <= 1e-12 * p0.energy);
+        assert!((p0.momentum - p1.momentum).length() <= 1e-12 * p0.energy);
+        assert!(three.iter().all(|x| x.u == three[0].u));
+        // Heat: the rest masses grow, in proportion.
+        assert!((three[0].mass / three[1].mass - 0.2 / 0.5).abs() < 1e-12);
+        assert!(three[0].mass > 0.2);
+        assert!(together_all(&[]).is_empty());
     }
 
     #[test]

@@ -161,10 +161,42 @@ pub struct ObserverSpec {
     pub name: String,
     /// Eye position at board time 0, m.
     pub position: DVec3,
-    /// The point it looks at, m.
-    pub look_at: DVec3,
+    /// The point it looks at, m, when the scene names one (`look_at`): its
+    /// views then look there with a 60° field. `None` (the default): its
+    /// views are framed to show the whole table with a margin
+    /// ([`ObserverSpec::framing`]).
+    pub look_at: Option<DVec3>,
     /// Proper velocity γβ.
     pub u: ProperVelocity,
+}
+
+impl ObserverSpec {
+    /// The point the eye faces at t = 0: its `look_at`, else the centre of
+    /// a table of `size` (m) on the board.
+    pub fn target(&self, size: DVec2) -> DVec3 {
+        self.look_at
+            .unwrap_or_else(|| DVec3::new(size.x / 2.0, size.y / 2.0, 0.0))
+    }
+
+    /// How a view of this observer is aimed unless told otherwise: along
+    /// its `look_at` with a 60° vertical field when the scene names one,
+    /// else turned and widened to show the whole table (cushions included)
+    /// with [`crate::camera::FIT_MARGIN`] in a viewport of `aspect` =
+    /// width / height: the window's default framing.
+    pub fn framing(&self, aspect: f64) -> crate::camera::Framing {
+        match self.look_at {
+            Some(p) => crate::camera::Framing::Look {
+                forward: (p - self.position).normalize_or(DVec3::Y),
+                fovy: std::f64::consts::FRAC_PI_3,
+                zoom: 1.0,
+            },
+            None => crate::camera::Framing::Fit {
+                aspect,
+                zoom: 1.0,
+                follow: None,
+            },
+        }
+    }
 }
 
 /// The `[optics]` table: how the light-delay view finds emission events.
@@ -612,7 +644,7 @@ impl Scene {
             ));
         }
         if !(observer.position.is_finite()
-            && observer.look_at.is_finite()
+            && observer.look_at.is_none_or(|p| p.is_finite())
             && observer.u.is_finite())
         {
             return Err(format!(
@@ -620,7 +652,9 @@ impl Scene {
             ));
         }
         if observer.position.abs().max_element() > MAX_OBSERVER_DISTANCE
-            || observer.look_at.abs().max_element() > MAX_OBSERVER_DISTANCE
+            || observer
+                .look_at
+                .is_some_and(|p| p.abs().max_element() > MAX_OBSERVER_DISTANCE)
         {
             return Err(format!(
                 "observer \"{name}\": keep position and look_at within ±{} m",
@@ -637,7 +671,7 @@ impl Scene {
         if !default_only && self.observers.len() >= MAX_OBSERVERS {
             return Err(format!("a scene holds at most {MAX_OBSERVERS} observers"));
         }
-        if observer.position == observer.look_at {
+        if observer.look_at == Some(observer.position) {
             return Err(format!(
                 "observer \"{name}\": look_at must differ from position"
             ));
@@ -678,12 +712,13 @@ impl Scene {
 
     /// The observer used when a scene names none: standing at rest beside
     /// the long side, 1.25 m back and 1.6 m above the board (high enough
-    /// that the table, seen whole, is not a sliver), looking at its centre.
+    /// that the table, seen whole, is not a sliver), its views framed to
+    /// show the whole table.
     pub fn default_observer(size: DVec2) -> ObserverSpec {
         ObserverSpec {
             name: "eye".to_owned(),
             position: DVec3::new(size.x / 2.0, -1.25, 1.6),
-            look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
+            look_at: None,
             u: ProperVelocity::ZERO,
         }
     }

@@ -437,7 +437,7 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         .observer
         .iter()
         .enumerate()
-        .map(|(i, at)| observer(&mut ck, at, i, c, size, &mut observer_names))
+        .map(|(i, at)| observer(&mut ck, at, i, c, &mut observer_names))
         .collect();
     if observers.is_empty() {
         observers.push(Scene::default_observer(size));
@@ -620,7 +620,6 @@ fn observer(
     at: &At<RawObserver>,
     i: usize,
     c: f64,
-    size: DVec2,
     names: &mut HashSet<String>,
 ) -> ObserverSpec {
     let o = at.get_ref();
@@ -635,16 +634,15 @@ fn observer(
         .finite::<3>(&o.position, &format!("{prefix}.position"))
         .map_or(DVec3::ZERO, DVec3::from);
     ck.near(&o.position, &format!("{prefix}.position"), position);
-    let centre = DVec3::new(size.x / 2.0, size.y / 2.0, 0.0);
     let look_at = match &o.look_at {
-        None => centre,
+        None => None,
         Some(l) => match ck
             .finite::<3>(l, &format!("{prefix}.look_at"))
             .map(DVec3::from)
         {
             Some(p) if p.distance(position) > 0.0 => {
                 ck.near(l, &format!("{prefix}.look_at"), p);
-                p
+                Some(p)
             }
             Some(_) => {
                 ck.error(
@@ -652,9 +650,9 @@ fn observer(
                     &format!("{prefix}.look_at"),
                     "must differ from `position`".to_owned(),
                 );
-                centre
+                None
             }
-            None => centre,
+            None => None,
         },
     };
     let u = ck.motion::<3>(at, &prefix, o.beta.as_ref(), None, o.u.as_ref(), c);

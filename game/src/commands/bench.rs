@@ -17,7 +17,7 @@ use lightcone_engine::spacetime::ProperVelocity;
 
 /// Runs the physics benchmarks; `quick` shortens them (for tests).
 pub fn run(quick: bool) -> ExitCode {
-    let progress = crate::progress::steps(3, "bench physics");
+    let progress = crate::progress::steps(4, "bench physics");
     progress.step("frame times");
     let frames = match frame_times(quick) {
         Ok(t) => t,
@@ -35,8 +35,19 @@ pub fn run(quick: bool) -> ExitCode {
     progress.suspend(|| crate::sayln!("{gas}"));
     progress.step("exact against fixed-step");
     let exact = exactness(quick);
+    progress.inc();
+    progress.suspend(|| crate::sayln!("{exact}"));
+    progress.step("friction on against off");
+    let friction = match friction_costs(quick) {
+        Ok(t) => t,
+        Err(e) => {
+            progress.finish();
+            crate::errln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
     progress.finish();
-    crate::sayln!("{exact}");
+    crate::sayln!("{friction}");
     ExitCode::SUCCESS
 }
 
@@ -137,6 +148,80 @@ fn gas_rates(quick: bool) -> String {
         );
     }
     out
+}
+
+/// Table D: what sliding friction costs (issue 17): physics time per 60 fps
+/// frame in the paper's scenes and contacts per second in a dense gas, with
+/// the scene's friction off and with a carom cloth's μ = 0.2 (g = 9.80665
+/// m/s²). With friction every worldline is braking, then at rest, and pair
+/// prediction is the root isolation of `predict::braking` instead of the
+/// closed-form quadratic.
+fn friction_costs(quick: bool) -> Result<String, String> {
+    const MU_G: f64 = 0.2 * 9.80665;
+    let mut out = String::from(
+        "### Friction on against off (μ = 0.2)\n\n\
+         | run | friction | frames or contacts | mean µs / frame | max µs / frame | contacts / s |\n\
+         | --- | --- | --- | --- | --- | --- |\n",
+    );
+    let seconds = if quick { 5.0 } else { 30.0 };
+    // The friction scene as shipped (μ = 0.2) and with its friction off;
+    // the ten-puck scene as shipped (frictionless) and with μ = 0.2.
+    for file in [
+        "assets/scenes/friction.toml",
+        "assets/scenes/ten_pucks.toml",
+    ] {
+        let s = scene::load(Path::new(file)).map_err(|e| e.to_string())?;
+        let on = if s.table.deceleration() > 0.0 {
+            s.table.deceleration()
+        } else {
+            MU_G
+        };
+        for mu_g in [0.0, on] {
+            // Through the scene, so its start (`before_start`) is kept.
+            let mut variant = s.clone();
+            variant.table.friction = mu_g / variant.table.gravity;
+            let mut b = Billiard::from_scene(&variant);
+            let frames = (seconds * 60.0) as usize;
+            let (mut sum, mut max) = (0.0f64, 0.0f64);
+            for f in 1..=frames {
+                let start = Instant::now();
+                b.advance_to(f as f64 / 60.0);
+                let dt = start.elapsed().as_secs_f64() * 1e6;
+                sum += dt;
+                max = max.max(dt);
+            }
+            out += &format!(
+                "| `{file}`, {seconds} s | {} | {frames} frames, {} contacts | {:.2} | {:.2} | – |\n",
+                if mu_g > 0.0 { "on" } else { "off" },
+                b.stats().contacts(),
+                sum / frames as f64,
+                max
+            );
+        }
+    }
+    // A gas that stays lively while it is measured: c = 1.42 m/s and β up
+    // to 0.8 as in table B; with μg = 1.96 m/s² a puck at 0.8 c stops in
+    // about 1 s, so the gas is measured over its first 0.2 s.
+    let n = if quick { 200 } else { 1000 };
+    let r = 0.0305;
+    for mu_g in [0.0, MU_G] {
+        let mut b = dense_box(n, r, 3.0 * r, 0.8, 1.42, 7);
+        if mu_g > 0.0 {
+            b.set_sliding_friction(mu_g);
+        }
+        b.set_recording(false);
+        b.set_keep_history(false);
+        let start = Instant::now();
+        b.advance_to(0.2);
+        let wall = start.elapsed().as_secs_f64();
+        let c = b.stats().contacts();
+        out += &format!(
+            "| dense gas, {n} pucks, 0.2 s | {} | {c} contacts | – | – | {:.0} |\n",
+            if mu_g > 0.0 { "on" } else { "off" },
+            c as f64 / wall
+        );
+    }
+    Ok(out)
 }
 
 /// A two-puck shot: A from (0.4, 0.7) at β along x onto B at rest at

@@ -441,7 +441,7 @@ fn lanes(n: usize) -> Scene {
         observers: vec![ObserverSpec {
             name: "eye".into(),
             position: DVec3::new(size.x / 2.0, -1.0, 1.0),
-            look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
+            look_at: Some(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0)),
             u: ProperVelocity::try_from_beta(DVec3::new(0.3, 0.0, 0.0))
                 .unwrap_or(ProperVelocity::ZERO),
         }],

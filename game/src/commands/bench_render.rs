@@ -48,7 +48,7 @@ fn large(n: usize) -> Scene {
         observers: vec![ObserverSpec {
             name: "eye".into(),
             position: DVec3::new(size.x / 2.0, -1.5, 2.0),
-            look_at: DVec3::new(size.x / 2.0, size.y / 2.0, 0.0),
+            look_at: Some(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0)),
             u: ProperVelocity::ZERO,
         }],
     }
@@ -80,7 +80,8 @@ pub fn run(quick: bool) -> ExitCode {
     let progress = crate::progress::steps(2 * frames as u64, "bench render");
     for scene in [paper, large(if quick { 100 } else { 1100 })] {
         progress.step(&scene.title);
-        let (mut sim, view) = frame::scene_view(&scene, 0, 0.0, frame::ViewKind::Seen);
+        let (mut sim, view) =
+            frame::scene_view(&scene, 0, 0.0, frame::ViewKind::Seen, 1280.0 / 720.0);
         let meshes = ViewMeshes::new(&mut sim);
         let mut vertices = Vec::new();
         let (mut cpu, mut gpu_time) = (0.0, 0.0);
@@ -142,7 +143,8 @@ fn views_per_frame(gpu: &gpu::Gpu, quick: bool) -> ExitCode {
     let frames = if quick { 3 } else { 20 };
     for scene in [paper, large(if quick { 100 } else { 1000 })] {
         for n in [1usize, 2, 4] {
-            let (mut sim, first) = frame::scene_view(&scene, 0, 0.0, frame::ViewKind::Seen);
+            let aspect = 1280.0 / (720.0 * n as f64);
+            let (mut sim, first) = frame::scene_view(&scene, 0, 0.0, frame::ViewKind::Seen, aspect);
             let observer = sim.observer_of(first);
             let mut views = vec![first];
             for k in 1..n {

@@ -106,16 +106,17 @@ pub fn summary(path: &Path, s: &Scene) -> String {
     }
     let _ = writeln!(out, "  {} observer(s):", s.observers.len());
     for o in &s.observers {
+        let aim = match o.look_at {
+            Some(p) => format!("looking at ({:.3}, {:.3}, {:.3})", p.x, p.y, p.z),
+            None => "framing the table".to_owned(),
+        };
         let _ = writeln!(
             out,
-            "    {:<10} at ({:.3}, {:.3}, {:.3}) m looking at ({:.3}, {:.3}, {:.3})  |β| = {:.6}  γ = {}",
+            "    {:<10} at ({:.3}, {:.3}, {:.3}) m {aim}  |β| = {:.6}  γ = {}",
             o.name,
             o.position.x,
             o.position.y,
             o.position.z,
-            o.look_at.x,
-            o.look_at.y,
-            o.look_at.z,
             o.u.beta().length(),
             gamma(o.u.gamma())
         );

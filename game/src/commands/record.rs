@@ -239,7 +239,8 @@ pub fn run(req: Request<'_>) -> ExitCode {
         Err(e) => return fail(e),
     };
     // One simulation with the view to record; each frame runs its schedule.
-    let (mut sim, view) = frame::scene_view(&scene, index, 0.0, req.view);
+    let aspect = f64::from(width) / f64::from(height);
+    let (mut sim, view) = frame::scene_view(&scene, index, 0.0, req.view, aspect);
     let meshes = ViewMeshes::new(&mut sim);
     let mut target = Offscreen::new(&gpu, width, height);
     let mut vertices = Vec::new();

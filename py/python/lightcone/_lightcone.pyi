@@ -88,7 +88,8 @@ class Scene:
         look_at: Optional[_Vector] = None,
         beta: Optional[_Vector] = None,
     ) -> None:
-        """Adds an observer with its eye at `position` (x, y, z) m, moving at `beta` (v/c)."""
+        """Adds an observer with its eye at `position` (x, y, z) m, moving at `beta` (v/c).
+        Its views frame the whole table unless `look_at` (x, y, z) m is given: then they look there with a 60° field."""
     def set_effect(self, name: str, on: bool) -> None: ...
     @staticmethod
     def load(path: Union[str, PathLike[str]]) -> Scene: ...
@@ -155,7 +156,8 @@ class Simulation:
         view: str = "seen",
         at: Optional[float] = None,
     ) -> Frame:
-        """Renders what `observer` sees at board time `at` s (default: now); saves it to `path` if given."""
+        """Renders what `observer` sees at board time `at` s (default: now); saves it to `path` if given.
+        Framed as `lightcone render` frames it: the whole table with a margin, unless the observer has a `look_at`."""
     def diagram(
         self,
         path: Optional[Union[str, PathLike[str]]] = None,
