@@ -555,3 +555,28 @@ fn friction_and_gravity_out_of_range() {
     assert_eq!((s.table.friction, s.table.gravity), (0.2, 1.62));
     assert!((s.table.deceleration() - 0.324).abs() < 1e-15);
 }
+
+#[test]
+fn friction_set_in_code_is_checked_as_in_a_file() {
+    let mut s = scene::Scene::empty(glam::DVec2::new(2.0, 1.0), Some(0.1)).unwrap();
+    let puck = scene::PuckSpec {
+        name: "a".to_owned(),
+        position: glam::DVec2::new(1.0, 0.5),
+        u: lightcone_engine::spacetime::ProperVelocity::ZERO,
+        radius: 0.03,
+        height: 0.02,
+        mass: 0.2,
+        color: scene::Color::default_for(0),
+    };
+    assert!(s.set_friction(-0.1, 9.81).unwrap_err().contains("friction"));
+    assert!(s.set_friction(0.2, 0.0).unwrap_err().contains("gravity"));
+    assert!(s.set_friction(f64::NAN, 9.81).is_err());
+    // c = 0.1 m/s, μg ≈ 1.96 m/s²: the Rindler horizon c²/(μg) ≈ 5 mm, so a
+    // 30 mm puck cannot brake rigidly, whichever comes first.
+    s.set_friction(0.2, 9.81).unwrap();
+    assert!(s.add_puck(puck.clone()).unwrap_err().contains("c²/(μg)"));
+    s.set_friction(0.0, 9.81).unwrap();
+    s.add_puck(puck).unwrap();
+    assert!(s.set_friction(0.2, 9.81).unwrap_err().contains("c²/(μg)"));
+    assert_eq!(s.table.friction, 0.0, "unchanged by the refused value");
+}

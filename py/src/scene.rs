@@ -50,15 +50,58 @@ impl Scene {
 
     /// An empty scene on a table of `size` = (x, y) metres (default: a
     /// match carom table) with speed of light `c` m/s (default: light
-    /// crosses the long side in 2 s).
+    /// crosses the long side in 2 s), sliding `friction` μ (default 0:
+    /// frictionless; a carom cloth is about 0.2) under `gravity` m/s², as a
+    /// scene file's `[table] friction` and `gravity`. Raises SceneError for
+    /// a value out of range.
     #[new]
-    #[pyo3(signature = (size = Vector([2.84, 1.42]), c = None, title = "scene"))]
-    fn new(size: Vector<2>, c: Option<f64>, title: &str) -> PyResult<Self> {
+    #[pyo3(signature = (size = Vector([2.84, 1.42]), c = None, title = "scene", friction = 0.0, gravity = 9.80665))]
+    fn new(
+        size: Vector<2>,
+        c: Option<f64>,
+        title: &str,
+        friction: f64,
+        gravity: f64,
+    ) -> PyResult<Self> {
         let size = size.pair();
         let mut inner = scene::Scene::empty(glam::DVec2::new(size.0, size.1), c)
             .map_err(SceneError::new_err)?;
         inner.title = title.to_owned();
+        inner
+            .set_friction(friction, gravity)
+            .map_err(SceneError::new_err)?;
         Ok(Self { inner })
+    }
+
+    /// Sliding friction μ of the table (0: frictionless). Setting it
+    /// checks it as the constructor does (and that every puck can brake
+    /// rigidly, see the README's "Sliding friction"); raises SceneError.
+    #[getter]
+    fn friction(&self) -> f64 {
+        self.inner.table.friction
+    }
+
+    #[setter]
+    fn set_friction(&mut self, friction: f64) -> PyResult<()> {
+        let gravity = self.inner.table.gravity;
+        self.inner
+            .set_friction(friction, gravity)
+            .map_err(SceneError::new_err)
+    }
+
+    /// Gravity under the table, m/s² (with `friction`, the braking
+    /// deceleration μg).
+    #[getter]
+    fn gravity(&self) -> f64 {
+        self.inner.table.gravity
+    }
+
+    #[setter]
+    fn set_gravity(&mut self, gravity: f64) -> PyResult<()> {
+        let friction = self.inner.table.friction;
+        self.inner
+            .set_friction(friction, gravity)
+            .map_err(SceneError::new_err)
     }
 
     /// Adds a puck centred at `position` (x, y) m at board time 0; give at

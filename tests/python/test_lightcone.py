@@ -354,3 +354,27 @@ def test_diagram_returns_a_frame_and_its_line_is_the_pucks_now(tmp_path):
         sim.diagram(frame="nobody")
     with pytest.raises(ValueError):
         sim.diagram(axis="z")
+
+
+def test_friction_in_code_stops_a_puck_where_relativity_says():
+    # μ = 0.2, g = 9.80665, c = 1.42 m/s; struck at u₀ = γβ = 2 along x.
+    # Closed forms (README, "Sliding friction"): stopping time (c/μg) u₀,
+    # distance (c²/μg)(γ₀ − 1).
+    mu, g, c, u0 = 0.2, 9.80665, 1.42, 2.0
+    s = lightcone.Scene(size=(6.0, 2.0), c=c, friction=mu)
+    assert s.friction == mu and s.gravity == g
+    s.add_puck("a", (0.5, 1.0), u=(u0, 0.0))
+    sim = lightcone.Simulation(s)
+    stop = c / (mu * g) * u0
+    sim.run_until(stop * (1 - 1e-6))
+    assert sim.velocity("a")[0] > 0.0
+    sim.run_until(stop * 1.5)
+    assert sim.velocity("a") == (0.0, 0.0)
+    x = sim.state()["pucks"][0]["position"][0]
+    distance = c * c / (mu * g) * (math.sqrt(1 + u0 * u0) - 1)
+    assert x - 0.5 == pytest.approx(distance, rel=1e-12)
+    with pytest.raises(lightcone.SceneError, match="friction"):
+        s.friction = -0.1
+    with pytest.raises(lightcone.SceneError, match="gravity"):
+        lightcone.Scene(gravity=0.0)
+    assert s.friction == mu  # unchanged by the refused value

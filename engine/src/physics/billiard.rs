@@ -174,8 +174,9 @@ struct Puck {
     kicked_by: Option<(u64, u32)>,
     /// A pair that has collided and that nothing else has touched since:
     /// (partner, own version, partner's version). Their motion is the
-    /// collision's outcome, which separates, so they are not predicted
-    /// again until one of them changes.
+    /// collision's outcome, which separates them in the pair frame: they
+    /// are predicted again only on the board, once apart there (their board
+    /// shapes, contracted differently, can slide into each other later).
     settled: Option<(u32, u32, u32)>,
     /// Board time of this puck's last contact (pair or cushion) and how
     /// many came in quick succession (Zeno detection, O(1) per puck).
@@ -863,7 +864,7 @@ impl Billiard {
     /// same state, bit for bit.
     fn pair_contact(&mut self, a: usize, b: usize, next: Next) {
         let hit = if self.reference {
-            self.contact_of(a, b, next.predicted_at)
+            self.contact_of(a, b, next.predicted_at, self.settled(a, b))
         } else {
             next.hit
         };
@@ -890,7 +891,7 @@ impl Billiard {
         // the kicks), and a sequence alternating with a cushion would then
         // never look quick.
         let zeno = self.in_zeno_sequence(a, b, self.time);
-        if zeno && hit.on_board && self.merge_zeno_cluster(a, b, hit.contact.position) {
+        if zeno && self.merge_zeno_cluster(a, b, hit.contact.position) {
             return;
         }
         let restitution = if zeno { 0.0 } else { self.restitution };
@@ -1215,9 +1216,11 @@ impl Billiard {
     /// Ends a Zeno sequence of three or more pucks at once (a light puck
     /// crushed between two heavy ones converging: pairwise inelastic
     /// contacts only approach the end, for ever): the cluster of touching
-    /// pucks in the sequence (each had a contact within the Zeno gap; none
-    /// has a kick pending), reached from `a` and `b`, moves together
-    /// ([`resolve::together_all`]), now. One collision record holds every
+    /// pucks in the sequence (each had a contact within the Zeno gap),
+    /// reached from `a` and `b`, moves together ([`resolve::together_all`])
+    /// now, at this board time (the limit of the sequence, whatever the
+    /// pair frames' kick times), after any kick still ahead of a member has
+    /// landed. One collision record holds every
     /// puck of the cluster. Returns `false` (nothing done) if the cluster is
     /// just the pair.
     fn merge_zeno_cluster(&mut self, a: usize, b: usize, contact: DVec3) -> bool {
@@ -1230,7 +1233,7 @@ impl Billiard {
             let (m, xm) = (cluster[k], centre(cluster[k]));
             for j in 0..self.pucks.len() {
                 let p = &self.pucks[j];
-                if cluster.contains(&j) || !p.pending.is_empty() || t - p.quick.0 >= gap {
+                if cluster.contains(&j) || t - p.quick.0 >= gap {
                     continue;
                 }
                 let reach = (p.radius + self.pucks[m].radius) * (1.0 + 1e-9);
@@ -1240,12 +1243,13 @@ impl Billiard {
             }
             k += 1;
         }
-        if cluster.len() < 3
-            || cluster[..2]
-                .iter()
-                .any(|&i| !self.pucks[i].pending.is_empty())
-        {
+        if cluster.len() < 3 {
             return false;
+        }
+        // Kicks still ahead of a member (the far end of an earlier contact)
+        // land now, so the merge starts from each one's complete state.
+        for &i in &cluster {
+            self.flush_pending(i);
         }
         let before: Vec<Body> = cluster
             .iter()
@@ -1314,6 +1318,13 @@ impl Billiard {
         }
     }
 
+    /// Whether pucks `a` and `b` have collided and nothing has changed
+    /// either since.
+    fn settled(&self, a: usize, b: usize) -> bool {
+        let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
+        pa.settled == Some((b as u32, pa.version, pb.version))
+    }
+
     /// The next contact of pucks `a` and `b` from board time `now` on.
     ///
     /// Normally the closed-form prediction ([`puck_puck::predict`]), in the
@@ -1331,7 +1342,10 @@ impl Billiard {
     /// * pucks apart on the board for which the pair frame finds no contact
     ///   ahead, but whose board shapes will meet (a concave gap function
     ///   crossing zero, [`overlap::first_touch`]), meet then, the same way.
-    fn contact_of(&self, a: usize, b: usize, now: f64) -> Option<PairContact> {
+    ///
+    /// `board_only`: a settled pair (see `Puck::settled`): the pair frame is
+    /// not asked (its contact is the one just resolved), only the board.
+    fn contact_of(&self, a: usize, b: usize, now: f64, board_only: bool) -> Option<PairContact> {
         let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
         let (sa, sb) = (pa.worldline.last(), pb.worldline.last());
         if sa.is_braking() || sb.is_braking() {
@@ -1357,7 +1371,9 @@ impl Billiard {
         if let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now) {
             return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
         }
-        if let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now) {
+        if !board_only
+            && let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now)
+        {
             // The board shapes can meet well before the pair frame's first
             // kick when the pair frame moves fast on the board (a very fast
             // puck crossing a slower one's path: the pair frame's slice is
@@ -1556,12 +1572,29 @@ impl Billiard {
             if self.pending_with(a, b) {
                 continue; // the second kick of their last contact is still ahead
             }
-            let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
-            if pa.settled == Some((b as u32, pa.version, pb.version)) {
-                continue; // they collided and nothing has touched them since
+            // Collided, and nothing has touched them since: the outcome
+            // separates them in the pair frame, so only the board can bring
+            // them together again (two shapes contracted differently
+            // sliding into each other after they have parted, seed 339 of
+            // `collision_integrity`). While the contact's own overlap lasts,
+            // or on braking worldlines, nothing is predicted.
+            let settled = self.settled(a, b);
+            if settled
+                && (self.hot[a].braking
+                    || self.hot[b].braking
+                    || overlap::penetration(
+                        self.pucks[a].worldline.last(),
+                        self.pucks[a].radius,
+                        self.pucks[b].worldline.last(),
+                        self.pucks[b].radius,
+                        now,
+                    )
+                    .is_some())
+            {
+                continue;
             }
             self.stats.predictions += 1;
-            let Some(hit) = self.contact_of(a, b, now) else {
+            let Some(hit) = self.contact_of(a, b, now, settled) else {
                 continue;
             };
             // Processed at the earliest of the two kicks (the contact lies

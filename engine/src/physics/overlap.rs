@@ -96,10 +96,6 @@ pub fn penetration(
 /// separates the shapes, that axis and its (negative) value are returned
 /// at once: a separating axis, not always the widest.
 pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
-    let f = |theta: f64| {
-        let m = DVec3::new(theta.cos(), theta.sin(), 0.0);
-        support(a, radius_a, m) + support(b, radius_b, m) - m.dot(d)
-    };
     let dist = d.length();
     if dist > 0.0 {
         // The line of centres separates them often: a cheap first answer
@@ -110,6 +106,19 @@ pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> 
             return (g, m); // separated: the exact value is not needed
         }
     }
+    gap_min(a, radius_a, b, radius_b, d)
+}
+
+/// The gap function itself, `min over unit m of [h_a(m) + h_b(m) − m·d]`,
+/// and its minimiser, also where the shapes are apart (then negative: minus
+/// the widest separation). Unlike [`gap`]'s quick answer, this is concave
+/// in `d` moving linearly (a minimum of functions linear in it), which
+/// [`first_touch`] needs.
+pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
+    let f = |theta: f64| {
+        let m = DVec3::new(theta.cos(), theta.sin(), 0.0);
+        support(a, radius_a, m) + support(b, radius_b, m) - m.dot(d)
+    };
     // Candidates: a uniform scan, plus where the function has its kinks and
     // narrow valleys: a fast puck's shape is a thin ellipse whose support
     // is smallest (a valley of angular width ~1/γ) along its motion.
@@ -189,11 +198,20 @@ fn golden_min(
 /// The first board time in `[t0, t1]` at which two uniformly moving pucks
 /// (apart at `t0`) start to overlap on the board, if they do.
 ///
-/// The gap function is concave in time between kicks (a minimum of
-/// functions linear in `t`), so its maximum is found by a golden-section
-/// search and the first crossing of zero before it by bisection. The time
-/// returned is just past the crossing (the shapes overlap there, by at most
-/// a few ulps of the distance).
+/// The gap function `G(t)` ([`gap_min`], not [`gap`]'s quick separating
+/// axis) is concave in time between kicks: a minimum of functions linear in
+/// `t`, with slope `−m·(v_b − v_a)` at its minimiser `m` (Danskin). So a
+/// tangent at any time bounds it from above everywhere. The search keeps a
+/// bracket whose left end rises and right end falls; the two tangents meet
+/// above the bracket's maximum, and where they meet at or below zero the
+/// shapes never touch (a proof, not a sample). Otherwise `G` is evaluated
+/// there (or at the middle, alternately) and the bracket shrinks. The
+/// first crossing of zero before a point where `G > 0` is then bisected
+/// with the sign of [`gap`], which is exact. The time returned is just past
+/// the crossing (the shapes overlap there, by at most a few ulps of the
+/// distance). (Maximising `gap` itself, which is not concave where the shapes
+/// are apart, could step over a short overlap of two thin, fast shapes
+/// crossing: seeds 41 and 531 of `collision_integrity`.)
 pub fn first_touch(
     a: &Segment,
     radius_a: f64,
@@ -202,52 +220,68 @@ pub fn first_touch(
     t0: f64,
     t1: f64,
 ) -> Option<f64> {
-    let g = |t: f64| {
-        gap(
-            a,
-            radius_a,
-            b,
-            radius_b,
-            b.position_at(t) - a.position_at(t),
-        )
-        .0
-    };
     if t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
-    // Maximum of the concave gap on [t0, t1] (stopping at any point where
-    // the shapes already overlap).
-    let (value, at) = golden_min(|t| -g(t), t0, t1, 100, |v| v < 0.0);
-    let mut peak = (-value, at);
-    let mut lo = t0;
-    if peak.0 <= 0.0 {
-        let end = g(t1);
-        if end > 0.0 {
-            peak = (end, t1);
+    let v = b.velocity() - a.velocity();
+    let d = |t: f64| b.position_at(t) - a.position_at(t);
+    // G and its slope at t.
+    let eval = |t: f64| {
+        let (g, m) = gap_min(a, radius_a, b, radius_b, d(t));
+        (g, -m.dot(v))
+    };
+    let (g0, s0) = eval(t0);
+    let peak = if g0 > 0.0 {
+        return Some(t0);
+    } else if s0 <= 0.0 {
+        return None; // not rising: concave, it never will
+    } else {
+        let (g1, s1) = eval(t1);
+        if g1 > 0.0 {
+            t1
+        } else if s1 >= 0.0 {
+            return None; // still rising at t1, and not above zero there
         } else {
-            // `gap` returns a separating axis, not always the widest, while
-            // the shapes are apart: the function searched is then not the
-            // concave gap everywhere, and the golden section can step over
-            // a short overlap of two thin (fast) shapes crossing (seed 41 of
-            // `collision_integrity`: 27 % of the window). A scan of the
-            // window settles it.
-            const SCAN: usize = 32;
-            let step = (t1 - t0) / SCAN as f64;
-            let hit = (1..SCAN)
-                .map(|k| t0 + step * k as f64)
-                .find(|&t| g(t) > 0.0)?;
-            peak = (g(hit), hit);
-            lo = hit - step;
+            let (mut lo, mut hi) = ((t0, g0, s0), (t1, g1, s1));
+            let mut found = None;
+            for step in 0..200 {
+                // The tangents at lo (rising) and hi (falling) meet at tx.
+                let tx = (hi.1 - lo.1 + lo.2 * lo.0 - hi.2 * hi.0) / (lo.2 - hi.2);
+                let bound = lo.1 + lo.2 * (tx - lo.0);
+                if bound <= 0.0 {
+                    return None;
+                }
+                let mid = if step % 2 == 0 && tx > lo.0 && tx < hi.0 {
+                    tx
+                } else {
+                    0.5 * (lo.0 + hi.0)
+                };
+                if mid <= lo.0 || mid >= hi.0 {
+                    return None; // down to rounding, and never above zero
+                }
+                let (gm, sm) = eval(mid);
+                if gm > 0.0 {
+                    found = Some(mid);
+                    break;
+                }
+                if sm > 0.0 {
+                    lo = (mid, gm, sm);
+                } else {
+                    hi = (mid, gm, sm);
+                }
+            }
+            found?
         }
-    }
-    // Bisection for the crossing on the rising side: g(lo) ≤ 0 < g(hi).
-    let mut hi = peak.1;
+    };
+    // Bisection for the crossing on the rising side: G(lo) ≤ 0 < G(hi).
+    let sign = |t: f64| gap(a, radius_a, b, radius_b, d(t)).0 > 0.0;
+    let (mut lo, mut hi) = (t0, peak);
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
         }
-        if g(mid) > 0.0 {
+        if sign(mid) {
             hi = mid;
         } else {
             lo = mid;

@@ -625,11 +625,61 @@ impl Scene {
         if let Some(why) = self.table.misplaced(&puck) {
             return Err(why);
         }
+        if self.table.deceleration() > 0.0
+            && puck.radius >= self.c * self.c / self.table.deceleration()
+        {
+            return Err(format!(
+                "puck \"{name}\" (radius {} m) cannot brake rigidly on this table: it must be \
+                 smaller than c²/(μg) = {} m",
+                number(puck.radius),
+                number(self.c * self.c / self.table.deceleration())
+            ));
+        }
         // One pass over the others: O(N) per puck added.
         if let Some(other) = self.pucks.iter().find(|o| overlap(o, &puck)) {
             return Err(format!("puck \"{name}\" overlaps puck \"{}\"", other.name));
         }
         self.pucks.push(puck);
+        Ok(())
+    }
+
+    /// Sets the table's sliding friction `friction` (μ, 0 to
+    /// [`MAX_FRICTION`]) and `gravity` (m/s², in [`GRAVITY_RANGE`]), after
+    /// the checks a scene file's `[table] friction`/`gravity` get, including
+    /// that every puck is smaller than the braking's Rindler horizon
+    /// `c²/(μg)`. Nothing changes if it fails.
+    pub fn set_friction(&mut self, friction: f64, gravity: f64) -> Result<(), String> {
+        if !(0.0..=MAX_FRICTION).contains(&friction) {
+            return Err(format!(
+                "friction {} must be a finite number from 0 (frictionless) to {MAX_FRICTION} \
+                 (a carom cloth slides at about 0.2)",
+                number(friction)
+            ));
+        }
+        if !GRAVITY_RANGE.contains(&gravity) {
+            return Err(format!(
+                "gravity {} must be a number from {} to {} m/s²",
+                number(gravity),
+                number(*GRAVITY_RANGE.start()),
+                number(*GRAVITY_RANGE.end())
+            ));
+        }
+        if friction > 0.0 {
+            let horizon = self.c * self.c / (friction * gravity);
+            if let Some(p) = self.pucks.iter().find(|p| p.radius >= horizon) {
+                return Err(format!(
+                    "puck \"{}\" (radius {} m) cannot brake rigidly: with friction {} and \
+                     gravity {} m/s² a puck must be smaller than c²/(μg) = {} m",
+                    p.name,
+                    number(p.radius),
+                    number(friction),
+                    number(gravity),
+                    number(horizon)
+                ));
+            }
+        }
+        self.table.friction = friction;
+        self.table.gravity = gravity;
         Ok(())
     }
 

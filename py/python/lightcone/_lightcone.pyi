@@ -65,8 +65,25 @@ class Frame:
 class Scene:
     """A validated scene."""
 
-    def __new__(cls, size: _Vector = ..., c: Optional[float] = None, title: str = "scene") -> Scene:
-        """An empty scene on a table of `size` = (x, y) m with speed of light `c` m/s."""
+    def __new__(
+        cls,
+        size: _Vector = ...,
+        c: Optional[float] = None,
+        title: str = "scene",
+        friction: float = 0.0,
+        gravity: float = 9.80665,
+    ) -> Scene:
+        """An empty scene on a table of `size` = (x, y) m with speed of light `c` m/s, sliding `friction` μ under `gravity` m/s²."""
+    @property
+    def friction(self) -> float:
+        """Sliding friction μ of the table (0: frictionless)."""
+    @friction.setter
+    def friction(self, value: float) -> None: ...
+    @property
+    def gravity(self) -> float:
+        """Gravity under the table, m/s²."""
+    @gravity.setter
+    def gravity(self, value: float) -> None: ...
     def add_puck(
         self,
         name: str,
