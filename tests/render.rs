@@ -10,7 +10,7 @@ use glam::{DVec2, DVec3};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{self, Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
 use lightcone_engine::spacetime::ProperVelocity;
-use lightcone_render::frame::{self, SceneMeshes, ViewKind};
+use lightcone_render::frame::{self, ViewKind};
 use lightcone_render::gpu;
 use lightcone_render::headless::{self, Image};
 
@@ -217,12 +217,11 @@ fn a_default_render_shows_the_whole_table() {
 fn the_meshes_cover_every_shipped_scene() {
     for entry in std::fs::read_dir(repo().join("assets/scenes")).unwrap() {
         let scene = scene::load(&entry.unwrap().path()).unwrap();
-        let meshes = SceneMeshes::new(&scene);
-        let mut b = Billiard::from_scene(&scene);
-        b.advance_to(2.0);
-        let (eye, _) = frame::eye_of(&scene, 0, 2.0);
+        let (mut sim, view) = frame::scene_view(&scene, 0, 2.0, ViewKind::Seen, 16.0 / 9.0);
+        let meshes = frame::ViewMeshes::new(&mut sim);
         let mut out = Vec::new();
-        frame::build(&b, &meshes, &eye, scene.effects, &mut out);
+        frame::build_view(sim.apparent(view).unwrap(), &meshes, &mut out);
+        assert!(!out.is_empty());
         assert_eq!(out.len() % 3, 0);
     }
 }

@@ -26,10 +26,4 @@ pub mod physics;
 pub mod report;
 pub mod scene;
 pub mod spacetime;
-
-/// The former name of [`ecs`], kept for the front ends until they move.
-pub mod world {
-    pub use crate::ecs::Simulation;
-    pub use crate::worldline::mesh::PUCK_SEGMENTS;
-}
 pub mod worldline;

@@ -227,59 +227,6 @@ fn xyz(v: glam::DVec3) -> [f64; 3] {
 }
 
 impl SeenPoint {
-    /// From the optics' view of a point.
-    pub fn new(p: &crate::optics::view::PointView) -> Self {
-        Self {
-            emission: EmissionLine {
-                t: p.emission.event.t,
-                position: xyz(p.emission.event.position),
-            },
-            direction: xyz(p.seen.direction),
-            distance: p.seen.distance,
-            doppler: p.seen.doppler,
-            intensity: p.intensity,
-        }
-    }
-}
-
-impl ObserveReport {
-    /// The report of `view` for the observer `name` whose proper time at
-    /// the observation is `proper_time`.
-    pub fn new(
-        billiard: &Billiard,
-        view: &crate::optics::View,
-        name: &str,
-        proper_time: f64,
-        with_vertices: bool,
-    ) -> Self {
-        Self {
-            t: view.eye.event.t,
-            observer: ObserverLine {
-                name: name.to_owned(),
-                position: xyz(view.eye.event.position),
-                beta: xyz(view.eye.u.beta()),
-                proper_time,
-            },
-            pucks: view
-                .bodies
-                .iter()
-                .map(|b| SeenPuck {
-                    name: billiard.name(b.puck).to_owned(),
-                    centre: SeenPoint::new(&b.centre),
-                    seen_proper_time: b.seen_proper_time,
-                    orientation: billiard
-                        .worldline(b.puck)
-                        .state_at(b.centre.emission.event.t)
-                        .orientation,
-                    vertices: with_vertices
-                        .then(|| b.vertices.iter().map(SeenPoint::new).collect()),
-                })
-                .collect(),
-        }
-    }
-}
-
-impl SeenPoint {
     /// Point `i` of a body as a view of the frame schedule saw it.
     pub fn of_apparent(body: &crate::ecs::ApparentBody, i: usize) -> Self {
         let e = body.emissions[i];

@@ -450,3 +450,62 @@ fn a_fitted_view_frames_the_table_as_the_window_does() {
     let dir = b.seen[b.centre()].direction;
     assert!((sim.camera(view).unwrap().forward - dir).length() < 1e-12);
 }
+
+/// The seen trails read a view's history: at each past time, the point the
+/// view's frame showed then (the observer flew meanwhile), for each effect
+/// set the trail's kernels depend on, to 1e-12.
+#[test]
+fn a_views_seen_history_is_what_its_frames_showed() {
+    let fx_sets = [
+        all(),
+        Effects::NONE,
+        with(&[Effect::LightDelay]),
+        with(&[Effect::LightDelay, Effect::Contraction]),
+        with(&[Effect::Aberration, Effect::Contraction]),
+    ];
+    for fx in fx_sets {
+        let mut sim = Simulation::new(&scene());
+        let eye = sim.entity("eye").unwrap();
+        let view = sim.view("eye").unwrap();
+        for e in Effect::ALL {
+            sim.set_view_effect(view, e, fx.is_on(e));
+        }
+        let puck = sim.entity("a").unwrap();
+        let centre = *sim.world.get::<Mesh>(puck).unwrap().points.last().unwrap();
+        let mut live = Vec::new();
+        for f in 1..=90 {
+            let t = f64::from(f) / 60.0;
+            if f % 30 == 0 {
+                let u =
+                    ProperVelocity::try_from_beta(DVec3::new(0.1, -0.3 * f64::from(f / 30), 0.0))
+                        .unwrap();
+                sim.steer_observer(eye, t, u).unwrap();
+            }
+            sim.advance_to(t);
+            if f % 10 == 3 {
+                let a = sim.apparent(view).unwrap();
+                let b = &a.bodies[0];
+                live.push((t, a.eye.unwrap(), b.seen[b.centre()]));
+            }
+        }
+        let times: Vec<f64> = live.iter().map(|l| l.0).collect();
+        let history = sim.seen_history(view, 0, centre, &times);
+        for ((t, eye_then, seen_then), h) in live.iter().zip(&history) {
+            let (e, s) = h.unwrap();
+            assert_eq!(e, *eye_then, "{fx:?} at {t}");
+            assert!(
+                (s.position - seen_then.position).length()
+                    <= 1e-12 * (1.0 + seen_then.position.length()),
+                "{fx:?} at {t}: {} vs {}",
+                s.position,
+                seen_then.position
+            );
+        }
+        // No such puck: nothing, not a panic.
+        assert!(
+            sim.seen_history(view, 7, centre, &times)
+                .iter()
+                .all(Option::is_none)
+        );
+    }
+}

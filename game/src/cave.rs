@@ -22,8 +22,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use glam::{DMat3, DMat4, DQuat, DVec3, Mat4};
-use lightcone_engine::optics::Eye;
-use lightcone_engine::spacetime::{Event, ProperVelocity};
+use lightcone_engine::ecs::Entity;
+use lightcone_engine::spacetime::ProperVelocity;
 use lightcone_tracker::cave::{CaveConfig, TrackerToBoard, Wall};
 use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus, Verdict};
 use lightcone_tracker::{TrackerSample, unix_now_ns};
@@ -302,45 +302,58 @@ impl Side {
     }
 }
 
-/// The observer's eye (event and velocity) for one stereo eye of the head.
+/// Where one stereo eye of the head is: tracker space, and board frame
+/// (carried by the flight `offset`).
 pub fn stereo_eye(
     cave: &CaveConfig,
     head: (DVec3, DQuat),
     side: Side,
-    t: f64,
     offset: DVec3,
-    u: ProperVelocity,
-) -> (Eye, DVec3) {
+) -> (DVec3, DVec3) {
     let (left, right) = cave.eyes(head.0, head.1);
     let e = match side {
         Side::Mono => head.0,
         Side::Left => left,
         Side::Right => right,
     };
-    let board = cave.tracker.point(e) + offset;
-    (
-        Eye {
-            event: Event::new(t, board),
-            u,
-        },
-        e,
-    )
+    (e, cave.tracker.point(e) + offset)
 }
 
-/// The vertices and matrix of one wall for one eye; `None` if the eye
-/// cannot see the wall.
+/// Runs the game's frame for the stereo eyes `sides` of the head: each an
+/// observer of the game's simulation, with a view of its own (the game's
+/// effects). Returns each side's view entity and tracker-space eye.
+pub fn stereo_views(
+    game: &mut GameState,
+    cave: &CaveConfig,
+    head: (DVec3, DQuat),
+    sides: &[Side],
+    offset: DVec3,
+) -> Vec<(Entity, DVec3)> {
+    let eyes: Vec<(DVec3, DVec3)> = sides
+        .iter()
+        .map(|&side| stereo_eye(cave, head, side, offset))
+        .collect();
+    let boards: Vec<DVec3> = eyes.iter().map(|e| e.1).collect();
+    game.run_stereo(&boards)
+        .into_iter()
+        .zip(eyes)
+        .map(|(v, (tracker, _))| (v, tracker))
+        .collect()
+}
+
+/// The vertices and matrix of one wall as the stereo view `view` (eye at
+/// `tracker_eye`, tracker space) saw it at the last frame; `None` if the
+/// eye cannot see the wall.
 pub fn wall_frame(
     game: &GameState,
     cave: &CaveConfig,
     wall: &Wall,
-    head: (DVec3, DQuat),
-    side: Side,
-    offset: DVec3,
+    view: Entity,
+    tracker_eye: DVec3,
     vertices: &mut Vec<FrameVertex>,
 ) -> Option<Mat4> {
-    let (eye, tracker_eye) = stereo_eye(cave, head, side, game.view_time, offset, game.eye.u);
     let m = wall_view_proj(&cave.tracker, wall, tracker_eye)?;
-    frame::build(&game.billiard, &game.meshes, &eye, game.effects, vertices);
+    frame::build_view(game.apparent(view)?, &game.meshes, vertices);
     Some(m)
 }
 
@@ -348,21 +361,22 @@ pub fn wall_frame(
 /// projector resolution. Returns (wall, eye, image).
 pub fn render_walls(
     gpu: &Gpu,
-    game: &GameState,
+    game: &mut GameState,
     cave: &CaveConfig,
     head: (DVec3, DQuat),
     scale: f64,
 ) -> Result<Vec<(String, Side, Image)>, String> {
     let mut out = Vec::new();
     let mut vertices = Vec::new();
-    let offset = DVec3::ZERO;
+    let sides = [Side::Left, Side::Right];
+    let views = stereo_views(game, cave, head, &sides, DVec3::ZERO);
     for wall in &cave.walls {
         let w = ((f64::from(wall.pixels[0]) * scale).round() as u32).clamp(1, 8192);
         let h = ((f64::from(wall.pixels[1]) * scale).round() as u32).clamp(1, 8192);
         let mut target = Offscreen::new(gpu, w, h);
-        for side in [Side::Left, Side::Right] {
+        for (&side, &(view, tracker_eye)) in sides.iter().zip(&views) {
             vertices.clear();
-            let m = wall_frame(game, cave, wall, head, side, offset, &mut vertices).ok_or_else(
+            let m = wall_frame(game, cave, wall, view, tracker_eye, &mut vertices).ok_or_else(
                 || {
                     format!(
                         "the {} eye is not in front of wall {:?}",

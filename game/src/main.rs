@@ -48,6 +48,12 @@ enum Command {
         /// Open on this view.
         #[arg(long, value_enum)]
         view: Option<PlayView>,
+        /// Show several pictures side by side, each its own view: a
+        /// comma-separated list of `seen`, `truth` (through the eye looked
+        /// through), `you` or an observer's name (what that eye sees), or
+        /// `EYE:seen` / `EYE:truth`. E.g. `seen,truth` or `you,observer`.
+        #[arg(long, conflicts_with = "view")]
+        views: Option<String>,
         /// Open with the camera straight above the table.
         #[arg(long)]
         top: bool,
@@ -403,6 +409,7 @@ fn main() -> ExitCode {
             cave,
             at,
             view,
+            views,
             top,
             effects,
             diagram,
@@ -419,6 +426,7 @@ fn main() -> ExitCode {
                     PlayView::Truth => lightcone::model::ViewMode::Truth,
                     PlayView::Split => lightcone::model::ViewMode::Split,
                 }),
+                views,
                 top,
                 effects,
                 diagram,

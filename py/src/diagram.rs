@@ -60,7 +60,7 @@ pub(crate) fn simultaneity<'py>(
     let i = super::puck_index(billiard, name)?;
     let w = billiard.worldline(i);
     let e = w.event_at(t);
-    let slope = simultaneity_slope(w.velocity_at(t), scene.c);
+    let slope = simultaneity_slope(w.proper_velocity_at(t), scene.c);
     let event = PyDict::new(py);
     event.set_item("t", e.t)?;
     event.set_item("position", vec![e.position.x, e.position.y])?;

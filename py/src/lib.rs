@@ -168,7 +168,7 @@ fn impulse(billiard: &mut Billiard, name: &str, t: f64, du: (f64, f64)) -> PyRes
 /// The proper velocity γβ of puck `name` at board time `t`, as (x, y).
 fn velocity(billiard: &Billiard, name: &str, t: f64) -> PyResult<(f64, f64)> {
     let i = puck_index(billiard, name)?;
-    let u = billiard.worldline(i).velocity_at(t);
+    let u = billiard.worldline(i).proper_velocity_at(t);
     Ok((u.0.x, u.0.y))
 }
 
@@ -184,7 +184,8 @@ fn observation<'py>(
     effects: Effects,
 ) -> PyResult<Bound<'py, PyAny>> {
     let index = observer_index(scene, observer)?;
-    let report = lightcone_render::observe::report(scene, billiard, index, t, effects, vertices);
+    let report = lightcone_render::observe::report(scene, billiard, index, t, effects, vertices)
+        .ok_or_else(|| PyRuntimeError::new_err(format!("observer {index} saw nothing")))?;
     to_record(py, "Observation", &report)
 }
 

@@ -353,7 +353,7 @@ pub fn plot_with(scene: &Scene, billiard: &Billiard, eye: Event, options: Option
     let simultaneity = options.frame.filter(|&f| f < billiard.len()).map(|f| {
         let w = billiard.worldline(f);
         let event = w.event_at(t);
-        let slope = axis.of(simultaneity_slope(w.velocity_at(t), c));
+        let slope = axis.of(simultaneity_slope(w.proper_velocity_at(t), c));
         Simultaneity {
             puck: f,
             event,
@@ -379,7 +379,7 @@ pub fn plot_with(scene: &Scene, billiard: &Billiard, eye: Event, options: Option
                 Axis::X => p.x = x,
                 Axis::Y => p.y = x,
             }
-            let u = billiard.worldline(sim.puck).velocity_at(t);
+            let u = billiard.worldline(sim.puck).proper_velocity_at(t);
             simultaneous_board_time(sim.event, u, c, p)
         };
         let (mut a, mut b) = (x_range.0, x_range.1);
@@ -393,7 +393,7 @@ pub fn plot_with(scene: &Scene, billiard: &Billiard, eye: Event, options: Option
         }
         // Earlier "nows" of the same frame, faint: every 0.5 s of the
         // puck's frame time (0.5 / γ s of board time apart at fixed x).
-        let gamma = billiard.worldline(sim.puck).velocity_at(t).gamma();
+        let gamma = billiard.worldline(sim.puck).proper_velocity_at(t).gamma();
         for k in 1..=8 {
             let dt = -0.5 * f64::from(k) / gamma;
             if sim.slope.abs() <= 1e-300 && sim.event.t + dt < t_range.0 {
@@ -607,7 +607,8 @@ mod tests {
                 assert_eq!((drawn.image.width, drawn.image.height), (320, 200));
                 // `observe` reports the centre at mid-height, found by the
                 // optics' closed form on the worldline's segments.
-                let report = crate::observe::report(&scene, &billiard, 0, t, scene.effects, false);
+                let report =
+                    crate::observe::report(&scene, &billiard, 0, t, scene.effects, false).unwrap();
                 for (i, e) in drawn.emissions.iter().enumerate() {
                     let r = &report.pucks[i].centre.emission;
                     let reported = Event::new(r.t, DVec3::from(r.position));

@@ -4,19 +4,15 @@
 //! intensity per vertex.
 //!
 //! [`build_view`] draws a view of the frame schedule (its `Apparent`, the
-//! one optics output): `lightcone render`, `observe` and the tests go
-//! through it. [`build`] still computes the optics itself for the window,
-//! the CAVE walls and the Python wheel's `render`, until they run the
-//! schedule too (issue 12).
+//! one optics output): the window, the CAVE walls, `lightcone render`,
+//! `record`, Python's `render` and the tests all go through it.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Mat4, Vec3};
-use lightcone_engine::ecs::{Apparent, BodyRef, Entity, Framing, Simulation};
-use lightcone_engine::optics::view::{self, Method};
-use lightcone_engine::optics::{Emission, Eye, Seen, mesh};
+use lightcone_engine::ecs::{Apparent, BodyRef, Entity, Simulation};
+use lightcone_engine::optics::Eye;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{Color, Effects, Scene};
-use lightcone_engine::world::PUCK_SEGMENTS;
 use lightcone_engine::worldline::RestShape;
 
 /// One vertex as the GPU takes it.
@@ -92,40 +88,18 @@ impl Camera {
     }
 }
 
-/// The meshes of a scene, built once.
-pub struct SceneMeshes {
-    pucks: Vec<RestShape>,
-    colours: Vec<[f32; 3]>,
-    table: Vec<RestShape>,
-}
-
 fn linear(c: Color) -> [f32; 3] {
     let f = |x: u8| (f32::from(x) / 255.0).powf(2.2);
     [f(c.r), f(c.g), f(c.b)]
 }
 
 /// Height of the cushions above the board, m.
-pub const CUSHION_HEIGHT: f64 = 0.04;
+pub const CUSHION_HEIGHT: f64 = lightcone_engine::worldline::mesh::CUSHION_HEIGHT;
 /// Width of the cushions, m.
-pub const CUSHION_WIDTH: f64 = 0.06;
+pub const CUSHION_WIDTH: f64 = lightcone_engine::worldline::mesh::CUSHION_WIDTH;
 
 const CLOTH: [f32; 3] = [0.02, 0.16, 0.05];
 const CUSHION: [f32; 3] = [0.05, 0.09, 0.04];
-
-impl SceneMeshes {
-    /// Meshes for every puck of `scene` and its table.
-    pub fn new(scene: &Scene) -> Self {
-        Self {
-            pucks: scene
-                .pucks
-                .iter()
-                .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
-                .collect(),
-            colours: scene.pucks.iter().map(|p| linear(p.color)).collect(),
-            table: mesh::table(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH),
-        }
-    }
-}
 
 /// The dark stripe on each puck's side facing its rest-frame +x: it shows
 /// the puck's orientation and how its shape is distorted.
@@ -139,116 +113,11 @@ fn marked(shape: &RestShape, tri: [u32; 3]) -> bool {
     r > 0.0 && c.x / r > 0.94
 }
 
-fn push_triangles(
-    shape: &RestShape,
-    seen: &[Seen],
-    intensity: impl Fn(usize) -> f32,
-    colour: impl Fn([u32; 3]) -> [f32; 3],
-    out: &mut Vec<FrameVertex>,
-) {
-    for &tri in &shape.triangles {
-        let c = colour(tri);
-        for i in tri {
-            let s = &seen[i as usize];
-            out.push(FrameVertex {
-                position: s.position.as_vec3().to_array(),
-                colour: c,
-                doppler: s.doppler as f32,
-                intensity: intensity(i as usize),
-            });
-        }
-    }
-}
-
-/// Builds the triangle list of what `eye` sees with `effects`.
-pub fn build(
-    billiard: &Billiard,
-    meshes: &SceneMeshes,
-    eye: &Eye,
-    effects: Effects,
-    out: &mut Vec<FrameVertex>,
-) {
-    out.clear();
-    let c = billiard.c();
-    let shifts = effects.doppler || effects.searchlight;
-    let mut emissions: Vec<Emission> = Vec::new();
-    let mut seen: Vec<Seen> = Vec::new();
-    // The table: at rest on the board.
-    for part in &meshes.table {
-        seen.clear();
-        seen.extend(part.vertices.iter().map(|&p| {
-            let mut s = eye.see_static(p, c, effects.aberration);
-            if !shifts {
-                s.doppler = 1.0;
-            }
-            s
-        }));
-        let colour = if part.vertices.iter().all(|v| v.z <= 1e-9) {
-            CLOTH
-        } else {
-            CUSHION
-        };
-        let intensity = |i: usize| {
-            if effects.searchlight {
-                seen[i].doppler.powi(4) as f32
-            } else {
-                1.0
-            }
-        };
-        push_triangles(part, &seen, intensity, |_| colour, out);
-        if !effects.doppler {
-            let n = part.triangles.len() * 3;
-            let len = out.len();
-            for v in &mut out[len - n..] {
-                v.doppler = 1.0;
-            }
-        }
-    }
-    // The pucks.
-    for (puck, shape) in meshes.pucks.iter().enumerate() {
-        view::emissions(
-            billiard,
-            puck,
-            &shape.vertices,
-            eye,
-            &effects,
-            Method::Exact,
-            &mut emissions,
-        );
-        view::seen(eye, c, &effects, &emissions, &mut seen);
-        if shifts {
-            view::doppler(eye, &emissions, &mut seen);
-        }
-        let base = meshes.colours[puck];
-        let dark = [base[0] * 0.15, base[1] * 0.15, base[2] * 0.15];
-        let intensity = |i: usize| {
-            if effects.searchlight {
-                seen[i].doppler.powi(4) as f32
-            } else {
-                1.0
-            }
-        };
-        let start = out.len();
-        push_triangles(
-            shape,
-            &seen,
-            intensity,
-            |t| if marked(shape, t) { dark } else { base },
-            out,
-        );
-        if !effects.doppler {
-            for v in &mut out[start..] {
-                v.doppler = 1.0;
-            }
-        }
-    }
-}
-
 /// The eye of observer `index` of `scene` at board time `t` (constant
 /// velocity from its position at t = 0), and the way it faces: towards its
 /// `look_at` (else the table's centre) with a 60° field. That is where a
 /// free eye taken over from it starts looking; to draw what it sees, use
-/// [`view_of`], which frames the table as every view does.
+/// [`scene_view`], which frames the table as every view does.
 pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
     let o = &scene.observers[index];
     let eye = Eye {
@@ -258,39 +127,6 @@ pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
     let camera = Camera {
         forward: o.target(scene.table.size) - o.position,
         fovy: std::f64::consts::FRAC_PI_3,
-    };
-    (eye, camera)
-}
-
-/// The eye of observer `index` of `scene` at board time `t` and the camera
-/// to draw what it sees with `effects` in an image of `aspect` = width /
-/// height: along its `look_at` with a 60° field if the scene names one,
-/// else fitted to the whole table (cushions included, as this eye sees it:
-/// aberration moves it) with the engine's margin
-/// ([`lightcone_engine::scene::ObserverSpec::framing`], the framing of the
-/// window and of the frame schedule's views).
-pub fn view_of(
-    scene: &Scene,
-    index: usize,
-    t: f64,
-    effects: &Effects,
-    aspect: f64,
-) -> (Eye, Camera) {
-    let (eye, _) = eye_of(scene, index, t);
-    let camera = match scene.observers[index].framing(aspect) {
-        Framing::Look {
-            forward,
-            fovy,
-            zoom,
-        } => super::camera::zoomed(forward, fovy, zoom),
-        Framing::Fit { aspect, zoom, .. } => {
-            let points: Vec<DVec3> =
-                super::camera::table_corners(scene.table.size, CUSHION_HEIGHT, CUSHION_WIDTH)
-                    .into_iter()
-                    .map(|p| eye.see_static(p, scene.c, effects.aberration).position)
-                    .collect();
-            super::camera::fit(&points, aspect, lightcone_engine::camera::FIT_MARGIN, zoom)
-        }
     };
     (eye, camera)
 }
@@ -422,8 +258,8 @@ pub fn build_view(apparent: &Apparent, meshes: &ViewMeshes, out: &mut Vec<FrameV
 /// `index`: the scene's effects for [`ViewKind::Seen`], the truth's for
 /// [`ViewKind::Truth`], its camera aimed as the observer's
 /// [`lightcone_engine::scene::ObserverSpec::framing`] says for an image of
-/// `aspect` = width / height (fitted to the whole table unless the scene
-/// names a `look_at`).
+/// `aspect` = width / height (fitted to the whole table, as this eye sees
+/// it, unless the scene names a `look_at`).
 pub fn scene_view(
     scene: &Scene,
     index: usize,
@@ -431,7 +267,35 @@ pub fn scene_view(
     kind: ViewKind,
     aspect: f64,
 ) -> (Simulation, Entity) {
+    simulation_view(scene, None, index, t, kind, aspect)
+}
+
+/// As [`scene_view`], for the pucks of `billiard` (of `scene`, run at least
+/// to `t` elsewhere: the Python `Simulation`, a lesson's world) instead of
+/// the scene's own physics.
+pub fn billiard_view(
+    scene: &Scene,
+    billiard: &Billiard,
+    index: usize,
+    t: f64,
+    kind: ViewKind,
+    aspect: f64,
+) -> (Simulation, Entity) {
+    simulation_view(scene, Some(billiard), index, t, kind, aspect)
+}
+
+fn simulation_view(
+    scene: &Scene,
+    billiard: Option<&Billiard>,
+    index: usize,
+    t: f64,
+    kind: ViewKind,
+    aspect: f64,
+) -> (Simulation, Entity) {
     let mut sim = Simulation::new(scene);
+    if let Some(b) = billiard {
+        sim.replace_physics(b.clone());
+    }
     let o = &scene.observers[index];
     let view = sim.views()[index];
     let effects = kind.effects(scene.effects);
@@ -456,10 +320,11 @@ mod tests {
     }
 
     #[test]
-    fn headless_views_frame_the_whole_table_as_the_schedule_does() {
-        // Every shipped scene names no `look_at`: `render` (the schedule's
-        // view), Python's `render` and `record` (`view_of`) fit the whole
-        // table with the engine's margin, tight on one axis, alike.
+    fn headless_views_frame_the_whole_table() {
+        // Every shipped scene names no `look_at`: `render`, Python's
+        // `render` and `record` (all the schedule's views, `scene_view`)
+        // fit the whole table as the view's eye sees it, with the engine's
+        // margin, tight on one axis.
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
         let tight = 1.0 / (1.0 + lightcone_engine::camera::FIT_MARGIN);
         for entry in std::fs::read_dir(dir).unwrap() {
@@ -471,17 +336,12 @@ mod tests {
                     for kind in [ViewKind::Seen, ViewKind::Truth] {
                         let effects = kind.effects(scene.effects);
                         let (sim, view) = scene_view(&scene, index, 1.0, kind, aspect);
-                        let theirs = sim.camera(view).unwrap();
-                        let (eye, ours) = view_of(&scene, index, 1.0, &effects, aspect);
+                        let camera: Camera = sim.camera(view).unwrap().into();
+                        let eye = sim.apparent(view).unwrap().eye.unwrap();
                         let what = format!("{} {} {aspect} {kind:?}", path.display(), o.name);
-                        assert!(
-                            (theirs.forward.normalize() - ours.forward.normalize()).length() < 1e-9
-                                && (theirs.fovy - ours.fovy).abs() < 1e-9,
-                            "{what}: {theirs:?} vs {ours:?}"
-                        );
                         let mut widest = 0.0f64;
                         for p in corners_seen(&scene, &eye, effects.aberration) {
-                            let (x, y) = crate::camera::ndc(&ours, aspect, p).unwrap();
+                            let (x, y) = crate::camera::ndc(&camera, aspect, p).unwrap();
                             assert!(x.abs() <= tight + 1e-9 && y.abs() <= tight + 1e-9, "{what}");
                             widest = widest.max(x.abs()).max(y.abs());
                         }
@@ -500,12 +360,10 @@ mod tests {
         let target = DVec3::new(0.5, 0.3, 0.0);
         scene.observers[0].look_at = Some(target);
         let forward = (target - scene.observers[0].position).normalize();
-        let (_, cam) = view_of(&scene, 0, 1.0, &scene.effects, 2.0);
         let (sim, view) = scene_view(&scene, 0, 1.0, ViewKind::Seen, 2.0);
-        for c in [cam, sim.camera(view).unwrap().into()] {
-            assert!((c.forward.normalize() - forward).length() < 1e-12);
-            assert!((c.fovy - std::f64::consts::FRAC_PI_3).abs() < 1e-12);
-        }
+        let c: Camera = sim.camera(view).unwrap().into();
+        assert!((c.forward.normalize() - forward).length() < 1e-12);
+        assert!((c.fovy - std::f64::consts::FRAC_PI_3).abs() < 1e-12);
     }
 
     #[test]
@@ -514,19 +372,20 @@ mod tests {
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
             let scene = lightcone_engine::scene::load(&path).unwrap();
-            let meshes = SceneMeshes::new(&scene);
-            let mut billiard = Billiard::from_scene(&scene);
+            let mut all = scene.clone();
+            for e in lightcone_engine::scene::Effect::ALL {
+                all.effects.set(e, true);
+            }
+            let mut none = scene.clone();
+            none.effects = Effects::NONE;
             let mut out = Vec::new();
-            for t in [0.0, 1.0, 5.0] {
-                billiard.advance_to(t);
-                let (eye, _) = eye_of(&scene, 0, t);
-                let mut all = Effects::NONE;
-                for e in lightcone_engine::scene::Effect::ALL {
-                    all.set(e, true);
-                }
-                for fx in [scene.effects, all, Effects::NONE] {
-                    build(&billiard, &meshes, &eye, fx, &mut out);
-                    assert!(!out.is_empty());
+            for s in [&scene, &all, &none] {
+                let (mut sim, view) = scene_view(s, 0, 0.0, ViewKind::Seen, 16.0 / 9.0);
+                let meshes = ViewMeshes::new(&mut sim);
+                for t in [0.0, 1.0, 5.0] {
+                    sim.advance_to(t);
+                    build_view(sim.apparent(view).unwrap(), &meshes, &mut out);
+                    assert!(!out.is_empty() && out.len() % 3 == 0);
                     for v in &out {
                         assert!(
                             v.position.iter().all(|x| x.is_finite()),

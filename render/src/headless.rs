@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use super::frame::{self, Camera, FrameVertex, SceneMeshes, ViewKind};
+use super::frame::{self, Camera, FrameVertex, ViewKind};
 use super::gpu::Gpu;
 use super::pipeline::Renderer;
 use lightcone_engine::ecs::{Entity, Simulation};
@@ -288,7 +288,7 @@ pub fn render_view(
 }
 
 /// Renders what observer `observer` sees at board time `t` of a billiard
-/// already run (at least) that far, framed as [`frame::view_of`] says.
+/// already run (at least) that far, framed as [`frame::scene_view`] says.
 #[allow(clippy::too_many_arguments)]
 pub fn render_billiard(
     gpu: &Gpu,
@@ -300,13 +300,12 @@ pub fn render_billiard(
     width: u32,
     height: u32,
 ) -> Result<Image, String> {
-    let meshes = SceneMeshes::new(scene);
-    let effects = kind.effects(scene.effects);
+    if observer >= scene.observers.len() {
+        return Err(format!("no observer {observer}"));
+    }
     let aspect = f64::from(width) / f64::from(height);
-    let (eye, camera) = frame::view_of(scene, observer, t, &effects, aspect);
-    let mut vertices = Vec::new();
-    frame::build(billiard, &meshes, &eye, effects, &mut vertices);
-    draw(gpu, &vertices, &camera, width, height)
+    let (mut sim, view) = frame::billiard_view(scene, billiard, observer, t, kind, aspect);
+    render_view(gpu, &mut sim, view, width, height)
 }
 
 /// Writes `bytes` to the file at `path` (created or truncated), reporting

@@ -2,15 +2,15 @@
 //! Python's `observe` returns.
 
 use lightcone_engine::ecs::Simulation;
-use lightcone_engine::optics::mesh;
-use lightcone_engine::optics::view::{Method, observe};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::ObserveReport;
 use lightcone_engine::scene::{self, Effect, Effects};
-use lightcone_engine::world::PUCK_SEGMENTS;
 
-/// What observer `index` of `scene` sees at board time `t`: the report
-/// `lightcone observe` prints (and the Python `observe` returns).
+/// What observer `index` of `scene` sees at board time `t` of `billiard`
+/// (run at least that far elsewhere: the Python `Simulation`, a lesson's
+/// world), read off its view of the frame schedule: the report
+/// `lightcone observe` prints (and the Python `observe` returns). `None` if
+/// `scene` has no observer `index`.
 pub fn report(
     scene: &scene::Scene,
     billiard: &Billiard,
@@ -18,25 +18,15 @@ pub fn report(
     t: f64,
     effects: Effects,
     vertices: bool,
-) -> ObserveReport {
-    let spec = &scene.observers[index];
-    let (eye, _) = crate::frame::eye_of(scene, index, t);
-    let shapes: Vec<_> = scene
-        .pucks
-        .iter()
-        .map(|p| mesh::puck(p.radius, p.height, PUCK_SEGMENTS))
-        .collect();
-    let heights: Vec<f64> = scene.pucks.iter().map(|p| p.height).collect();
-    let view = observe(
-        billiard,
-        &shapes,
-        &heights,
-        eye,
-        effects,
-        Method::Exact,
-        vertices,
-    );
-    ObserveReport::new(billiard, &view, &spec.name, t / spec.u.gamma(), vertices)
+) -> Option<ObserveReport> {
+    let mut sim = Simulation::new(scene);
+    sim.replace_physics(billiard.clone());
+    let view = *sim.views().get(index)?;
+    for e in Effect::ALL {
+        sim.set_view_effect(view, e, effects.is_on(e));
+    }
+    sim.advance_to(t);
+    ObserveReport::of_view(&sim, view, vertices)
 }
 
 /// What observer `index` of `scene` sees at board time `t` with `effects`,

@@ -13,8 +13,10 @@ use super::resources::{
 };
 use super::schedule::frame_schedule;
 use super::systems::input;
+use super::systems::optics::eye_at;
 use crate::camera::{self, Camera, DEFAULT_ASPECT, Framing};
-use crate::optics::SampledHistory;
+use crate::optics::view as kernel;
+use crate::optics::{Eye, SampledHistory, Seen};
 use crate::physics::Billiard;
 use crate::scene::{Color, Effect, Effects, Scene};
 use crate::spacetime::{Event, ProperVelocity};
@@ -155,6 +157,14 @@ impl Simulation {
     /// The physics, to apply impulses.
     pub fn physics_mut(&mut self) -> &mut Billiard {
         &mut self.world.resource_mut::<Physics>().into_inner().0
+    }
+
+    /// Puts `billiard` (of the same scene, run as far as wanted) in place
+    /// of the physics: the pucks' worldlines every view then sees. Used to
+    /// look at a billiard run elsewhere (the Python `Simulation`, a lesson)
+    /// through this world's views.
+    pub fn replace_physics(&mut self, billiard: Billiard) {
+        self.world.resource_mut::<Physics>().0 = billiard;
     }
 
     /// Table size, m.
@@ -333,6 +343,117 @@ impl Simulation {
         u: ProperVelocity,
     ) -> Result<(), ObserverError> {
         Ok(input::steer(self.observer_worldline_mut(observer)?, t, u)?)
+    }
+
+    /// Puts `observer` at `position` at board time `t`, moving with proper
+    /// velocity `u` from then on: a jump on its worldline (the free eye
+    /// orbited or reset, a tracked pose; see [`Worldline::relocate`]).
+    pub fn place_observer(
+        &mut self,
+        observer: Entity,
+        t: f64,
+        position: DVec3,
+        u: ProperVelocity,
+    ) -> Result<(), ObserverError> {
+        Ok(self
+            .observer_worldline_mut(observer)?
+            .relocate(t, position, u)?)
+    }
+
+    /// Forgets the part of `observer`'s worldline that ended at or before
+    /// board time `t` (a bounded replay window, as the physics keeps).
+    pub fn forget_observer_before(&mut self, observer: Entity, t: f64) {
+        if let Ok(w) = self.observer_worldline_mut(observer) {
+            w.forget_before(t);
+        }
+    }
+
+    /// The vantage of `view`.
+    pub fn vantage(&self, view: Entity) -> Option<Vantage> {
+        self.world.get::<Vantage>(view).copied()
+    }
+
+    /// What `view` saw of the point `offset` (m, in the rest frame of puck
+    /// `puck`, from its reference point) at each board time of `times`: the
+    /// view's eye then, per its [`Vantage`] (on its observer's worldline,
+    /// or "replay and move"), and the apparent point relative to that eye.
+    /// The same kernels, in the same order, as the frame schedule's optics
+    /// systems run for this view, chosen by the view's own effect markers
+    /// (light delay, exact or from the sampled history as the scene asks,
+    /// or board-simultaneous; contraction; aberration or board directions).
+    /// A history of the view's picture without running a frame per time:
+    /// the seen trails. Every entry is `None` if the view, its observer or
+    /// the puck does not exist.
+    pub fn seen_history(
+        &self,
+        view: Entity,
+        puck: usize,
+        offset: DVec3,
+        times: &[f64],
+    ) -> Vec<Option<(Eye, Seen)>> {
+        let gone = || times.iter().map(|_| None).collect();
+        let (Some(v), Some(&vantage), Some(effects)) = (
+            self.world.get::<View>(view),
+            self.world.get::<Vantage>(view),
+            self.view_effects(view),
+        ) else {
+            return gone();
+        };
+        let Some(eye_line) = self.observer_worldline(v.observer) else {
+            return gone();
+        };
+        if puck >= self.physics().len() {
+            return gone();
+        }
+        let worldline = self.physics().worldline(puck);
+        let c = self.c();
+        let sampled = match (
+            self.world.get_resource::<OpticsMethod>(),
+            self.world.get_resource::<History>(),
+        ) {
+            (Some(m), Some(h)) if m.0.sampled => Some((&h.0, m.search())),
+            _ => None,
+        };
+        let offsets = [offset];
+        let (mut emissions, mut seen) = (Vec::new(), Vec::new());
+        times
+            .iter()
+            .map(|&t| {
+                let eye = eye_at(eye_line, vantage, t);
+                match (effects.light_delay, sampled) {
+                    (true, Some((h, search))) => kernel::light_delayed_sampled(
+                        h,
+                        search,
+                        puck,
+                        worldline,
+                        &offsets,
+                        effects.contraction,
+                        &eye,
+                        &mut emissions,
+                    ),
+                    (true, None) => kernel::light_delayed(
+                        worldline,
+                        &offsets,
+                        effects.contraction,
+                        &eye,
+                        &mut emissions,
+                    ),
+                    (false, _) => kernel::simultaneous(
+                        worldline,
+                        &offsets,
+                        effects.contraction,
+                        &eye,
+                        &mut emissions,
+                    ),
+                }
+                if effects.aberration {
+                    kernel::aberrated(&eye, c, &emissions, &mut seen);
+                } else {
+                    kernel::on_board(&eye, &emissions, &mut seen);
+                }
+                seen.first().map(|s| (eye, *s))
+            })
+            .collect()
     }
 
     /// A tracked head: a sample puts `observer` at `target` at board time

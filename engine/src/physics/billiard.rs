@@ -266,6 +266,7 @@ const BOARD_FIRST_U: f64 = 3.0;
 
 /// The relativistic billiard's physics: pucks, their worldlines, and the
 /// calendar of what happens next.
+#[derive(Clone)]
 pub struct Billiard {
     c: f64,
     table: DVec2,

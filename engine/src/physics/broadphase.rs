@@ -21,6 +21,7 @@ use rapier2d_f64::parry::partitioning::{Bvh, BvhBuildStrategy};
 
 /// The tree and the candidate pairs: for each puck, the pucks whose shells'
 /// AABBs overlap its own.
+#[derive(Clone)]
 pub struct BroadPhase {
     tree: Bvh,
     aabbs: Vec<Aabb>,

@@ -67,7 +67,7 @@ const ABSENT: u32 = u32::MAX;
 const ARITY: usize = 4;
 
 /// The queue of the pucks' entries.
-#[derive(Default, Debug)]
+#[derive(Clone, Default, Debug)]
 pub struct Calendar {
     /// Heap order: (key, puck).
     heap: Vec<(Key, u32)>,

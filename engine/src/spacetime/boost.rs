@@ -76,7 +76,7 @@ impl Boost {
 
     /// Components of the 4-vector `x` in the target frame.
     ///
-    /// Below [`DIRECT_FORM_BELOW`] (|u| < 1) the boost is computed in the
+    /// Below `DIRECT_FORM_BELOW` (|u| < 1) the boost is computed in the
     /// textbook form `ct' = γ ct − |u| x∥`, `x∥' = γ x∥ − |u| ct`: in the
     /// light-cone form the small parallel result would be the difference of
     /// two numbers the size of `ct`, losing `ε |ct|` (10⁻⁷ m at c = 10⁹ m/s
@@ -111,7 +111,7 @@ impl Boost {
     /// body co-moving with a frame of γ = 10⁹ comes out at rest to within
     /// 1e-15 — and the result, being a proper velocity, is always below `c`.
     ///
-    /// For a slow frame (|u_frame| < [`DIRECT_FORM_BELOW`]) and a slow body
+    /// For a slow frame (|u_frame| < `DIRECT_FORM_BELOW`) and a slow body
     /// (|u| < 1) it is `u∥' = γ_f u∥ − |u_f| γ`: the light-cone form would
     /// take the small result as the difference of two numbers near 1,
     /// losing ε in absolute terms (a relative 10⁻⁷ at c = 10⁹ m/s, where

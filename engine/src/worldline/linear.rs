@@ -385,13 +385,6 @@ impl Worldline {
         self.segment_at(t).u_at(t)
     }
 
-    /// Former name of [`Self::proper_velocity_at`] (kept until the game's
-    /// callers move; it returns a proper velocity, not `dx/dt`).
-    #[doc(hidden)]
-    pub fn velocity_at(&self, t: f64) -> ProperVelocity {
-        self.proper_velocity_at(t)
-    }
-
     /// Proper time at board time `t`, s.
     pub fn proper_time_at(&self, t: f64) -> f64 {
         self.segment_at(t).proper_time_at(t)
@@ -477,6 +470,46 @@ impl Worldline {
         Ok(())
     }
 
+    /// Puts the body at `position` at board time `t`, moving with proper
+    /// velocity `u` from then on: a jump, not a kink (the worldline is not
+    /// continuous there). Only for an observer the player or a tracker puts
+    /// somewhere (the free eye orbited or reset, a tracked head's pose),
+    /// never for a puck. Proper time runs on across the jump. As with
+    /// [`Self::push`], `t` must not precede the last segment's start, and
+    /// a jump at exactly that start replaces the last segment.
+    pub fn relocate(
+        &mut self,
+        t: f64,
+        position: DVec3,
+        u: ProperVelocity,
+    ) -> Result<(), WorldlineError> {
+        if !(t.is_finite() && u.is_finite() && position.is_finite()) {
+            return Err(WorldlineError::NotFinite);
+        }
+        let last = *self.last();
+        if t < last.start.t {
+            return Err(WorldlineError::BeforeLastSegment {
+                at: t,
+                last: last.start.t,
+            });
+        }
+        let orientation = last.orientation + rotation_of_velocity_change(last.u_at(t), u);
+        let segment = Segment::new(
+            Event::new(t, position),
+            u,
+            last.proper_time_at(t),
+            orientation,
+            self.c,
+        );
+        if t == last.start.t {
+            let i = self.segments.len() - 1;
+            self.segments[i] = segment;
+        } else {
+            self.segments.push(segment);
+        }
+        Ok(())
+    }
+
     /// Ends a braking last segment with a rest segment at its stop time (the
     /// motion is unchanged: a braking segment rests after its stop; the rest
     /// segment makes that explicit). Returns the stop time, or `None` if the
@@ -522,6 +555,21 @@ mod tests {
         // c = 2 m/s, β = 0.6 along x: v = 1.2 m/s, γ = 1.25.
         let u = ProperVelocity::try_from_beta(DVec3::new(0.6, 0.0, 0.0)).unwrap();
         Worldline::new(Event::new(0.0, DVec3::new(1.0, 0.5, 0.0)), u, 2.0)
+    }
+
+    #[test]
+    fn a_relocated_worldline_jumps_and_keeps_its_past_and_proper_time() {
+        let mut w = line();
+        let (before, tau) = (w.position_at(1.0), w.proper_time_at(2.0));
+        let to = DVec3::new(-3.0, 2.0, 1.0);
+        w.relocate(2.0, to, ProperVelocity::ZERO).unwrap();
+        assert_eq!(w.position_at(1.0), before);
+        assert_eq!(w.position_at(2.0), to);
+        assert_eq!(w.position_at(5.0), to);
+        assert!((w.proper_time_at(2.0) - tau).abs() < 1e-15);
+        assert!((w.proper_time_at(3.0) - tau - 1.0).abs() < 1e-12);
+        assert!(w.relocate(1.0, to, ProperVelocity::ZERO).is_err());
+        assert!(w.relocate(3.0, DVec3::NAN, ProperVelocity::ZERO).is_err());
     }
 
     #[test]

@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use glam::DVec3;
+use lightcone_engine::ecs::Simulation;
 use lightcone_engine::optics::eye::Eye;
 use lightcone_engine::optics::history::{SampledHistory, Search};
 use lightcone_engine::optics::view::{self, Method};
@@ -15,7 +16,7 @@ use lightcone_engine::physics::Billiard;
 use lightcone_engine::physics::gas::dense_box;
 use lightcone_engine::scene::{self, Effect, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
 use lightcone_engine::spacetime::{Event, ProperVelocity};
-use lightcone_engine::world::{PUCK_SEGMENTS, Simulation};
+use lightcone_engine::worldline::mesh::PUCK_SEGMENTS;
 use lightcone_engine::worldline::{RestShape, Worldline};
 use rayon::prelude::*;
 

@@ -30,9 +30,11 @@ pub struct Jitter {
 fn directions(game: &mut GameState, position: DVec3, v: DVec3, effects: &Effects) -> Vec<DVec3> {
     // The game's own way of setting a tracked eye (capped below c).
     crate::cave::set_eye(game, position, v);
-    game.apparent_centres(effects)
+    game.effects = *effects;
+    let view = game.run_seen();
+    game.centres(view)
         .iter()
-        .map(|(_, s)| s.position.normalize_or_zero())
+        .map(|c| c.seen.position.normalize_or_zero())
         .collect()
 }
 

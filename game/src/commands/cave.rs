@@ -65,8 +65,8 @@ pub fn run(
     {
         // The physics to `at`, with a bar (the walls are quick after it).
         let progress = crate::progress::bar(at, "board s");
-        while !game.billiard.step_until(at, 16_384) {
-            progress.set_position_f64(game.billiard.time());
+        while !game.physics_mut().step_until(at, 16_384) {
+            progress.set_position_f64(game.physics().time());
             if crate::interrupt::interrupted() {
                 progress.finish();
                 return crate::interrupt::exit_code("cave stopped");
@@ -82,7 +82,8 @@ pub fn run(
     if let Err(e) = std::fs::create_dir_all(out_dir) {
         return fail(format!("{}: {e}", out_dir.display()));
     }
-    let images = match cave::render_walls(&gpu, &game, &config, (head, DQuat::IDENTITY), scale) {
+    let images = match cave::render_walls(&gpu, &mut game, &config, (head, DQuat::IDENTITY), scale)
+    {
         Ok(i) => i,
         Err(e) => return fail(e),
     };

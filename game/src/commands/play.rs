@@ -24,6 +24,8 @@ pub struct Extras {
     pub at: Option<f64>,
     /// Open on this view.
     pub view: Option<ViewMode>,
+    /// Pictures side by side (`--views`, see [`crate::model::Pane::parse_list`]).
+    pub views: Option<String>,
     /// Open with the camera above the table.
     pub top: bool,
     /// Effects shown (`observe`'s syntax), instead of the scene's.
@@ -42,6 +44,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         cave,
         at,
         view,
+        views,
         top,
         effects,
         diagram,
@@ -106,14 +109,23 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
             eprintln!("--at is for scenes: a lesson runs its own time");
             return ExitCode::FAILURE;
         }
-        game.billiard.advance_to(t);
+        game.physics_mut().advance_to(t);
         game.live_time = t;
         game.view_time = t;
         game.paused = true;
         game.intro = false;
     }
     if let Some(v) = view {
-        game.view = v;
+        game.set_view(v);
+    }
+    if let Some(spec) = views {
+        match crate::model::Pane::parse_list(&spec, &game.scene) {
+            Ok(p) => game.panes = Some(p),
+            Err(e) => {
+                eprintln!("{e}");
+                return ExitCode::FAILURE;
+            }
+        }
     }
     if let Some(spec) = effects {
         match crate::commands::observe::parse_effects(&spec, game.effects) {

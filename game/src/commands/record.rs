@@ -13,10 +13,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 
-use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene;
 
-use lightcone_render::frame::{self, SceneMeshes, ViewKind};
+use lightcone_render::frame::{self, ViewKind, ViewMeshes};
 use lightcone_render::headless::{Image, Offscreen};
 
 /// Most frames one recording makes (`--until` × `--fps`): a recording
@@ -239,19 +238,23 @@ pub fn run(req: Request<'_>) -> ExitCode {
         Ok(s) => s,
         Err(e) => return fail(e),
     };
-    let meshes = SceneMeshes::new(&scene);
-    let mut billiard = Billiard::from_scene(&scene);
+    // One simulation with the view to record; each frame runs its schedule.
+    let aspect = f64::from(width) / f64::from(height);
+    let (mut sim, view) = frame::scene_view(&scene, index, 0.0, req.view, aspect);
+    let meshes = ViewMeshes::new(&mut sim);
     let mut target = Offscreen::new(&gpu, width, height);
     let mut vertices = Vec::new();
-    let aspect = f64::from(width) / f64::from(height);
     let progress = crate::progress::steps(count, "record");
     for k in 0..count {
         let t = k as f64 / req.fps;
         progress.step(&format!("t = {t:.3} s"));
-        billiard.advance_to(t);
-        let effects = req.view.effects(scene.effects);
-        let (eye, camera) = frame::view_of(&scene, index, t, &effects, aspect);
-        frame::build(&billiard, &meshes, &eye, effects, &mut vertices);
+        sim.advance_to(t);
+        let (Some(apparent), Some(camera)) = (sim.apparent(view), sim.camera(view)) else {
+            progress.finish();
+            return fail("the recorded view is gone".into());
+        };
+        frame::build_view(apparent, &meshes, &mut vertices);
+        let camera = frame::Camera::from(camera);
         let pushed = target
             .draw(&gpu, &vertices, &camera)
             .and_then(|mut image| sink.push(&mut image));

@@ -35,11 +35,11 @@ impl LessonGame for GameState {
     }
 
     fn billiard(&self) -> &Billiard {
-        &self.billiard
+        self.physics()
     }
 
     fn billiard_mut(&mut self) -> &mut Billiard {
-        &mut self.billiard
+        self.physics_mut()
     }
 
     fn live_time(&self) -> f64 {
@@ -71,11 +71,11 @@ impl LessonGame for GameState {
     }
 
     fn set_pictures(&mut self, pictures: Pictures) {
-        self.view = match pictures {
+        self.set_view(match pictures {
             Pictures::Seen => ViewMode::Seen,
             Pictures::Truth => ViewMode::Truth,
             Pictures::Split => ViewMode::Split,
-        };
+        });
     }
 
     fn observer(&self) -> Option<usize> {

@@ -435,21 +435,21 @@ impl LessonHost {
     pub fn after_step(&mut self, game: &mut GameState, before: f64) {
         // `seen_collisions` is a global record index (the billiard may have
         // dropped records older than its replay window).
-        let n = game.billiard.collision_count();
+        let n = game.physics().collision_count();
         if n < self.seen_collisions {
             // The game restarted under the lesson (the c slider).
             self.seen_collisions = 0;
         }
-        while self.running() && self.seen_collisions < game.billiard.collision_count() {
+        while self.running() && self.seen_collisions < game.physics().collision_count() {
             let i = self.seen_collisions;
             self.seen_collisions += 1;
-            if game.billiard.collisions_forgotten() > i {
+            if game.physics().collisions_forgotten() > i {
                 continue; // dropped before it was seen
             }
-            let Some(record) = game.billiard.collisions_from(i).first() else {
+            let Some(record) = game.physics().collisions_from(i).first() else {
                 continue;
             };
-            let line = CollisionLine::new(&game.billiard, record);
+            let line = CollisionLine::new(game.physics(), record);
             let text = match serde_json::to_string(&line) {
                 Ok(t) => t,
                 Err(_) => continue,
@@ -715,13 +715,18 @@ mod tests {
         write(&path, &lesson("lend", extra), 0);
         let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
         assert!(host.error.is_none(), "{:?}", host.error);
-        let u0 = game.billiard.worldline(0).velocity_at(0.0).0.x;
+        let u0 = game.physics().worldline(0).proper_velocity_at(0.0).0.x;
         let before = game.live_time;
         game.step(0.1);
         host.after_step(&mut game, before);
         assert!(host.error.is_none(), "{:?}", host.error);
         // The impulse made in on_frame changed the game that is shown.
-        let u1 = game.billiard.worldline(0).velocity_at(game.live_time).0.x;
+        let u1 = game
+            .physics()
+            .worldline(0)
+            .proper_velocity_at(game.live_time)
+            .0
+            .x;
         assert!((u1 - u0 - 0.1).abs() < 1e-12, "{u0} → {u1}");
         // Outside a hook the world has no game: a clear error, no crash.
         Python::attach(|py| {

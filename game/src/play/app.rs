@@ -18,7 +18,7 @@ use super::lesson_panel::{self, LessonAction};
 use super::overlay::{aspect, markers, overlays, project, ring_colour};
 use crate::cave::{self, Side, TrackedHead};
 use crate::lesson::LessonHost;
-use crate::model::{GameState, ViewMode};
+use crate::model::{GameState, Pane, ViewMode};
 use lightcone_render::frame::{self, FrameVertex, ViewKind};
 use lightcone_render::gpu::{self, Gpu};
 use lightcone_render::headless::BACKGROUND;
@@ -65,6 +65,7 @@ pub fn run(options: Options) -> Result<(), String> {
         flight: DVec3::ZERO,
         flight_v: DVec3::ZERO,
         cave_eye: Side::Mono,
+        stereo: Vec::new(),
         state: game,
         lesson,
         screenshot,
@@ -112,6 +113,8 @@ struct App {
     flight_v: DVec3,
     /// Which eye the window shows the CAVE walls for (E cycles).
     cave_eye: Side,
+    /// That eye's view this frame, and where it is (tracker space).
+    stereo: Vec<(lightcone_engine::ecs::Entity, DVec3)>,
     lesson: Option<LessonHost>,
     /// Screenshot path and frame count (see [`Options`]).
     screenshot: Option<PathBuf>,
@@ -148,8 +151,8 @@ struct Hud {
 
 /// How one rectangle of the window is drawn.
 enum Plan {
-    /// A desktop view (seen or truth).
-    Desktop(ViewKind),
+    /// A desktop picture (a view of an eye: seen or truth).
+    Desktop(Pane),
     /// CAVE wall `i`, from the head's midpoint.
     Wall(usize),
 }
@@ -195,18 +198,17 @@ fn wall_tiles(cave: &CaveConfig, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], Plan
         .collect()
 }
 
-/// The rectangles (x, y, w, h in physical px) and view kinds drawn in the
-/// area `[x0, x0 + w] × [0, h]` left free by the panels.
-fn layout(mode: ViewMode, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], ViewKind)> {
+/// The rectangles (x, y, w, h in physical px) of the pictures `panes`,
+/// side by side in equal widths, left to right, in the area
+/// `[x0, x0 + w] × [0, h]` left free by the panels.
+pub fn layout(panes: &[Pane], x0: f32, w: f32, h: f32) -> Vec<([f32; 4], Pane)> {
     let (w, h) = (w.max(1.0), h.max(1.0));
-    match mode {
-        ViewMode::Seen => vec![([x0, 0.0, w, h], ViewKind::Seen)],
-        ViewMode::Truth => vec![([x0, 0.0, w, h], ViewKind::Truth)],
-        ViewMode::Split => vec![
-            ([x0, 0.0, w / 2.0, h], ViewKind::Truth),
-            ([x0 + w / 2.0, 0.0, w / 2.0, h], ViewKind::Seen),
-        ],
-    }
+    let n = panes.len().max(1) as f32;
+    panes
+        .iter()
+        .enumerate()
+        .map(|(k, &p)| ([x0 + w * k as f32 / n, 0.0, w / n, h], p))
+        .collect()
 }
 
 impl App {
@@ -270,7 +272,7 @@ impl App {
     /// Held keys fly the eye: W/S forward and back, A/D sideways, R/F up
     /// and down, at a proper acceleration of 0.5 c per second.
     fn fly(&mut self, dt: f64) {
-        let f = self.state.eye_and_camera(1.0).1.forward;
+        let f = self.state.forward();
         let flat = DVec3::new(f.x, f.y, 0.0).normalize_or(DVec3::X);
         let side = flat.cross(DVec3::Z);
         let mut dir = DVec3::ZERO;
@@ -318,7 +320,7 @@ impl App {
             KeyCode::KeyY => s.show.diagram = !s.show.diagram,
             KeyCode::KeyV => s.top_view(),
             KeyCode::KeyG => {
-                let n = s.billiard.len();
+                let n = s.physics().len();
                 s.follow = match s.follow {
                     None if n > 0 => Some(0),
                     Some(i) if i + 1 < n => Some(i + 1),
@@ -345,11 +347,13 @@ impl App {
                 }
             }
             KeyCode::KeyT => {
-                s.view = match s.view {
-                    ViewMode::Seen => ViewMode::Truth,
-                    ViewMode::Truth => ViewMode::Split,
-                    ViewMode::Split => ViewMode::Seen,
-                }
+                let next = match (&s.panes, s.view) {
+                    (Some(_), _) => ViewMode::Seen,
+                    (None, ViewMode::Seen) => ViewMode::Truth,
+                    (None, ViewMode::Truth) => ViewMode::Split,
+                    (None, ViewMode::Split) => ViewMode::Seen,
+                };
+                s.set_view(next);
             }
             KeyCode::Digit1
             | KeyCode::Digit2
@@ -373,36 +377,58 @@ impl App {
         }
     }
 
-    /// The rectangle and view in which the cue picks pucks: the seen view
-    /// (the right half when split).
-    fn pick_rect(&self) -> Option<([f32; 4], ViewKind)> {
-        let gfx = self.gfx.as_ref()?;
-        let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
+    /// The pictures' rectangles as the last frame laid them out.
+    fn rects(&self) -> Vec<([f32; 4], Pane)> {
+        let Some(gfx) = self.gfx.as_ref() else {
+            return Vec::new();
+        };
+        self.rects_in(gfx.config.width as f32, gfx.config.height as f32)
+    }
+
+    /// The pictures' rectangles in a `w × h` window, between the edges the
+    /// last frame's panels left.
+    fn rects_in(&self, w: f32, h: f32) -> Vec<([f32; 4], Pane)> {
         let right = if self.scene_right > self.scene_left {
-            self.scene_right
+            self.scene_right.min(w)
         } else {
             w
         };
-        layout(self.state.view, self.scene_left, right - self.scene_left, h)
-            .into_iter()
-            .last()
+        layout(
+            &self.state.pane_list(),
+            self.scene_left,
+            right - self.scene_left,
+            h,
+        )
     }
 
-    fn effects_for(&self, kind: ViewKind) -> lightcone_engine::scene::Effects {
-        kind.effects(self.state.effects)
+    /// The rectangle and picture in which the cue picks pucks: the one
+    /// under the cursor (the last one when none is).
+    fn pick_rect(&self) -> Option<([f32; 4], Pane)> {
+        let rects = self.rects();
+        let (x, y) = (self.cursor.x as f32, self.cursor.y as f32);
+        rects
+            .iter()
+            .copied()
+            .find(|(r, _)| x >= r[0] && x < r[0] + r[2] && y >= r[1] && y < r[1] + r[3])
+            .or_else(|| rects.last().copied())
     }
 
     fn press(&mut self) {
-        let Some((rect, kind)) = self.pick_rect() else {
+        let Some((rect, pane)) = self.pick_rect() else {
             return;
         };
-        let (_, camera) = self.state.eye_and_camera(aspect(rect));
-        let centres = self.state.apparent_centres(&self.effects_for(kind));
-        let best = centres
+        let Some(view) = self.state.view_of(pane) else {
+            return;
+        };
+        let Some(camera) = self.state.camera(view) else {
+            return;
+        };
+        let best = self
+            .state
+            .centres(view)
             .iter()
-            .enumerate()
-            .filter_map(|(i, (_, s))| {
-                project(&camera, rect, s.position).map(|p| (i, p.distance(self.cursor)))
+            .filter_map(|c| {
+                project(&camera, rect, c.seen.position).map(|p| (c.puck, p.distance(self.cursor)))
             })
             .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((i, d)) = best
@@ -416,9 +442,11 @@ impl App {
         let Some((puck, start)) = self.aiming else {
             return;
         };
-        let aspect = self.pick_rect().map_or(1.0, |(r, _)| aspect(r));
-        let (_, camera) = self.state.eye_and_camera(aspect);
-        let f = camera.forward;
+        let f = self
+            .pick_rect()
+            .and_then(|(_, p)| self.state.view_of(p))
+            .and_then(|v| self.state.camera(v))
+            .map_or_else(|| self.state.forward(), |c| c.forward);
         let flat = DVec3::new(f.x, f.y, 0.0).normalize_or(DVec3::Y);
         let right = flat.cross(DVec3::Z);
         let d = self.cursor - start;
@@ -534,7 +562,7 @@ fn panels(
                 let live = s.live_time.max(1e-9);
                 // The replay window: the past before it is forgotten.
                 let oldest = s
-                    .billiard
+                    .physics()
                     .forgotten_before()
                     .map_or(0.0, |f| f.clamp(0.0, live));
                 if ui
@@ -588,9 +616,18 @@ fn panels(
                 }
                 ui.label("view (T):");
                 ui.horizontal(|ui| {
-                    ui.selectable_value(&mut s.view, ViewMode::Seen, "seen");
-                    ui.selectable_value(&mut s.view, ViewMode::Truth, "truth");
-                    ui.selectable_value(&mut s.view, ViewMode::Split, "split");
+                    let mut mode = s.panes.is_none().then_some(s.view);
+                    ui.selectable_value(&mut mode, Some(ViewMode::Seen), "seen");
+                    ui.selectable_value(&mut mode, Some(ViewMode::Truth), "truth");
+                    ui.selectable_value(&mut mode, Some(ViewMode::Split), "split");
+                    if s.panes.is_some() {
+                        let _ = ui.selectable_label(true, "--views");
+                    }
+                    if let Some(m) = mode
+                        && (s.panes.is_some() || m != s.view)
+                    {
+                        s.set_view(m);
+                    }
                 });
                 egui::ComboBox::from_label("eye")
                     .selected_text(match s.observer {
@@ -642,9 +679,9 @@ fn panels(
                     ui.label("γ");
                     ui.label("τ (s)");
                     ui.end_row();
-                    for i in 0..s.billiard.len() {
-                        let st = s.billiard.worldline(i).state_at(s.view_time);
-                        ui.label(s.billiard.name(i));
+                    for i in 0..s.physics().len() {
+                        let st = s.physics().worldline(i).state_at(s.view_time);
+                        ui.label(s.physics().name(i));
                         ui.label(format!("{:.4}", st.u.beta().length()));
                         ui.label(format!("{:.4}", st.u.gamma()));
                         ui.label(format!("{:.3}", st.proper_time));
@@ -656,13 +693,17 @@ fn panels(
                 }
                 if let Some(cue) = s.cue {
                     let u = lightcone_engine::spacetime::ProperVelocity(
-                        s.billiard.worldline(cue.puck).velocity_at(s.live_time).0 + cue.du,
+                        s.physics()
+                            .worldline(cue.puck)
+                            .proper_velocity_at(s.live_time)
+                            .0
+                            + cue.du,
                     );
                     ui.colored_label(
                         egui::Color32::LIGHT_BLUE,
                         format!(
                             "cue on {}: β = {:.6}, γ = {:.4}",
-                            s.billiard.name(cue.puck),
+                            s.physics().name(cue.puck),
                             u.beta().length(),
                             u.gamma()
                         ),
@@ -705,7 +746,7 @@ fn panels(
         egui::Order::Background,
         egui::Id::unique("clocks"),
     ));
-    let rects = layout(state.view, left, right - left, size.1 as f32);
+    let rects = layout(&state.pane_list(), left, right - left, size.1 as f32);
     overlays(state, &painter, &rects, ppp);
     (left, right)
 }
@@ -748,7 +789,33 @@ impl App {
         result
     }
 
+    /// Runs the game's frame schedule for what this frame draws: the
+    /// desktop pictures (laid out as the last frame's panels left room),
+    /// or the CAVE's stereo eye. Everything drawn next (the views, the
+    /// clocks, labels and picking) reads what it wrote.
+    fn run_views(&mut self, w: f32, h: f32) {
+        match &self.cave {
+            Some(c) => {
+                let head = self.head.as_ref().map_or(
+                    (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
+                    TrackedHead::head,
+                );
+                self.stereo =
+                    cave::stereo_views(&mut self.state, c, head, &[self.cave_eye], self.flight);
+            }
+            None => {
+                let panes: Vec<(Pane, f64)> = self
+                    .rects_in(w, h)
+                    .into_iter()
+                    .map(|(r, p)| (p, aspect(r)))
+                    .collect();
+                self.state.run_frame(&panes);
+            }
+        }
+    }
+
     fn draw_with(&mut self, gfx: &mut Gfx, screenshot: bool) -> Result<(), String> {
+        self.run_views(gfx.config.width as f32, gfx.config.height as f32);
         let raw = gfx.egui_state.take_egui_input(&gfx.window);
         let ctx = gfx.egui.clone();
         let size = (gfx.config.width, gfx.config.height);
@@ -789,7 +856,12 @@ impl App {
                 size,
             );
         });
-        (self.scene_left, self.scene_right) = edges;
+        if edges != (self.scene_left, self.scene_right) {
+            // The panels took another width (the first frame, a resize):
+            // frame the views for the room they now leave.
+            (self.scene_left, self.scene_right) = edges;
+            self.run_views(size.0 as f32, size.1 as f32);
+        }
         if let Some(lesson) = &mut self.lesson {
             for action in actions {
                 match action {
@@ -820,7 +892,6 @@ impl App {
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
         let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
-        let eye = self.state.eye();
         let mut vertices: Vec<FrameVertex> = Vec::new();
         let right = if self.scene_right > self.scene_left {
             self.scene_right.min(w)
@@ -830,41 +901,45 @@ impl App {
         let mut cleared = false;
         let plans: Vec<([f32; 4], Plan)> = match &self.cave {
             Some(c) => wall_tiles(c, self.scene_left, right - self.scene_left, h),
-            None => layout(self.state.view, self.scene_left, right - self.scene_left, h)
-                .into_iter()
-                .map(|(r, k)| (r, Plan::Desktop(k)))
-                .collect(),
+            None => layout(
+                &self.state.pane_list(),
+                self.scene_left,
+                right - self.scene_left,
+                h,
+            )
+            .into_iter()
+            .map(|(r, p)| (r, Plan::Desktop(p)))
+            .collect(),
         };
-        let head = self.head.as_ref().map_or(
-            (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
-            TrackedHead::head,
-        );
         for (rect, plan) in plans {
             vertices.clear();
             let view_proj = match (plan, &self.cave) {
                 (Plan::Wall(i), Some(c)) => {
+                    let Some(&(view, tracker_eye)) = self.stereo.first() else {
+                        continue;
+                    };
                     match cave::wall_frame(
                         &self.state,
                         c,
                         &c.walls[i],
-                        head,
-                        self.cave_eye,
-                        self.flight,
+                        view,
+                        tracker_eye,
                         &mut vertices,
                     ) {
                         Some(m) => m,
                         None => continue,
                     }
                 }
-                (Plan::Desktop(kind), _) => {
-                    frame::build(
-                        &self.state.billiard,
-                        &self.state.meshes,
-                        &eye,
-                        kind.effects(self.state.effects),
-                        &mut vertices,
-                    );
-                    let (_, camera) = self.state.eye_and_camera(aspect(rect));
+                (Plan::Desktop(pane), _) => {
+                    let Some(view) = self.state.view_of(pane) else {
+                        continue;
+                    };
+                    let (Some(apparent), Some(camera)) =
+                        (self.state.apparent(view), self.state.camera(view))
+                    else {
+                        continue;
+                    };
+                    frame::build_view(apparent, &self.state.meshes, &mut vertices);
                     camera.view_proj(rect[2] / rect[3])
                 }
                 (Plan::Wall(_), None) => continue,
@@ -958,18 +1033,14 @@ impl App {
     /// "pucks": [{"name", "view", "centre": [x, y], "ring_px", "ring_colour":
     /// [r, g, b], "clock_s"}]}`, physical px from the top left.
     fn save_layout(&self, path: &std::path::Path, w: f32, h: f32) -> Result<(), String> {
-        let right = if self.scene_right > self.scene_left {
-            self.scene_right.min(w)
-        } else {
-            w
-        };
-        let rects = layout(self.state.view, self.scene_left, right - self.scene_left, h);
+        let rects = self.rects_in(w, h);
         let views: Vec<serde_json::Value> = rects
             .iter()
-            .map(|(r, k)| {
+            .map(|(r, p)| {
                 serde_json::json!({
                     "rect": r,
-                    "kind": match k { ViewKind::Seen => "seen", ViewKind::Truth => "truth" },
+                    "kind": match p.kind { ViewKind::Seen => "seen", ViewKind::Truth => "truth" },
+                    "caption": super::overlay::caption(&self.state, *p),
                 })
             })
             .collect();
@@ -990,7 +1061,7 @@ impl App {
         let text = serde_json::json!({
             "views": views,
             "pucks": pucks,
-            "scene_pucks": self.state.billiard.len(),
+            "scene_pucks": self.state.physics().len(),
         })
         .to_string();
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))

@@ -13,7 +13,7 @@
 use glam::{DVec2, DVec3};
 use lightcone_engine::physics::{Billiard, CollisionKind};
 
-use super::overlay::{aspect, project, ring_colour};
+use super::overlay::{project, ring_colour};
 use crate::model::GameState;
 use lightcone_render::frame::ViewKind;
 
@@ -84,9 +84,15 @@ pub fn showing(billiard: &Billiard, t: f64, delay: impl Fn(DVec3) -> f64) -> Opt
 /// Draws the arc (if one is showing) in one view: the outgoing directions
 /// from the contact point (a board point, where this view shows it), the
 /// arc between them and the angle in degrees.
-pub fn draw(state: &GameState, painter: &egui::Painter, rect: [f32; 4], kind: ViewKind, ppp: f32) {
-    let (eye, camera) = state.eye_and_camera(aspect(rect));
-    let effects = kind.effects(state.effects);
+pub fn draw(
+    state: &GameState,
+    painter: &egui::Painter,
+    rect: [f32; 4],
+    kind: ViewKind,
+    shown: &super::overlay::Shown,
+    ppp: f32,
+) {
+    let (eye, camera, effects) = (shown.eye, shown.camera, shown.effects);
     let c = state.scene.c;
     let seen_view = kind == ViewKind::Seen && effects.light_delay;
     let delay = |p: DVec3| {
@@ -96,7 +102,7 @@ pub fn draw(state: &GameState, painter: &egui::Painter, rect: [f32; 4], kind: Vi
             0.0
         }
     };
-    let Some(arc) = showing(&state.billiard, state.view_time, delay) else {
+    let Some(arc) = showing(state.physics(), state.view_time, delay) else {
         return;
     };
     let clip = egui::Rect::from_min_size(

@@ -1,12 +1,16 @@
 //! What is drawn over the views with egui: each puck ringed in its colour
 //! with its name and clock, trails of where the pucks were seen and where
 //! they were, velocity arrows, a faint ghost of the truth over the seen
-//! picture, the cue with the stroke's β and γ, the split view's divider and
-//! captions, and the Doppler legend.
+//! picture, the cue with the stroke's β and γ, the dividers and captions of
+//! several pictures, and the Doppler legend. Each reads its picture's view
+//! (the frame schedule's output: apparent centres, clocks, eye, camera).
 
 use glam::{DVec2, DVec3, Vec4};
 
-use crate::model::GameState;
+use crate::model::{EyeChoice, GameState, Pane};
+use lightcone_engine::ecs::Entity;
+use lightcone_engine::optics::Eye;
+use lightcone_engine::scene::Effects;
 use lightcone_render::frame::{Camera, ViewKind};
 
 /// Width / height of a rectangle `[x, y, w, h]`.
@@ -64,14 +68,60 @@ pub struct Marker {
     pub heading: Option<DVec2>,
 }
 
-/// Every puck visible in its view, where it is drawn.
-pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker> {
+/// What one picture's view saw at the last frame: the view entity, its eye,
+/// its camera and its effects.
+pub struct Shown {
+    /// The view entity.
+    pub view: Entity,
+    /// The eye (observation event, observer's proper velocity).
+    pub eye: Eye,
+    /// The camera.
+    pub camera: Camera,
+    /// The effects the view has.
+    pub effects: Effects,
+}
+
+/// What the picture `pane` showed at the last frame; `None` before its view
+/// ran.
+pub fn shown(state: &GameState, pane: Pane) -> Option<Shown> {
+    let view = state.view_of(pane)?;
+    Some(Shown {
+        view,
+        eye: state.apparent(view)?.eye?,
+        camera: state.camera(view)?,
+        effects: state.view_effects(view),
+    })
+}
+
+/// The caption of a picture: what it shows, and through whose eye when
+/// that is not the eye looked through.
+pub fn caption(state: &GameState, pane: Pane) -> String {
+    let what = match pane.kind {
+        ViewKind::Truth => "truth: where the pucks are now (board frame)",
+        ViewKind::Seen => "seen: what the eye's light shows",
+    };
+    match pane.eye {
+        EyeChoice::Current => what.to_owned(),
+        EyeChoice::You => format!("you, {what}"),
+        EyeChoice::Scene(i) => match state.scene.observers.get(i) {
+            Some(o) => format!("{}, {what}", o.name),
+            None => what.to_owned(),
+        },
+    }
+}
+
+/// Every puck visible in its view, where it is drawn: read off each view's
+/// output (the apparent centres and clocks the frame schedule computed).
+pub fn markers(state: &GameState, rects: &[([f32; 4], Pane)]) -> Vec<Marker> {
     let mut out = Vec::new();
-    for (k, &(rect, kind)) in rects.iter().enumerate() {
-        let (_, camera) = state.eye_and_camera(aspect(rect));
-        let effects = kind.effects(state.effects);
+    for (k, &(rect, pane)) in rects.iter().enumerate() {
+        let Some(shown) = shown(state, pane) else {
+            continue;
+        };
+        let camera = shown.camera;
         let (right, _) = lightcone_render::camera::basis(camera.forward.normalize_or(DVec3::Y));
-        for (i, (e, s)) in state.apparent_centres(&effects).iter().enumerate() {
+        for centre in state.centres(shown.view) {
+            let (i, e, s) = (centre.puck, centre.emission, centre.seen);
             let Some(p) = project(&camera, rect, s.position) else {
                 continue;
             };
@@ -81,13 +131,14 @@ pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker>
             if !(inside(p.x, rect[0], rect[2]) && inside(p.y, rect[1], rect[3])) {
                 continue;
             }
-            let spec = &state.scene.pucks[i];
+            let Some(spec) = state.scene.pucks.get(i) else {
+                continue;
+            };
             // The puck's apparent radius on screen (its rest radius at its
             // apparent distance).
             let edge = project(&camera, rect, s.position + right * spec.radius);
             let r_px = edge.map_or(0.0, |q| q.distance(p) as f32);
-            let w = state.billiard.worldline(i);
-            let turned = w.state_at(e.event.t).orientation;
+            let turned = state.physics().worldline(i).state_at(e.event.t).orientation;
             let ahead = s.position + DVec3::new(turned.cos(), turned.sin(), 0.0) * spec.radius;
             let heading = project(&camera, rect, ahead)
                 .map(|q| q - p)
@@ -97,11 +148,7 @@ pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker>
                 puck: i,
                 centre: p,
                 ring: (r_px + 4.0).max(MARKER_PX / 2.0),
-                clock: if effects.time_dilation {
-                    w.proper_time_at(e.event.t)
-                } else {
-                    e.event.t
-                },
+                clock: centre.clock,
                 heading,
             });
         }
@@ -111,19 +158,16 @@ pub fn markers(state: &GameState, rects: &[([f32; 4], ViewKind)]) -> Vec<Marker>
 
 /// What is drawn over the views: each puck ringed in its colour (at least
 /// [`MARKER_PX`] across) with its name and the proper time its clock shows
-/// in the picture; the cue line with the stroke's β and γ; in a split view
-/// the divider and the captions.
-pub fn overlays(
-    state: &GameState,
-    painter: &egui::Painter,
-    rects: &[([f32; 4], ViewKind)],
-    ppp: f32,
-) {
+/// in the picture; the cue line with the stroke's β and γ; with several
+/// pictures the dividers and the captions.
+pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], Pane)], ppp: f32) {
     let pt = |p: DVec2| egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp);
     let label = egui::Color32::from_gray(235);
-    for &(rect, kind) in rects {
-        physics_marks(state, painter, rect, kind, ppp);
-        super::collision_arcs::draw(state, painter, rect, kind, ppp);
+    for &(rect, pane) in rects {
+        if let Some(shown) = shown(state, pane) {
+            physics_marks(state, painter, rect, pane.kind, &shown, ppp);
+            super::collision_arcs::draw(state, painter, rect, pane.kind, &shown, ppp);
+        }
     }
     for m in markers(state, rects) {
         let spec = &state.scene.pucks[m.puck];
@@ -155,21 +199,24 @@ pub fn overlays(
         );
         // The cue: from the puck along the stroke, with the β and γ the
         // puck will have.
+        let (rect, pane) = rects[m.view];
         if let Some(cue) = state.cue.filter(|c| c.puck == m.puck)
-            && rects[m.view].1 == ViewKind::Seen
+            && pane.kind == ViewKind::Seen
             && cue.du.length() > 0.0
+            && let Some(shown) = shown(state, pane)
+            && let Some(centre) = state
+                .centres(shown.view)
+                .into_iter()
+                .find(|c| c.puck == m.puck)
         {
-            let rect = rects[m.view].0;
-            let (_, camera) = state.eye_and_camera(aspect(rect));
-            let (_, s) = state.apparent_centre(&state.eye(), &state.effects, m.puck);
             let metres = (cue.du.length() * state.scene.c * 0.25).clamp(0.1, 1.5);
-            let tip = s.position + cue.du.normalize() * metres;
-            if let Some(q) = project(&camera, rect, tip) {
+            let tip = centre.seen.position + cue.du.normalize() * metres;
+            if let Some(q) = project(&shown.camera, rect, tip) {
                 let u = lightcone_engine::spacetime::ProperVelocity(
                     state
-                        .billiard
+                        .physics()
                         .worldline(cue.puck)
-                        .velocity_at(state.live_time)
+                        .proper_velocity_at(state.live_time)
                         .0
                         + cue.du,
                 );
@@ -190,25 +237,23 @@ pub fn overlays(
         }
     }
     if rects.len() > 1 {
-        for &(rect, kind) in rects {
-            let caption = match kind {
-                ViewKind::Truth => "truth: where the pucks are now (board frame)",
-                ViewKind::Seen => "seen: what the eye's light shows",
-            };
+        for &(rect, pane) in rects {
             painter.text(
                 egui::pos2((rect[0] + rect[2] / 2.0) / ppp, rect[1] / ppp + 8.0),
                 egui::Align2::CENTER_TOP,
-                caption,
+                caption(state, pane),
                 egui::FontId::proportional(14.0),
                 egui::Color32::from_gray(240),
             );
         }
-        let x = rects[1].0[0] / ppp;
-        let h = rects[1].0[3] / ppp;
-        painter.line_segment(
-            [egui::pos2(x, 0.0), egui::pos2(x, h)],
-            egui::Stroke::new(2.0, egui::Color32::from_gray(200)),
-        );
+        for &(rect, _) in &rects[1..] {
+            let x = rect[0] / ppp;
+            let h = rect[3] / ppp;
+            painter.line_segment(
+                [egui::pos2(x, 0.0), egui::pos2(x, h)],
+                egui::Stroke::new(2.0, egui::Color32::from_gray(200)),
+            );
+        }
     }
 }
 
@@ -223,6 +268,7 @@ fn physics_marks(
     painter: &egui::Painter,
     rect: [f32; 4],
     kind: ViewKind,
+    shown: &Shown,
     ppp: f32,
 ) {
     let show = state.show;
@@ -230,8 +276,7 @@ fn physics_marks(
         return;
     }
     let pt = |p: DVec2| egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp);
-    let (eye, camera) = state.eye_and_camera(aspect(rect));
-    let effects = kind.effects(state.effects);
+    let (eye, camera, effects) = (shown.eye, shown.camera, shown.effects);
     let c = state.scene.c;
     let clip = egui::Rect::from_min_size(
         egui::pos2(rect[0] / ppp, rect[1] / ppp),
@@ -250,8 +295,9 @@ fn physics_marks(
         .map(|k| t_from + (t_now - t_from) * k as f64 / SAMPLES as f64)
         .collect();
     let seen_view = kind == ViewKind::Seen && effects.light_delay;
+    let centres = state.centres(shown.view);
     for (i, spec) in state.scene.pucks.iter().enumerate() {
-        let w = state.billiard.worldline(i);
+        let w = state.physics().worldline(i);
         let colour = ring_colour(spec.color);
         let lift = DVec3::new(0.0, 0.0, spec.height / 2.0);
         if show.trails && t_now > t_from {
@@ -270,18 +316,15 @@ fn physics_marks(
             }
             // Where it was seen: solid (light delay on).
             if seen_view {
-                let v_eye = eye.u.velocity(c);
-                let seen: Vec<Option<DVec2>> = times
-                    .iter()
-                    .map(|&t| {
-                        let then = lightcone_engine::optics::Eye {
-                            event: lightcone_engine::spacetime::Event::new(
-                                t,
-                                eye.event.position - v_eye * (t_now - t),
-                            ),
-                            u: eye.u,
-                        };
-                        let (_, s) = state.apparent_centre(&then, &effects, i);
+                // The view's own history: its eye then (on its observer's
+                // worldline) and its effects, through the schedule's
+                // kernels; drawn shifted with the eye since then.
+                let seen: Vec<Option<DVec2>> = state
+                    .sim
+                    .seen_history(shown.view, i, lift, &times)
+                    .into_iter()
+                    .map(|seen| {
+                        let (then, s) = seen?;
                         project(
                             &camera,
                             rect,
@@ -323,12 +366,13 @@ fn physics_marks(
             // The velocity: now (truth) or when the light left (seen). A
             // board point is drawn where light from it shows it, so the
             // emission event's position is where the seen puck is drawn.
-            let (from, v) = if seen_view {
-                let (e, _) = state.apparent_centre(&eye, &effects, i);
-                (e.event.position, e.u.velocity(c))
-            } else {
-                (w.position_at(t_now) + lift, segment.velocity())
-            };
+            let seen_from = centres
+                .iter()
+                .find(|m| m.puck == i)
+                .filter(|_| seen_view)
+                .map(|m| (m.emission.event.position, m.emission.u.velocity(c)));
+            let (from, v) =
+                seen_from.unwrap_or_else(|| (w.position_at(t_now) + lift, segment.velocity()));
             if v.length() > 1e-9
                 && let (Some(a), Some(b)) = (board(from), board(from + v * 0.5))
             {
@@ -360,7 +404,7 @@ pub fn diagram_panel(ui: &mut egui::Ui, state: &GameState) {
         axis: state.show.diagram_axis,
         frame: state.show.diagram_frame,
     };
-    let p = plot_with(&state.scene, &state.billiard, state.eye().event, options);
+    let p = plot_with(&state.scene, state.physics(), state.eye().event, options);
     let size = egui::vec2(ui.available_width().max(300.0), 260.0);
     let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
     let painter = ui.painter_at(rect);
