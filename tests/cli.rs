@@ -647,7 +647,10 @@ fn floods_of_errors_are_capped_and_big_scenes_check_fast() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert!(took < 3.0, "check of 10⁵ pucks took {took} s");
+    // Linear: well under a second alone; a quadratic search (5·10⁹ pairs)
+    // takes tens of seconds. The bound leaves room for a loaded machine (it
+    // failed at 3 s once with four builds running on two cores).
+    assert!(took < 8.0, "check of 10⁵ pucks took {took} s");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

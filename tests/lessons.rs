@@ -241,8 +241,11 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
                 assert!(error.contains(s), "{name}: {s:?} not in\n{error}");
             }
             assert_eq!(code, Some(*status), "{name}: {error}");
+            // Within the limit and a margin: a hook that is not stopped
+            // runs 60 s or for ever; the margin covers a loaded machine
+            // (the memory bomb's allocations once took over 2 s there).
             assert!(
-                seconds - baseline < limit + 1.0,
+                seconds - baseline < limit + 3.0,
                 "{name}: stopped after {seconds:.2} s (starting takes {baseline:.2} s)"
             );
             // The state before the misbehaviour is kept: one frame ran.

@@ -54,6 +54,17 @@ def setup(world):
         "Three pucks on a cloth (μ = 0.5, g = 2 m/s², c = 1 m/s), struck at γ = 1.25, 2 "
         "and 3. Friction brakes each with the same force."
     )
+    # The paper's haptic idea as a plot: what it takes to bring a puck to β,
+    # m c²(γ − 1) (here, with μg = 1 m/s² and c = 1 m/s, also the distance
+    # friction needs to take it back, in metres), against Newton's ½ m v².
+    edges = [k / 20 for k in range(20)] + [0.99]
+    mid = [0.5 * (lo + hi) for lo, hi in zip(edges, edges[1:])]
+    world.bars(
+        "energy to reach β (m c²; here also the slide, m): relativity (bars), Newton ½β² (line)",
+        edges,
+        [1.0 / math.sqrt(1.0 - b * b) - 1.0 for b in mid],
+        [0.5 * b * b for b in mid],
+    )
     world.ask(
         "The γ = 3 puck moves only 6% faster than the γ = 2 one. How much farther does it slide?",
         ["about 6% farther", "about twice as far", "about 9 times as far"],

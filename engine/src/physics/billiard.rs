@@ -833,6 +833,18 @@ impl Billiard {
         }
     }
 
+    /// The pucks that can touch puck `m` now: its broad-phase partners
+    /// (every puck, on the reference path), in index order, so a cluster
+    /// grows in the same order either way.
+    fn neighbours(&self, m: usize) -> Vec<usize> {
+        if self.reference {
+            return (0..self.pucks.len()).filter(|&j| j != m).collect();
+        }
+        let mut near: Vec<usize> = self.broad.partners(m).iter().map(|&j| j as usize).collect();
+        near.sort_unstable();
+        near
+    }
+
     /// The pucks pressed into a cushion together with puck `i`: `i` and
     /// every puck reached from it through touching pucks (centres at most
     /// the sum of radii apart at board time `t`, m) that move with the same
@@ -844,7 +856,7 @@ impl Billiard {
         let mut k = 0;
         while k < cluster.len() {
             let (m, xm) = (cluster[k], centre(cluster[k]));
-            for j in 0..self.pucks.len() {
+            for j in self.neighbours(m) {
                 let p = &self.pucks[j];
                 if cluster.contains(&j) || !p.pending.is_empty() {
                     continue;
@@ -1220,9 +1232,8 @@ impl Billiard {
     /// reached from `a` and `b`, moves together ([`resolve::together_all`])
     /// now, at this board time (the limit of the sequence, whatever the
     /// pair frames' kick times), after any kick still ahead of a member has
-    /// landed. One collision record holds every
-    /// puck of the cluster. Returns `false` (nothing done) if the cluster is
-    /// just the pair.
+    /// landed. One collision record holds every puck of the cluster.
+    /// Returns `false` (nothing done) if the cluster is just the pair.
     fn merge_zeno_cluster(&mut self, a: usize, b: usize, contact: DVec3) -> bool {
         let t = self.time;
         let gap = ZENO_GAP * self.table.length() / self.c;
@@ -1231,7 +1242,7 @@ impl Billiard {
         let mut k = 0;
         while k < cluster.len() {
             let (m, xm) = (cluster[k], centre(cluster[k]));
-            for j in 0..self.pucks.len() {
+            for j in self.neighbours(m) {
                 let p = &self.pucks[j];
                 if cluster.contains(&j) || t - p.quick.0 >= gap {
                     continue;
