@@ -201,7 +201,10 @@ fn golden_min(
 /// The gap function `G(t)` ([`gap_min`], not [`gap`]'s quick separating
 /// axis) is concave in time between kicks: a minimum of functions linear in
 /// `t`, with slope `−m·(v_b − v_a)` at its minimiser `m` (Danskin). So a
-/// tangent at any time bounds it from above everywhere. The search keeps a
+/// tangent at any time bounds it from above everywhere; more precisely, for
+/// the direction `m` the minimisation returns (exact or not), the line
+/// `h_a(m) + h_b(m) − m·d(t)` lies above `G` for every `t`, so the bounds
+/// below hold whatever the accuracy of that minimisation. The search keeps a
 /// bracket whose left end rises and right end falls; the two tangents meet
 /// above the bracket's maximum, and where they meet at or below zero the
 /// shapes never touch (a proof, not a sample). Otherwise `G` is evaluated
