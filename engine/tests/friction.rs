@@ -369,3 +369,31 @@ fn random_scenes_with_friction_collide_and_come_to_rest() {
     eprintln!("40 random friction scenes: {pairs} pair and {cushions} cushion contacts");
     assert!(pairs > 40 && cushions > 100, "{pairs} {cushions}");
 }
+
+#[test]
+fn friction_set_after_loading_a_scene_that_rests_before_start_is_the_scenes_own() {
+    // friction.toml rests before its start (the default `before_start`):
+    // friction set on the frictionless scene afterwards must give the same
+    // run as the scene with its friction, bit for bit.
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/friction.toml");
+    let scene = lightcone_engine::scene::load(&path).expect("the shipped scene");
+    assert!(scene.table.deceleration() > 0.0);
+    let mut frictionless = scene.clone();
+    frictionless.table.friction = 0.0;
+    let mut later = Billiard::from_scene(&frictionless);
+    later.set_sliding_friction(scene.table.deceleration());
+    let mut own = Billiard::from_scene(&scene);
+    own.advance_to(5.0);
+    later.advance_to(5.0);
+    assert!(own.stats().contacts() > 0);
+    for i in 0..own.len() {
+        for t in [-1.0, 0.5, 1.0, 2.0, 5.0] {
+            assert_eq!(
+                own.worldline(i).state_at(t),
+                later.worldline(i).state_at(t),
+                "puck {i} at t = {t}"
+            );
+        }
+    }
+}

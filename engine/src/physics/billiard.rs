@@ -429,8 +429,18 @@ impl Billiard {
     /// value is taken as 0.
     pub fn set_sliding_friction(&mut self, deceleration: f64) {
         for puck in &mut self.pucks {
-            let first = puck.worldline.segments()[0];
-            puck.worldline = Worldline::braking(first.start, first.u, self.c, deceleration);
+            // A puck resting until struck at its start (`before_start =
+            // "rest"`) has that rest segment first, at the same start: the
+            // braking begins with the stroke, and the rest is kept.
+            let segments = puck.worldline.segments();
+            let rests_first = segments.len() > 1
+                && segments[0].start.t == segments[1].start.t
+                && segments[0].u == ProperVelocity::ZERO;
+            let stroke = segments[usize::from(rests_first)];
+            puck.worldline = Worldline::braking(stroke.start, stroke.u, self.c, deceleration);
+            if rests_first {
+                puck.worldline.rest_before_start();
+            }
         }
         self.start();
     }
