@@ -861,18 +861,31 @@ impl Billiard {
     /// proper velocity `u` and have no kick pending.
     fn pressed_cluster(&self, i: usize, u: ProperVelocity, t: f64) -> Vec<usize> {
         let same = |w: ProperVelocity| (w.0 - u.0).length() <= 1e-12 * u.0.length();
+        self.touching_cluster(vec![i], t, |p| {
+            p.pending.is_empty() && same(p.worldline.last().u_at(t))
+        })
+    }
+
+    /// `seeds` and every puck reached from them through touching pucks
+    /// (centres at most the sum of radii apart at board time `t`, m) that
+    /// `joins` accepts, in the order reached.
+    fn touching_cluster(
+        &self,
+        mut cluster: Vec<usize>,
+        t: f64,
+        joins: impl Fn(&Puck) -> bool,
+    ) -> Vec<usize> {
         let centre = |k: usize| self.pucks[k].worldline.last().position_at(t);
-        let mut cluster = vec![i];
         let mut k = 0;
         while k < cluster.len() {
             let (m, xm) = (cluster[k], centre(cluster[k]));
             for j in self.neighbours(m) {
                 let p = &self.pucks[j];
-                if cluster.contains(&j) || !p.pending.is_empty() {
+                if cluster.contains(&j) || !joins(p) {
                     continue;
                 }
                 let reach = (p.radius + self.pucks[m].radius) * (1.0 + 1e-9);
-                if (centre(j) - xm).length() <= reach && same(p.worldline.last().u_at(t)) {
+                if (centre(j) - xm).length() <= reach {
                     cluster.push(j);
                 }
             }
@@ -1247,23 +1260,7 @@ impl Billiard {
     fn merge_zeno_cluster(&mut self, a: usize, b: usize, contact: DVec3) -> bool {
         let t = self.time;
         let gap = ZENO_GAP * self.table.length() / self.c;
-        let centre = |k: usize| self.pucks[k].worldline.last().position_at(t);
-        let mut cluster = vec![a, b];
-        let mut k = 0;
-        while k < cluster.len() {
-            let (m, xm) = (cluster[k], centre(cluster[k]));
-            for j in self.neighbours(m) {
-                let p = &self.pucks[j];
-                if cluster.contains(&j) || t - p.quick.0 >= gap {
-                    continue;
-                }
-                let reach = (p.radius + self.pucks[m].radius) * (1.0 + 1e-9);
-                if (centre(j) - xm).length() <= reach {
-                    cluster.push(j);
-                }
-            }
-            k += 1;
-        }
+        let cluster = self.touching_cluster(vec![a, b], t, |p| t - p.quick.0 < gap);
         if cluster.len() < 3 {
             return false;
         }
