@@ -8,6 +8,7 @@ use lightcone_engine::optics::emission;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{self, BeforeStart};
 use lightcone_engine::spacetime::{Event, ProperVelocity};
+use lightcone_engine::worldline::Rigid;
 
 fn scene_text(before: &str) -> String {
     format!(
@@ -33,14 +34,14 @@ fn a_puck_struck_at_zero_is_seen_at_rest_until_its_light_arrives() {
     let d = eye.distance(start);
     assert!((d - 1.5).abs() < 1e-12);
     for t in [-2.0, 0.0, 0.5, 1.0, 1.49] {
-        let e = emission::solve(b.worldline(0), DVec3::ZERO, false, Event::new(t, eye));
+        let e = emission::solve(b.worldline(0), DVec3::ZERO, &Rigid, Event::new(t, eye));
         assert_eq!(e.event.position, start, "at t = {t}");
         assert_eq!(e.u, ProperVelocity::ZERO, "at t = {t}");
         // Light travelled exactly from that event.
         assert!((c_dt(&e.event, t, eye) - 0.0).abs() < 1e-12);
     }
     // After its light arrives it is seen moving, ahead of its start.
-    let e = emission::solve(b.worldline(0), DVec3::ZERO, false, Event::new(2.0, eye));
+    let e = emission::solve(b.worldline(0), DVec3::ZERO, &Rigid, Event::new(2.0, eye));
     assert!(e.event.t > 0.0 && e.event.position.x > start.x);
     assert!(e.u.0.x > 0.7);
     assert!(c_dt(&e.event, 2.0, eye).abs() < 1e-12);
@@ -62,7 +63,7 @@ fn moving_before_start_extends_the_first_motion_back() {
     let b = Billiard::from_scene(&s);
     let start = DVec3::new(1.0, 0.7, 0.0);
     let eye = start + DVec3::new(0.0, -1.2, 0.9);
-    let e = emission::solve(b.worldline(0), DVec3::ZERO, false, Event::new(0.5, eye));
+    let e = emission::solve(b.worldline(0), DVec3::ZERO, &Rigid, Event::new(0.5, eye));
     assert!(e.event.t < 0.0 && e.event.position.x < start.x);
     assert!(c_dt(&e.event, 0.5, eye).abs() < 1e-12);
     // The position then is the back-extended line: x = 1 + 0.6 t.

@@ -5,12 +5,13 @@
 
 use glam::DVec3;
 use lightcone_engine::camera::{self, FIT_MARGIN};
-use lightcone_engine::ecs::components::{BoardShape, Mesh, ProperTime};
+use lightcone_engine::ecs::components::{BodyContraction, Mesh, ProperTime};
 use lightcone_engine::ecs::{Apparent, BodyRef, Framing, Simulation, Vantage};
 use lightcone_engine::optics::view::{Method, observe};
 use lightcone_engine::report::ObserveReport;
 use lightcone_engine::scene::{self, Effect, Effects, Scene};
 use lightcone_engine::spacetime::ProperVelocity;
+use lightcone_engine::worldline::SegmentShape;
 use lightcone_engine::worldline::mesh::{CUSHION_HEIGHT, CUSHION_WIDTH};
 
 /// Two fast pucks that collide, a moving observer.
@@ -201,7 +202,7 @@ fn a_system_no_view_needs_is_not_in_the_frame() {
     }
     let a = sim.entity("a").unwrap();
     assert_eq!(sim.world.get::<ProperTime>(a).unwrap().0, 0.0);
-    assert!(sim.world.get::<BoardShape>(a).unwrap().0.is_empty());
+    assert!(sim.world.get::<BodyContraction>(a).unwrap().0.maps().is_empty());
     let view = sim.view("eye").unwrap();
     assert_eq!(sim.apparent(view).unwrap().applied, Effects::NONE);
     // Turned on for the view, they run from the next frame on.
@@ -210,9 +211,53 @@ fn a_system_no_view_needs_is_not_in_the_frame() {
     sim.advance_to(1.1);
     assert!(sim.world.get::<ProperTime>(a).unwrap().0 > 0.0);
     assert_eq!(
-        sim.world.get::<BoardShape>(a).unwrap().0.len(),
-        sim.world.get::<Mesh>(a).unwrap().shape.vertices.len()
+        sim.world.get::<BodyContraction>(a).unwrap().0.maps().len(),
+        sim.physics().worldline(0).segments().len()
     );
+}
+
+/// The contraction system (kinematics: each body's contracted shape along
+/// its worldline) does not run for a view without contraction: with no
+/// such view it is not in the frame (the shapes stay empty); with one, the
+/// views without it see what they saw before, bit for bit, the rest shape.
+#[test]
+fn the_contraction_system_does_not_run_for_a_view_without_contraction() {
+    let mut s = scene();
+    s.effects = Effects::NONE;
+    s.effects.light_delay = true;
+    s.effects.aberration = true;
+    let run = |sim: &mut Simulation| {
+        for f in 1..=40 {
+            sim.advance_to(f64::from(f) * 0.05);
+        }
+    };
+    let mut alone = Simulation::new(&s);
+    run(&mut alone);
+    let a = alone.entity("a").unwrap();
+    // Puck "a" collided: several segments, none of them mapped.
+    assert!(alone.physics().worldline(0).segments().len() > 1);
+    assert!(alone.world.get::<BodyContraction>(a).unwrap().0.maps().is_empty());
+    let view = alone.view("eye").unwrap();
+    assert!(!alone.apparent(view).unwrap().applied.contraction);
+    // The same run with a second, contracted view of the same eye.
+    let mut both = Simulation::new(&s);
+    let eye = both.entity("eye").unwrap();
+    let mut fx = s.effects;
+    fx.contraction = true;
+    let contracted = both.add_view("contracted", eye, fx, Framing::default(), Vantage::OnWorldline);
+    run(&mut both);
+    let a = both.entity("a").unwrap();
+    let w = both.physics().worldline(0);
+    let maps = both.world.get::<BodyContraction>(a).unwrap().0.maps().to_vec();
+    assert_eq!(maps.len(), w.segments().len());
+    for (m, seg) in maps.iter().zip(w.segments()) {
+        assert_eq!(*m, SegmentShape::contracted(seg));
+    }
+    assert!(both.apparent(contracted).unwrap().applied.contraction);
+    let rigid = both.apparent(both.view("eye").unwrap()).unwrap();
+    assert!(!rigid.applied.contraction);
+    assert_eq!(rigid, alone.apparent(view).unwrap());
+    assert_ne!(rigid.bodies[0].emissions, both.apparent(contracted).unwrap().bodies[0].emissions);
 }
 
 #[test]

@@ -612,10 +612,11 @@ mod tests {
                 for (i, e) in drawn.emissions.iter().enumerate() {
                     let r = &report.pucks[i].centre.emission;
                     let reported = Event::new(r.t, DVec3::from(r.position));
+                    let worldline = billiard.worldline(i);
                     let optics = emission::solve(
-                        billiard.worldline(i),
+                        worldline,
                         DVec3::new(0.0, 0.0, scene.pucks[i].height / 2.0),
-                        true,
+                        &lightcone_engine::worldline::ContractedShape::of(worldline),
                         drawn.eye,
                     );
                     assert!(

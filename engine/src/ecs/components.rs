@@ -1,6 +1,7 @@
 //! The components of the ECS world: bodies (pucks, fixtures, observers),
-//! views and their effect markers, and what the systems write (the board
-//! shape, proper time, and each view's [`Apparent`] output). Plain data:
+//! views and their effect markers, and what the systems write (each
+//! body's contracted shape and proper time, and each view's [`Apparent`]
+//! output). Plain data:
 //! this module imports no system.
 
 use bevy_ecs::prelude::*;
@@ -9,7 +10,7 @@ use glam::DVec3;
 use crate::camera::{Camera, Framing};
 use crate::optics::{Emission, Eye, Seen};
 use crate::scene::{Color, Effect, Effects};
-use crate::worldline::{RestShape, Worldline};
+use crate::worldline::{ContractedShape, RestShape, Worldline};
 
 // ## Bodies
 
@@ -77,11 +78,12 @@ pub struct Observer {
     pub forward: DVec3,
 }
 
-/// Board-frame vertex positions of a puck at the clock's board time,
-/// Lorentz-contracted (simultaneous in the board frame), written by the
-/// kinematics phase when some view has [`Contraction`].
+/// A body's Lorentz-contracted shape along its worldline, one map per
+/// segment, written by the kinematics phase when some view has
+/// [`Contraction`] (extended as the worldline grows, not rebuilt) and
+/// applied by the optics systems for the views with [`Contraction`] only.
 #[derive(Component, Clone, Debug, Default, PartialEq)]
-pub struct BoardShape(pub Vec<DVec3>);
+pub struct BodyContraction(pub ContractedShape);
 
 /// A body's proper time at the clock's board time, s (time dilation),
 /// written by the kinematics phase when some view has [`TimeDilation`].

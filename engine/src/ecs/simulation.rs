@@ -5,7 +5,7 @@ use bevy_ecs::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::components::{
-    Apparent, BoardShape, BodyName, BodyRef, Fixture, FramingMarks, Lens, Mesh, Observer,
+    Apparent, BodyContraction, BodyName, BodyRef, Fixture, FramingMarks, Lens, Mesh, Observer,
     OwnWorldline, ProperTime, Puck, PuckIndex, Tint, Vantage, View, effects_of, set_effect_marker,
 };
 use super::resources::{
@@ -15,13 +15,13 @@ use super::schedule::frame_schedule;
 use super::systems::input;
 use super::systems::optics::eye_at;
 use crate::camera::{self, Camera, DEFAULT_ASPECT, Framing};
-use crate::optics::view as kernel;
+use crate::optics::view::{self as kernel, Method};
 use crate::optics::{Eye, SampledHistory, Seen};
 use crate::physics::Billiard;
 use crate::scene::{Color, Effect, Effects, Scene};
 use crate::spacetime::{Event, ProperVelocity};
 use crate::worldline::mesh::{self, CUSHION_HEIGHT, CUSHION_WIDTH, PUCK_SEGMENTS};
-use crate::worldline::{RestShape, Worldline, WorldlineError};
+use crate::worldline::{ContractedShape, RestShape, Rigid, Worldline, WorldlineError};
 
 /// Why an observer cannot be moved.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
@@ -80,7 +80,7 @@ impl Simulation {
                     RestShape::puck(p.radius, p.height, PUCK_SEGMENTS),
                     DVec3::new(0.0, 0.0, p.height / 2.0),
                 ),
-                BoardShape::default(),
+                BodyContraction::default(),
                 ProperTime::default(),
             ));
         }
@@ -94,6 +94,7 @@ impl Simulation {
                 Fixture(n),
                 OwnWorldline(at_rest.clone()),
                 Mesh::new(part, centre),
+                BodyContraction::default(),
             ));
         }
         let marks = RestShape {
@@ -107,6 +108,7 @@ impl Simulation {
             FramingMarks,
             OwnWorldline(at_rest),
             Mesh::new(marks, centre),
+            BodyContraction::default(),
         ));
         let mut sim = Self {
             world,
@@ -380,7 +382,8 @@ impl Simulation {
     /// The same kernels, in the same order, as the frame schedule's optics
     /// systems run for this view, chosen by the view's own effect markers
     /// (light delay, exact or from the sampled history as the scene asks,
-    /// or board-simultaneous; contraction; aberration or board directions).
+    /// or board-simultaneous; the puck's contracted shape, built here, or
+    /// its rest shape; aberration or board directions).
     /// A history of the view's picture without running a frame per time:
     /// the seen trails. Every entry is `None` if the view, its observer or
     /// the puck does not exist.
@@ -414,43 +417,27 @@ impl Simulation {
             (Some(m), Some(h)) if m.0.sampled => Some((&h.0, m.search())),
             _ => None,
         };
+        let method = match sampled {
+            Some((h, search)) => Method::Sampled(h, search),
+            None => Method::Exact,
+        };
+        let contracted = effects.contraction.then(|| ContractedShape::of(worldline));
         let offsets = [offset];
         let (mut emissions, mut seen) = (Vec::new(), Vec::new());
         times
             .iter()
             .map(|&t| {
                 let eye = eye_at(eye_line, vantage, t);
-                match (effects.light_delay, sampled) {
-                    (true, Some((h, search))) => kernel::light_delayed_sampled(
-                        h,
-                        search,
-                        puck,
-                        worldline,
-                        &offsets,
-                        effects.contraction,
-                        &eye,
-                        &mut emissions,
+                let out = &mut emissions;
+                match &contracted {
+                    Some(shapes) => kernel::emissions_with_shape(
+                        shapes, puck, worldline, &offsets, &eye, &effects, method, out,
                     ),
-                    (true, None) => kernel::light_delayed(
-                        worldline,
-                        &offsets,
-                        effects.contraction,
-                        &eye,
-                        &mut emissions,
-                    ),
-                    (false, _) => kernel::simultaneous(
-                        worldline,
-                        &offsets,
-                        effects.contraction,
-                        &eye,
-                        &mut emissions,
+                    None => kernel::emissions_with_shape(
+                        &Rigid, puck, worldline, &offsets, &eye, &effects, method, out,
                     ),
                 }
-                if effects.aberration {
-                    kernel::aberrated(&eye, c, &emissions, &mut seen);
-                } else {
-                    kernel::on_board(&eye, &emissions, &mut seen);
-                }
+                kernel::seen(&eye, c, &effects, &emissions, &mut seen);
                 seen.first().map(|s| (eye, *s))
             })
             .collect()

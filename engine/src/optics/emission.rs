@@ -3,8 +3,9 @@
 //!
 //! A vertex rigidly attached to a body at rest-frame offset `r` moves, on
 //! segment `k`, as `x(t) = cₖ(t) + rₖ` with `cₖ` the centre's straight line
-//! and `rₖ` the offset contracted along that segment's velocity (or not, when
-//! contraction is off). Its light reaches the observation event `(t₀, x₀)`
+//! and `rₖ` the offset placed by the body's shape on that segment (its
+//! [`SegmentShape`]: contracted along the segment's velocity, or the rest
+//! shape; the kernels take the shape as data, [`ShapeMaps`]). Its light reaches the observation event `(t₀, x₀)`
 //! from the event at look-back time `τ` where `|x₀ − x(t₀ − τ)| = c τ`:
 //!
 //! ```text
@@ -29,7 +30,7 @@
 use glam::DVec3;
 
 use crate::spacetime::{Event, ProperVelocity};
-use crate::worldline::{Segment, Worldline};
+use crate::worldline::{Segment, SegmentShape, ShapeMaps, Worldline};
 
 /// Where and how fast a point was when it emitted the light seen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,37 +43,57 @@ pub struct Emission {
     pub segment: usize,
 }
 
-/// The vertex's position at the start of segment `s`.
+/// The vertex's position at the start of segment `s`, of shape `shape`.
 #[inline]
-fn start_position(s: &Segment, offset: DVec3, contracted: bool) -> DVec3 {
-    s.start.position
-        + if contracted {
-            s.place_at(s.start.t, offset)
-        } else {
-            s.rotate(offset)
-        }
+fn start_position(s: &Segment, shape: SegmentShape, offset: DVec3) -> DVec3 {
+    s.start.position + shape.place(s, s.start.t, offset)
 }
 
-/// `f` at the start of segment `s`: ≥ 0 when that event is in (or on) the
+/// `f` at the start of segment `k`: ≥ 0 when that event is in (or on) the
 /// observation's past light cone.
 #[inline]
-fn in_past_cone(s: &Segment, offset: DVec3, contracted: bool, observation: Event, c: f64) -> bool {
-    let a = start_position(s, offset, contracted);
+fn in_past_cone(
+    segments: &[Segment],
+    k: usize,
+    shapes: &impl ShapeMaps,
+    offset: DVec3,
+    observation: Event,
+    c: f64,
+) -> bool {
+    let s = &segments[k];
+    let a = start_position(s, shapes.on_segment(k, s), offset);
     c * (observation.t - s.start.t) >= (observation.position - a).length()
 }
 
+/// Index of `s` in `segments`, of which it is an element (the binary
+/// search below hands out elements; their shapes are looked up by index).
+#[inline]
+fn index_in(segments: &[Segment], s: &Segment) -> usize {
+    (std::ptr::from_ref(s).addr() - segments.as_ptr().addr()) / std::mem::size_of::<Segment>()
+}
+
 /// Index of the segment holding the emission for a point at `offset`
-/// (rest frame, from the reference point), O(log S).
+/// (rest frame, from the reference point) of a body of shape `shapes`,
+/// O(log S).
 pub fn segment_index(
     worldline: &Worldline,
     offset: DVec3,
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     observation: Event,
 ) -> usize {
     let c = worldline.speed_of_light();
-    worldline
-        .segments()
-        .partition_point(|s| in_past_cone(s, offset, contracted, observation, c))
+    let segments = worldline.segments();
+    segments
+        .partition_point(|s| {
+            in_past_cone(
+                segments,
+                index_in(segments, s),
+                shapes,
+                offset,
+                observation,
+                c,
+            )
+        })
         .saturating_sub(1)
 }
 
@@ -83,16 +104,15 @@ pub fn refine_index(
     worldline: &Worldline,
     mut k: usize,
     offset: DVec3,
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     observation: Event,
 ) -> usize {
     let c = worldline.speed_of_light();
     let segments = worldline.segments();
-    while k > 0 && !in_past_cone(&segments[k], offset, contracted, observation, c) {
+    while k > 0 && !in_past_cone(segments, k, shapes, offset, observation, c) {
         k -= 1;
     }
-    while k + 1 < segments.len()
-        && in_past_cone(&segments[k + 1], offset, contracted, observation, c)
+    while k + 1 < segments.len() && in_past_cone(segments, k + 1, shapes, offset, observation, c)
     {
         k += 1;
     }
@@ -104,16 +124,17 @@ pub fn solve_on_segment(
     worldline: &Worldline,
     k: usize,
     offset: DVec3,
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     observation: Event,
 ) -> Emission {
     let segments = worldline.segments();
     let s = &segments[k];
     let c = worldline.speed_of_light();
+    let shape = shapes.on_segment(k, s);
     if s.is_braking() {
-        return solve_on_braking(worldline, k, offset, contracted, observation);
+        return solve_on_braking(worldline, k, offset, shape, observation);
     }
-    let a = start_position(s, offset, contracted);
+    let a = start_position(s, shape, offset);
     let v = s.velocity();
     let since_start = observation.t - s.start.t;
     let d = observation.position - (a + v * since_start);
@@ -133,14 +154,15 @@ pub fn solve_on_segment(
 }
 
 /// [`solve_on_segment`] on a braking segment: the point's own braking
-/// hyperbola (Born-rigid body, or the centre's shifted by the offset when
-/// contraction is off), its emission in closed form; uniform backwards
-/// before the first segment's start, at rest after the stop.
+/// hyperbola (Born-rigid body, [`SegmentShape::BornRigid`]; otherwise the
+/// centre's, shifted by the point's fixed offset), its emission in closed
+/// form; uniform backwards before the first segment's start, at rest after
+/// the stop.
 fn solve_on_braking(
     worldline: &Worldline,
     k: usize,
     offset: DVec3,
-    contracted: bool,
+    shape: SegmentShape,
     observation: Event,
 ) -> Emission {
     let segments = worldline.segments();
@@ -148,16 +170,18 @@ fn solve_on_braking(
     let c = worldline.speed_of_light();
     let n = s.direction();
     let centre = s.braking_law();
-    let r = s.rotate(offset);
-    let (start, law) = if contracted {
-        let along = n.dot(r);
-        let across = r - n * along;
-        match centre.material_point(along) {
-            Ok((off0, law)) => (s.start.position + across + n * off0, law),
-            Err(_) => (s.start.position + s.place_at(s.start.t, offset), centre),
+    let fixed = || (start_position(s, shape, offset), centre);
+    let (start, law) = match shape {
+        SegmentShape::BornRigid => {
+            let r = s.rotate(offset);
+            let along = n.dot(r);
+            let across = r - n * along;
+            match centre.material_point(along) {
+                Ok((off0, law)) => (s.start.position + across + n * off0, law),
+                Err(_) => fixed(),
+            }
         }
-    } else {
-        (s.start.position + r, centre)
+        SegmentShape::Rest | SegmentShape::Lorentz(_) => fixed(),
     };
     let t_obs = observation.t - s.start.t;
     let end = segments
@@ -195,57 +219,58 @@ fn solve_on_braking(
 }
 
 /// The emission event of the point at rest-frame `offset` from the
-/// reference point of the body moving along `worldline`, for light reaching
-/// `observation`. Before the first segment the body keeps its initial
-/// motion (the worldline's convention), so there is always an answer.
+/// reference point of the body moving along `worldline` with the shape
+/// `shapes`, for light reaching `observation`. Before the first segment the
+/// body keeps its initial motion (the worldline's convention), so there is
+/// always an answer.
 pub fn solve(
     worldline: &Worldline,
     offset: DVec3,
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     observation: Event,
 ) -> Emission {
-    let k = segment_index(worldline, offset, contracted, observation);
-    solve_on_segment(worldline, k, offset, contracted, observation)
+    let k = segment_index(worldline, offset, shapes, observation);
+    solve_on_segment(worldline, k, offset, shapes, observation)
 }
 
-/// Emission events of every point of a body (rest-frame `offsets`), the
-/// segment search shared: one binary search for `reference`, then a short
-/// walk per point. Appends to `out`.
+/// Emission events of every point of a body (rest-frame `offsets`, shape
+/// `shapes`), the segment search shared: one binary search for
+/// `reference`, then a short walk per point. Appends to `out`.
 pub fn solve_body(
     worldline: &Worldline,
     offsets: &[DVec3],
     reference: DVec3,
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     observation: Event,
     out: &mut Vec<Emission>,
 ) {
-    let k0 = segment_index(worldline, reference, contracted, observation);
+    let k0 = segment_index(worldline, reference, shapes, observation);
     if worldline.segments().len() == 1 {
         out.extend(
             offsets
                 .iter()
-                .map(|&r| solve_on_segment(worldline, 0, r, contracted, observation)),
+                .map(|&r| solve_on_segment(worldline, 0, r, shapes, observation)),
         );
         return;
     }
     out.extend(offsets.iter().map(|&r| {
-        let k = refine_index(worldline, k0, r, contracted, observation);
-        solve_on_segment(worldline, k, r, contracted, observation)
+        let k = refine_index(worldline, k0, r, shapes, observation);
+        solve_on_segment(worldline, k, r, shapes, observation)
     }));
 }
 
-/// The board-frame-simultaneous "emission" (light delay off): the point
-/// where it is at the observation's board time.
-pub fn simultaneous(worldline: &Worldline, offset: DVec3, contracted: bool, t: f64) -> Emission {
+/// The board-frame-simultaneous "emission" (light delay off): the point of
+/// the body of shape `shapes` where it is at the observation's board time.
+pub fn simultaneous(
+    worldline: &Worldline,
+    offset: DVec3,
+    shapes: &impl ShapeMaps,
+    t: f64,
+) -> Emission {
     let k = worldline.segment_index_at(t);
     let s = &worldline.segments()[k];
-    let r = if contracted {
-        s.place_at(t, offset)
-    } else {
-        s.rotate(offset)
-    };
     Emission {
-        event: Event::new(t, s.position_at(t) + r),
+        event: Event::new(t, s.position_at(t) + shapes.on_segment(k, s).place(s, t, offset)),
         u: s.u_at(t),
         segment: k,
     }
@@ -272,6 +297,7 @@ pub fn light_catch_up(d: DVec3, v: DVec3, c: f64, gamma: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::worldline::ContractedShape;
 
     const C: f64 = 1.42;
 
@@ -287,7 +313,7 @@ mod tests {
             let e = solve(
                 &w,
                 DVec3::ZERO,
-                true,
+                &ContractedShape::of(&w),
                 Event::new(t0, DVec3::new(0.0, h, 0.0)),
             );
             // (c² − v²) t² − 2 c² t₀ t + c² t₀² − h² = 0, earlier root.
@@ -317,7 +343,7 @@ mod tests {
         let mut last: Option<Emission> = None;
         for i in 0..400 {
             let t0 = 0.5 + 0.01 * f64::from(i);
-            let e = solve(&w, DVec3::ZERO, true, Event::new(t0, eye));
+            let e = solve(&w, DVec3::ZERO, &ContractedShape::of(&w), Event::new(t0, eye));
             // On the cone, on the worldline.
             assert!((C * (t0 - e.event.t) - (eye - e.event.position).length()).abs() < 1e-12);
             assert!((w.position_at(e.event.t) - e.event.position).length() < 1e-12);
@@ -335,7 +361,7 @@ mod tests {
         let e = solve(
             &w,
             DVec3::ZERO,
-            true,
+            &ContractedShape::of(&w),
             Event::new(0.0, DVec3::new(1.0, 1.0, 0.0)),
         );
         assert!(e.event.t < 0.0);
@@ -361,9 +387,10 @@ mod tests {
             .collect();
         let obs = Event::new(3.7, DVec3::new(1.0, -1.0, 0.5));
         let mut shared = Vec::new();
-        solve_body(&w, &offsets, DVec3::ZERO, true, obs, &mut shared);
+        let shapes = ContractedShape::of(&w);
+        solve_body(&w, &offsets, DVec3::ZERO, &shapes, obs, &mut shared);
         for (r, e) in offsets.iter().zip(&shared) {
-            assert_eq!(*e, solve(&w, *r, true, obs));
+            assert_eq!(*e, solve(&w, *r, &shapes, obs));
         }
     }
 
@@ -377,6 +404,7 @@ mod tests {
         let u = ProperVelocity(DVec3::new(2.0, 0.8, 0.0));
         let mut w = Worldline::braking(Event::new(0.0, DVec3::new(0.4, 0.3, 0.0)), u, C, 1.5);
         let stop = w.come_to_rest().unwrap();
+        let shapes = ContractedShape::of(&w);
         let eye = DVec3::new(1.2, -1.0, 0.7);
         let mut last_t = f64::NEG_INFINITY;
         for i in 0..300 {
@@ -386,7 +414,7 @@ mod tests {
                 DVec3::new(0.03, 0.0, 0.0),
                 DVec3::new(-0.02, 0.02, 0.01),
             ] {
-                let e = solve(&w, r, true, Event::new(t0, eye));
+                let e = solve(&w, r, &shapes, Event::new(t0, eye));
                 let on_cone = C * (t0 - e.event.t) - (eye - e.event.position).length();
                 assert!(on_cone.abs() < 1e-12, "{t0} {r}: {on_cone}");
                 let s = w.segment_at(e.event.t);

@@ -14,7 +14,7 @@ use glam::DVec3;
 
 use super::emission::Emission;
 use crate::spacetime::{Event, ProperVelocity, rotate_about_normal};
-use crate::worldline::{Worldline, contract};
+use crate::worldline::{ShapeMaps, Worldline};
 
 /// How the sampled history is searched.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,26 +104,24 @@ impl SampledHistory {
         }
     }
 
-    fn position(&self, body: usize, i: usize, offset: DVec3, contracted: bool) -> DVec3 {
+    /// Sample `i` of the point at rest-frame `offset` of `body`, of shape
+    /// `shapes` at the sample's velocity.
+    fn position(&self, body: usize, i: usize, offset: DVec3, shapes: &impl ShapeMaps) -> DVec3 {
         let track = &self.tracks[body];
         let turned = rotate_about_normal(offset, track.orientation[i]);
-        let r = if contracted {
-            contract(turned, track.u[i])
-        } else {
-            turned
-        };
-        track.centre[i] + r
+        track.centre[i] + shapes.moving_with(track.u[i]).apply(turned)
     }
 
-    /// The emission event of the point at `offset` on `body` for light
-    /// reaching `observation`, by dichotomy over the table. Before the
-    /// oldest sample the oldest is used; after the newest, the newest.
-    /// `None` if the table is empty.
+    /// The emission event of the point at `offset` on `body` (of shape
+    /// `shapes`: contracted at each sample's velocity, or the rest shape)
+    /// for light reaching `observation`, by dichotomy over the table.
+    /// Before the oldest sample the oldest is used; after the newest, the
+    /// newest. `None` if the table is empty.
     pub fn solve(
         &self,
         body: usize,
         offset: DVec3,
-        contracted: bool,
+        shapes: &impl ShapeMaps,
         observation: Event,
         c: f64,
         search: Search,
@@ -135,10 +133,10 @@ impl SampledHistory {
         // f ≥ 0: the sample is inside (or on) the past light cone.
         let f = |i: usize| {
             c * (observation.t - self.times[i])
-                - (observation.position - self.position(body, i, offset, contracted)).length()
+                - (observation.position - self.position(body, i, offset, shapes)).length()
         };
         let sample = |i: usize| Emission {
-            event: Event::new(self.times[i], self.position(body, i, offset, contracted)),
+            event: Event::new(self.times[i], self.position(body, i, offset, shapes)),
             u: self.tracks[body].u[i],
             segment: i,
         };
@@ -178,6 +176,7 @@ impl SampledHistory {
 mod tests {
     use super::*;
     use crate::optics::emission;
+    use crate::worldline::ContractedShape;
 
     const C: f64 = 1.42;
 
@@ -192,7 +191,8 @@ mod tests {
         .unwrap();
         let obs = Event::new(2.5, DVec3::new(1.4, -1.0, 0.9));
         let offset = DVec3::new(0.03, 0.0, 0.01);
-        let exact = emission::solve(&w, offset, true, obs);
+        let shapes = ContractedShape::of(&w);
+        let exact = emission::solve(&w, offset, &shapes, obs);
         let mut last_err = f64::INFINITY;
         for fps in [30.0, 120.0, 480.0] {
             let mut h = SampledHistory::new(1, 100_000);
@@ -201,12 +201,12 @@ mod tests {
                 h.record(t, [&w]);
                 t += 1.0 / fps;
             }
-            let with = h.solve(0, offset, true, obs, C, Search::default()).unwrap();
+            let with = h.solve(0, offset, &shapes, obs, C, Search::default()).unwrap();
             let without = h
                 .solve(
                     0,
                     offset,
-                    true,
+                    &shapes,
                     obs,
                     C,
                     Search {

@@ -2,12 +2,15 @@
 //! effect flags: light delay ([`light_delayed`], [`light_delayed_sampled`])
 //! or board simultaneity ([`simultaneous`]); aberration ([`aberrated`]) or
 //! board directions ([`on_board`]); [`doppler`]; [`searchlight_intensity`].
-//! The frame schedule (`crate::ecs`) runs each as its own system for the
-//! views that have the effect.
+//! A body's shape is data they take ([`ShapeMaps`]: the kinematics phase's
+//! contracted shape, or the rest shape [`Rigid`]), not a switch. The frame
+//! schedule (`crate::ecs`) runs each as its own system for the views that
+//! have the effect.
 //!
-//! [`observe`] composes them for one eye and one effect set, as the
-//! commands that predate the schedule use it (to be replaced by the
-//! schedule's per-view output, issue 12).
+//! [`observe`] composes them for one eye and one effect set (building each
+//! puck's contracted shape itself when the set has contraction): the
+//! engine tests' reference for the schedule's per-view output; [`emissions`]
+//! and [`seen`] are its steps, which `lightcone bench optics` times.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -17,7 +20,7 @@ use super::eye::{Eye, Seen, searchlight};
 use super::history::{SampledHistory, Search};
 use crate::physics::Billiard;
 use crate::scene::Effects;
-use crate::worldline::{RestShape, Worldline};
+use crate::worldline::{ContractedShape, RestShape, Rigid, ShapeMaps, Worldline};
 
 /// How emission events are found.
 #[derive(Clone, Copy, Debug)]
@@ -63,23 +66,22 @@ pub struct View {
 }
 
 /// Light delay (kernel): the emission events of the points at rest-frame
-/// `offsets` on a body moving along `worldline`, for light reaching the
-/// `eye`, exactly on the worldline. `contracted`: the body's shape is
-/// Lorentz-contracted along its motion (its rest shape otherwise).
+/// `offsets` on a body moving along `worldline` with the shape `shapes`,
+/// for light reaching the eye, exactly on the worldline.
 pub fn light_delayed(
     worldline: &Worldline,
     offsets: &[DVec3],
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     eye: &Eye,
     out: &mut Vec<Emission>,
 ) {
     out.clear();
-    emission::solve_body(worldline, offsets, DVec3::ZERO, contracted, eye.event, out);
+    emission::solve_body(worldline, offsets, DVec3::ZERO, shapes, eye.event, out);
 }
 
 /// Light delay (kernel) by the paper's method: emission events of `offsets`
-/// on puck `puck` searched in the sampled `history` (the exact solve on
-/// `worldline` where the history has no sample yet).
+/// on puck `puck` (shape `shapes`) searched in the sampled `history` (the
+/// exact solve on `worldline` where the history has no sample yet).
 #[allow(clippy::too_many_arguments)]
 pub fn light_delayed_sampled(
     history: &SampledHistory,
@@ -87,7 +89,7 @@ pub fn light_delayed_sampled(
     puck: usize,
     worldline: &Worldline,
     offsets: &[DVec3],
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     eye: &Eye,
     out: &mut Vec<Emission>,
 ) {
@@ -95,17 +97,18 @@ pub fn light_delayed_sampled(
     let c = worldline.speed_of_light();
     out.extend(offsets.iter().map(|&r| {
         history
-            .solve(puck, r, contracted, eye.event, c, search)
-            .unwrap_or_else(|| emission::solve(worldline, r, contracted, eye.event))
+            .solve(puck, r, shapes, eye.event, c, search)
+            .unwrap_or_else(|| emission::solve(worldline, r, shapes, eye.event))
     }));
 }
 
-/// Without light delay (kernel): every point where it is at the eye's
-/// board time (board-simultaneous, the "truth").
+/// Without light delay (kernel): every point of the body of shape
+/// `shapes` where it is at the eye's board time (board-simultaneous, the
+/// "truth").
 pub fn simultaneous(
     worldline: &Worldline,
     offsets: &[DVec3],
-    contracted: bool,
+    shapes: &impl ShapeMaps,
     eye: &Eye,
     out: &mut Vec<Emission>,
 ) {
@@ -113,7 +116,7 @@ pub fn simultaneous(
     out.extend(
         offsets
             .iter()
-            .map(|&r| emission::simultaneous(worldline, r, contracted, eye.event.t)),
+            .map(|&r| emission::simultaneous(worldline, r, shapes, eye.event.t)),
     );
 }
 
@@ -153,8 +156,9 @@ pub fn searchlight_intensity(eye: &Eye, emissions: &[Emission], out: &mut Vec<f6
     );
 }
 
-/// Emission events with the effects of `effects` (for [`observe`] and the
-/// front ends that predate the schedule; they move to it in issue 12).
+/// Emission events with the effects of `effects` (for [`observe`] and
+/// `lightcone bench optics`): with contraction, the puck's contracted shape
+/// built here ([`ContractedShape::of`]), else its rest shape.
 pub fn emissions(
     billiard: &Billiard,
     puck: usize,
@@ -165,12 +169,33 @@ pub fn emissions(
     out: &mut Vec<Emission>,
 ) {
     let w = billiard.worldline(puck);
-    let contracted = effects.contraction;
+    if effects.contraction {
+        let shapes = ContractedShape::of(w);
+        emissions_with_shape(&shapes, puck, w, offsets, eye, effects, method, out);
+    } else {
+        emissions_with_shape(&Rigid, puck, w, offsets, eye, effects, method, out);
+    }
+}
+
+/// [`emissions`] of puck `puck` moving along `w` with the shape `shapes`
+/// (light delay, exactly or by `method`, or board-simultaneous, as
+/// `effects` asks).
+#[allow(clippy::too_many_arguments)]
+pub fn emissions_with_shape(
+    shapes: &impl ShapeMaps,
+    puck: usize,
+    w: &Worldline,
+    offsets: &[DVec3],
+    eye: &Eye,
+    effects: &Effects,
+    method: Method,
+    out: &mut Vec<Emission>,
+) {
     match (effects.light_delay, method) {
-        (false, _) => simultaneous(w, offsets, contracted, eye, out),
-        (true, Method::Exact) => light_delayed(w, offsets, contracted, eye, out),
+        (false, _) => simultaneous(w, offsets, shapes, eye, out),
+        (true, Method::Exact) => light_delayed(w, offsets, shapes, eye, out),
         (true, Method::Sampled(history, search)) => {
-            light_delayed_sampled(history, search, puck, w, offsets, contracted, eye, out)
+            light_delayed_sampled(history, search, puck, w, offsets, shapes, eye, out)
         }
     }
 }
@@ -212,40 +237,72 @@ pub fn observe(
     method: Method,
     with_vertices: bool,
 ) -> View {
-    let c = billiard.c();
-    // Every point of `offsets` on `puck`, as seen.
-    let points = |puck: usize, offsets: &[DVec3]| -> Vec<PointView> {
-        let (mut e, mut s) = (Vec::new(), Vec::new());
-        emissions(billiard, puck, offsets, &eye, &effects, method, &mut e);
-        seen(&eye, c, &effects, &e, &mut s);
-        doppler(&eye, &e, &mut s);
-        e.iter()
-            .zip(&s)
-            .map(|(e, s)| point(*e, *s, &effects))
-            .collect()
-    };
     let bodies = (0..billiard.len())
         .into_par_iter()
         .map(|puck| {
-            let centre = points(puck, &[DVec3::new(0.0, 0.0, heights[puck] / 2.0)])[0];
-            let w = billiard.worldline(puck);
-            let seen_proper_time = if effects.time_dilation {
-                w.proper_time_at(centre.emission.event.t)
-            } else {
-                centre.emission.event.t
+            let vertices = with_vertices.then_some(shapes[puck].vertices.as_slice());
+            let centre = DVec3::new(0.0, 0.0, heights[puck] / 2.0);
+            let seen = Observed {
+                billiard,
+                eye: &eye,
+                effects: &effects,
+                method,
             };
-            let vertices = if with_vertices {
-                points(puck, &shapes[puck].vertices)
+            if effects.contraction {
+                let contracted = ContractedShape::of(billiard.worldline(puck));
+                seen.body(puck, &contracted, centre, vertices)
             } else {
-                Vec::new()
-            };
-            BodyView {
-                puck,
-                centre,
-                seen_proper_time,
-                vertices,
+                seen.body(puck, &Rigid, centre, vertices)
             }
         })
         .collect();
     View { eye, bodies }
+}
+
+/// What [`observe`] looks at.
+struct Observed<'a> {
+    billiard: &'a Billiard,
+    eye: &'a Eye,
+    effects: &'a Effects,
+    method: Method<'a>,
+}
+
+impl Observed<'_> {
+    /// Every point of `offsets` on `puck`, of shape `shapes`, as seen.
+    fn points(&self, puck: usize, shapes: &impl ShapeMaps, offsets: &[DVec3]) -> Vec<PointView> {
+        let (mut e, mut s) = (Vec::new(), Vec::new());
+        let w = self.billiard.worldline(puck);
+        emissions_with_shape(shapes, puck, w, offsets, self.eye, self.effects, self.method, &mut e);
+        seen(self.eye, self.billiard.c(), self.effects, &e, &mut s);
+        doppler(self.eye, &e, &mut s);
+        e.iter()
+            .zip(&s)
+            .map(|(e, s)| point(*e, *s, self.effects))
+            .collect()
+    }
+
+    /// Puck `puck` (shape `shapes`): its `centre` (rest-frame offset) and
+    /// its `vertices` if given.
+    fn body(
+        &self,
+        puck: usize,
+        shapes: &impl ShapeMaps,
+        centre: DVec3,
+        vertices: Option<&[DVec3]>,
+    ) -> BodyView {
+        let centre = self.points(puck, shapes, &[centre])[0];
+        let seen_proper_time = if self.effects.time_dilation {
+            self.billiard
+                .worldline(puck)
+                .proper_time_at(centre.emission.event.t)
+        } else {
+            centre.emission.event.t
+        };
+        BodyView {
+            puck,
+            centre,
+            seen_proper_time,
+            vertices: vertices.map_or_else(Vec::new, |v| self.points(puck, shapes, v)),
+        }
+    }
 }

@@ -3,6 +3,7 @@
 use glam::DVec3;
 
 use super::sliding::Braking;
+use super::contraction::LorentzMap;
 use crate::spacetime::{Event, ProperVelocity, rotation_of_velocity_change};
 
 /// Why a kink cannot be appended to a worldline.
@@ -199,7 +200,15 @@ impl Segment {
         if self.deceleration == 0.0 {
             return self.place(r);
         }
-        let r = self.rotate(r);
+        self.born_rigid_offset(t, self.rotate(r))
+    }
+
+    /// On a braking segment, where the point of the Born-rigid body at
+    /// rest-frame offset `r` (already turned by [`Self::rotate`]) lies from
+    /// the reference point at board time `t`: across the motion `r⊥`, along
+    /// it [`Braking::contracted_offset_at`] (the instantaneous Lorentz
+    /// contraction beyond the Rindler horizon). See [`Self::place_at`].
+    pub fn born_rigid_offset(&self, t: f64, r: DVec3) -> DVec3 {
         let n = self.direction;
         let along = n.dot(r);
         let across = r - n * along;
@@ -222,9 +231,14 @@ impl Segment {
     /// cached: `r⊥ + n (n·r) / γ`.
     #[inline]
     pub fn contract(&self, r: DVec3) -> DVec3 {
-        let n = self.direction;
-        let along = n.dot(r);
-        (r - n * along) + n * (along * self.inverse_gamma)
+        self.lorentz_map().apply(r)
+    }
+
+    /// This segment's Lorentz contraction as a map (direction and `1/γ`
+    /// cached): [`Self::contract`] is its [`LorentzMap::apply`].
+    #[inline]
+    pub fn lorentz_map(&self) -> LorentzMap {
+        LorentzMap::from_parts(self.direction, self.inverse_gamma)
     }
 
     /// A rest-frame offset (axes of the body's mesh) turned by this

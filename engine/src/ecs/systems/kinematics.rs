@@ -1,24 +1,27 @@
 //! The kinematics phase (the design's *relativistic-transform*): each
-//! puck's Lorentz-contracted board-frame shape and its proper time at the
-//! clock's board time, each run only when some view has the effect.
+//! body's Lorentz-contracted shape along its worldline and its proper time
+//! at the clock's board time, each run only when some view has the effect.
 
 use bevy_ecs::prelude::*;
 
-use crate::ecs::components::{BoardShape, Mesh, OwnWorldline, ProperTime, PuckIndex};
+use crate::ecs::components::{BodyContraction, OwnWorldline, ProperTime, PuckIndex};
 use crate::ecs::resources::{Clock, Physics};
 
-/// Effect `contraction`: each puck's board-frame shape, its rest shape
-/// contracted by `1/γ` along its velocity (the paper's §3.2.2).
+/// Effect `contraction`: each body's shape along its worldline, its rest
+/// shape contracted by `1/γ` along each segment's velocity (the paper's
+/// §3.2.2; Born-rigid on a braking segment), one map per segment
+/// ([`crate::worldline::SegmentShape::contracted`]). Only the maps of
+/// segments added or changed since the last frame are computed.
 pub fn contraction(
-    clock: Res<Clock>,
     physics: Res<Physics>,
-    mut pucks: Query<(&PuckIndex, &Mesh, &mut BoardShape)>,
+    mut pucks: Query<(&PuckIndex, &mut BodyContraction)>,
+    mut others: Query<(&OwnWorldline, &mut BodyContraction), Without<PuckIndex>>,
 ) {
-    for (index, mesh, mut out) in &mut pucks {
-        let worldline = physics.0.worldline(index.0);
-        out.0.clear();
-        out.0
-            .extend(mesh.shape.board_vertices_at(worldline, clock.t, true));
+    for (index, mut shape) in &mut pucks {
+        shape.0.update(physics.0.worldline(index.0));
+    }
+    for (worldline, mut shape) in &mut others {
+        shape.0.update(&worldline.0);
     }
 }
 

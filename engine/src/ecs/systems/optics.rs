@@ -7,54 +7,80 @@
 //!
 //! Order (chained): emission events (light delay or board-simultaneous),
 //! then apparent positions (aberration or board directions), then the
-//! Doppler factor, the searchlight and the clocks.
+//! Doppler factor, the searchlight and the clocks. The emission systems
+//! place each body's points with the kinematics phase's contracted shape
+//! ([`BodyContraction`]) for the views with [`Contraction`] (one query) and
+//! with the rest shape ([`Rigid`]) for the others (another): the kernels
+//! take the shape as data.
 
 use bevy_ecs::prelude::*;
 use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::camera::{self, FIT_MARGIN, Framing};
+use crate::scene::Effects;
 use crate::ecs::components::{
-    Aberration, Apparent, ApparentBody, BodyRef, Contraction, Doppler, Fixture, FramingMarks, Lens,
-    LightDelay, Mesh, Observer, OwnWorldline, PuckIndex, Searchlight, TimeDilation, Vantage, View,
+    Aberration, Apparent, ApparentBody, BodyContraction, BodyRef, Contraction, Doppler, Fixture,
+    FramingMarks, Lens, LightDelay, Mesh, Observer, OwnWorldline, PuckIndex, Searchlight,
+    TimeDilation, Vantage, View,
 };
 use crate::ecs::resources::{Clock, History, OpticsMethod, Physics, SpeedOfLight};
-use crate::optics::Eye;
+use crate::optics::history::Search;
 use crate::optics::view as kernel;
+use crate::optics::{Emission, Eye, SampledHistory};
 use crate::spacetime::Event;
-use crate::worldline::Worldline;
+use crate::worldline::{ContractedShape, Rigid, ShapeMaps, Worldline};
 
-/// The pucks' meshes.
-pub type Pucks<'w, 's> = Query<'w, 's, (&'static PuckIndex, &'static Mesh)>;
-/// The fixtures: number, worldline, mesh.
-pub type Fixtures<'w, 's> = Query<'w, 's, (&'static Fixture, &'static OwnWorldline, &'static Mesh)>;
+/// The pucks' meshes and contracted shapes.
+pub type Pucks<'w, 's> =
+    Query<'w, 's, (&'static PuckIndex, &'static Mesh, &'static BodyContraction)>;
+/// The fixtures: number, worldline, mesh, contracted shape.
+pub type Fixtures<'w, 's> = Query<
+    'w,
+    's,
+    (
+        &'static Fixture,
+        &'static OwnWorldline,
+        &'static Mesh,
+        &'static BodyContraction,
+    ),
+>;
 /// The observers' worldlines.
 pub type Observers<'w, 's> = Query<'w, 's, &'static OwnWorldline, With<Observer>>;
+/// The views with effect marker `M` and with (`C` = `With<Contraction>`)
+/// or without (`Without<Contraction>`) contraction.
+pub type ViewsWith<'w, 's, M, C> =
+    Query<'w, 's, (&'static View, &'static Vantage, &'static mut Apparent), (M, C)>;
 
 /// One body optics follows this frame.
 struct Body<'a> {
     id: BodyRef,
     worldline: &'a Worldline,
     points: &'a [DVec3],
+    /// Its contracted shape (empty when no view has [`Contraction`]).
+    contracted: &'a ContractedShape,
 }
 
 /// Every puck (index order), then every fixture (number order).
 fn bodies<'a>(physics: &'a Physics, pucks: &'a Pucks, fixtures: &'a Fixtures) -> Vec<Body<'a>> {
-    let mut p: Vec<(usize, &Mesh)> = pucks.iter().map(|(i, m)| (i.0, m)).collect();
-    p.sort_unstable_by_key(|(i, _)| *i);
-    let mut f: Vec<(usize, &OwnWorldline, &Mesh)> =
-        fixtures.iter().map(|(n, w, m)| (n.0, w, m)).collect();
-    f.sort_unstable_by_key(|(n, _, _)| *n);
+    let mut p: Vec<(usize, &Mesh, &BodyContraction)> =
+        pucks.iter().map(|(i, m, s)| (i.0, m, s)).collect();
+    p.sort_unstable_by_key(|(i, _, _)| *i);
+    let mut f: Vec<(usize, &OwnWorldline, &Mesh, &BodyContraction)> =
+        fixtures.iter().map(|(n, w, m, s)| (n.0, w, m, s)).collect();
+    f.sort_unstable_by_key(|(n, _, _, _)| *n);
     p.into_iter()
-        .map(|(i, m)| Body {
+        .map(|(i, m, s)| Body {
             id: BodyRef::Puck(i),
             worldline: physics.0.worldline(i),
             points: &m.points,
+            contracted: &s.0,
         })
-        .chain(f.into_iter().map(|(n, w, m)| Body {
+        .chain(f.into_iter().map(|(n, w, m, s)| Body {
             id: BodyRef::Fixture(n),
             worldline: &w.0,
             points: &m.points,
+            contracted: &s.0,
         }))
         .collect()
 }
@@ -81,7 +107,7 @@ fn begin(
     apparent: &mut Apparent,
     bodies: &[Body],
 ) -> Option<Eye> {
-    apparent.applied = crate::scene::Effects::NONE;
+    apparent.applied = Effects::NONE;
     let Ok(worldline) = observers.get(view.observer) else {
         apparent.eye = None;
         apparent.bodies.clear();
@@ -118,47 +144,35 @@ pub fn light_delay(
     pucks: Pucks,
     fixtures: Fixtures,
     observers: Observers,
-    mut views: Query<(&View, &Vantage, &mut Apparent, Has<Contraction>), With<LightDelay>>,
+    mut contracted: ViewsWith<With<LightDelay>, With<Contraction>>,
+    mut rigid: ViewsWith<With<LightDelay>, Without<Contraction>>,
 ) {
     let sampled = match (&method, &history) {
         (Some(m), Some(h)) if m.0.sampled => Some((&h.0, m.search())),
         _ => None,
     };
     let bodies = bodies(&physics, &pucks, &fixtures);
-    for (view, vantage, mut apparent, contracted) in &mut views {
-        let apparent = &mut *apparent;
-        let Some(eye) = begin(view, *vantage, clock.t, &observers, apparent, &bodies) else {
-            continue;
-        };
-        apparent.applied.light_delay = true;
-        apparent.applied.contraction = contracted;
-        apparent
-            .bodies
-            .par_iter_mut()
-            .zip(bodies.par_iter())
-            .for_each(|(out, body)| {
-                match (body.id, sampled) {
-                    (BodyRef::Puck(i), Some((h, search))) => kernel::light_delayed_sampled(
-                        h,
-                        search,
-                        i,
-                        body.worldline,
-                        body.points,
-                        contracted,
-                        &eye,
-                        &mut out.emissions,
-                    ),
-                    _ => kernel::light_delayed(
-                        body.worldline,
-                        body.points,
-                        contracted,
-                        &eye,
-                        &mut out.emissions,
-                    ),
-                }
-                neutral(out);
-            });
-    }
+    let ran = Effects {
+        light_delay: true,
+        ..Effects::NONE
+    };
+    let (t, observers) = (clock.t, &observers);
+    emit(
+        contracted.iter_mut(),
+        &bodies,
+        |b| b.contracted,
+        with_contraction(ran),
+        (t, observers),
+        |s, b, e, out| light_delayed(sampled, s, b, e, out),
+    );
+    emit(
+        rigid.iter_mut(),
+        &bodies,
+        |_| &Rigid,
+        ran,
+        (t, observers),
+        |s, b, e, out| light_delayed(sampled, s, b, e, out),
+    );
 }
 
 /// Without `light_delay`: each point where it is at the board time of the
@@ -170,27 +184,81 @@ pub fn simultaneous(
     pucks: Pucks,
     fixtures: Fixtures,
     observers: Observers,
-    mut views: Query<(&View, &Vantage, &mut Apparent, Has<Contraction>), Without<LightDelay>>,
+    mut contracted: ViewsWith<Without<LightDelay>, With<Contraction>>,
+    mut rigid: ViewsWith<Without<LightDelay>, Without<Contraction>>,
 ) {
     let bodies = bodies(&physics, &pucks, &fixtures);
-    for (view, vantage, mut apparent, contracted) in &mut views {
+    let (t, observers) = (clock.t, &observers);
+    emit(
+        contracted.iter_mut(),
+        &bodies,
+        |b| b.contracted,
+        with_contraction(Effects::NONE),
+        (t, observers),
+        |s, b, e, out| kernel::simultaneous(b.worldline, b.points, s, e, out),
+    );
+    emit(
+        rigid.iter_mut(),
+        &bodies,
+        |_| &Rigid,
+        Effects::NONE,
+        (t, observers),
+        |s, b, e, out| kernel::simultaneous(b.worldline, b.points, s, e, out),
+    );
+}
+
+/// `effects` and contraction.
+fn with_contraction(effects: Effects) -> Effects {
+    Effects {
+        contraction: true,
+        ..effects
+    }
+}
+
+/// The light-delay kernel for `body` of shape `shapes`: from the sampled
+/// history for a puck when the scene asks for it, exactly otherwise.
+fn light_delayed(
+    sampled: Option<(&SampledHistory, Search)>,
+    shapes: &impl ShapeMaps,
+    body: &Body,
+    eye: &Eye,
+    out: &mut Vec<Emission>,
+) {
+    match (body.id, sampled) {
+        (BodyRef::Puck(i), Some((h, search))) => {
+            kernel::light_delayed_sampled(h, search, i, body.worldline, body.points, shapes, eye, out)
+        }
+        _ => kernel::light_delayed(body.worldline, body.points, shapes, eye, out),
+    }
+}
+
+/// For each view of `views` (at the frame's board time, with the
+/// observers, `frame`): starts its frame, runs the emission `kernel` on
+/// every body with the shape `shape_of` picks for it, and records `ran` as
+/// what was applied. Which shape is the caller's: the contracted one for
+/// the views its query found with [`Contraction`], the rest shape for the
+/// others.
+fn emit<'a, 'v, S: ShapeMaps + 'a>(
+    views: impl Iterator<Item = (&'v View, &'v Vantage, Mut<'v, Apparent>)>,
+    bodies: &'a [Body<'a>],
+    shape_of: impl Fn(&'a Body<'a>) -> &'a S + Sync,
+    ran: Effects,
+    frame: (f64, &Observers),
+    kernel: impl Fn(&S, &Body, &Eye, &mut Vec<Emission>) + Sync,
+) {
+    let (t, observers) = frame;
+    for (view, vantage, mut apparent) in views {
         let apparent = &mut *apparent;
-        let Some(eye) = begin(view, *vantage, clock.t, &observers, apparent, &bodies) else {
+        let Some(eye) = begin(view, *vantage, t, observers, apparent, bodies) else {
             continue;
         };
-        apparent.applied.contraction = contracted;
+        apparent.applied = ran;
         apparent
             .bodies
             .par_iter_mut()
             .zip(bodies.par_iter())
             .for_each(|(out, body)| {
-                kernel::simultaneous(
-                    body.worldline,
-                    body.points,
-                    contracted,
-                    &eye,
-                    &mut out.emissions,
-                );
+                kernel(shape_of(body), body, &eye, &mut out.emissions);
                 neutral(out);
             });
     }
