@@ -7,7 +7,7 @@
 //! * [`camera`]: the one camera model (pinhole, fitted framing);
 //! * [`spacetime`]: events, 4-vectors, proper velocities, boosts;
 //! * [`worldline`]: each body's history as analytic segments, and its
-//!   contracted shape at any board time;
+//!   contracted shape along it, segment by segment;
 //! * [`scene`]: scene files, validated with located error messages;
 //! * [`physics`]: the event-anticipation billiard that extends worldlines;
 //! * [`optics`]: pure kernels for what an observer sees (emission solve,

@@ -18,10 +18,15 @@ fn beta(b: DVec3) -> ProperVelocity {
 /// Apparent position of a point moving along the x axis, seen from the
 /// origin, at observation time `t0`.
 fn apparent_x(w: &Worldline, t0: f64) -> f64 {
-    emission::solve(w, DVec3::ZERO, &ContractedShape::of(w), Event::new(t0, DVec3::ZERO))
-        .event
-        .position
-        .x
+    emission::solve(
+        w,
+        DVec3::ZERO,
+        &ContractedShape::of(w),
+        Event::new(t0, DVec3::ZERO),
+    )
+    .event
+    .position
+    .x
 }
 
 #[test]

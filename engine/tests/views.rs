@@ -202,7 +202,14 @@ fn a_system_no_view_needs_is_not_in_the_frame() {
     }
     let a = sim.entity("a").unwrap();
     assert_eq!(sim.world.get::<ProperTime>(a).unwrap().0, 0.0);
-    assert!(sim.world.get::<BodyContraction>(a).unwrap().0.maps().is_empty());
+    assert!(
+        sim.world
+            .get::<BodyContraction>(a)
+            .unwrap()
+            .0
+            .maps()
+            .is_empty()
+    );
     let view = sim.view("eye").unwrap();
     assert_eq!(sim.apparent(view).unwrap().applied, Effects::NONE);
     // Turned on for the view, they run from the next frame on.
@@ -236,7 +243,15 @@ fn the_contraction_system_does_not_run_for_a_view_without_contraction() {
     let a = alone.entity("a").unwrap();
     // Puck "a" collided: several segments, none of them mapped.
     assert!(alone.physics().worldline(0).segments().len() > 1);
-    assert!(alone.world.get::<BodyContraction>(a).unwrap().0.maps().is_empty());
+    assert!(
+        alone
+            .world
+            .get::<BodyContraction>(a)
+            .unwrap()
+            .0
+            .maps()
+            .is_empty()
+    );
     let view = alone.view("eye").unwrap();
     assert!(!alone.apparent(view).unwrap().applied.contraction);
     // The same run with a second, contracted view of the same eye.
@@ -244,11 +259,23 @@ fn the_contraction_system_does_not_run_for_a_view_without_contraction() {
     let eye = both.entity("eye").unwrap();
     let mut fx = s.effects;
     fx.contraction = true;
-    let contracted = both.add_view("contracted", eye, fx, Framing::default(), Vantage::OnWorldline);
+    let contracted = both.add_view(
+        "contracted",
+        eye,
+        fx,
+        Framing::default(),
+        Vantage::OnWorldline,
+    );
     run(&mut both);
     let a = both.entity("a").unwrap();
     let w = both.physics().worldline(0);
-    let maps = both.world.get::<BodyContraction>(a).unwrap().0.maps().to_vec();
+    let maps = both
+        .world
+        .get::<BodyContraction>(a)
+        .unwrap()
+        .0
+        .maps()
+        .to_vec();
     assert_eq!(maps.len(), w.segments().len());
     for (m, seg) in maps.iter().zip(w.segments()) {
         assert_eq!(*m, SegmentShape::contracted(seg));
@@ -257,7 +284,10 @@ fn the_contraction_system_does_not_run_for_a_view_without_contraction() {
     let rigid = both.apparent(both.view("eye").unwrap()).unwrap();
     assert!(!rigid.applied.contraction);
     assert_eq!(rigid, alone.apparent(view).unwrap());
-    assert_ne!(rigid.bodies[0].emissions, both.apparent(contracted).unwrap().bodies[0].emissions);
+    assert_ne!(
+        rigid.bodies[0].emissions,
+        both.apparent(contracted).unwrap().bodies[0].emissions
+    );
 }
 
 #[test]

@@ -85,7 +85,12 @@ fn square_box_circuit_at_gamma_10() {
     // (board-simultaneous, contraction off) turned by the orientation.
     let t = bounces[5].pucks[0].t + 1e-6;
     let stripe = DVec3::new(0.03, 0.0, 0.0);
-    let at = lightcone_engine::optics::emission::simultaneous(w, stripe, &lightcone_engine::worldline::Rigid, t);
+    let at = lightcone_engine::optics::emission::simultaneous(
+        w,
+        stripe,
+        &lightcone_engine::worldline::Rigid,
+        t,
+    );
     let offset = at.event.position - w.position_at(t);
     let angle = offset.y.atan2(offset.x);
     assert!(

@@ -112,8 +112,7 @@ pub fn refine_index(
     while k > 0 && !in_past_cone(segments, k, shapes, offset, observation, c) {
         k -= 1;
     }
-    while k + 1 < segments.len() && in_past_cone(segments, k + 1, shapes, offset, observation, c)
-    {
+    while k + 1 < segments.len() && in_past_cone(segments, k + 1, shapes, offset, observation, c) {
         k += 1;
     }
     k
@@ -270,7 +269,10 @@ pub fn simultaneous(
     let k = worldline.segment_index_at(t);
     let s = &worldline.segments()[k];
     Emission {
-        event: Event::new(t, s.position_at(t) + shapes.on_segment(k, s).place(s, t, offset)),
+        event: Event::new(
+            t,
+            s.position_at(t) + shapes.on_segment(k, s).place(s, t, offset),
+        ),
         u: s.u_at(t),
         segment: k,
     }
@@ -343,7 +345,12 @@ mod tests {
         let mut last: Option<Emission> = None;
         for i in 0..400 {
             let t0 = 0.5 + 0.01 * f64::from(i);
-            let e = solve(&w, DVec3::ZERO, &ContractedShape::of(&w), Event::new(t0, eye));
+            let e = solve(
+                &w,
+                DVec3::ZERO,
+                &ContractedShape::of(&w),
+                Event::new(t0, eye),
+            );
             // On the cone, on the worldline.
             assert!((C * (t0 - e.event.t) - (eye - e.event.position).length()).abs() < 1e-12);
             assert!((w.position_at(e.event.t) - e.event.position).length() < 1e-12);

@@ -201,7 +201,9 @@ mod tests {
                 h.record(t, [&w]);
                 t += 1.0 / fps;
             }
-            let with = h.solve(0, offset, &shapes, obs, C, Search::default()).unwrap();
+            let with = h
+                .solve(0, offset, &shapes, obs, C, Search::default())
+                .unwrap();
             let without = h
                 .solve(
                     0,

@@ -7,8 +7,9 @@
 //!   by dichotomy, with optional linear interpolation (the baseline);
 //! * [`eye`]: the observer: aberration (the light's direction in the
 //!   observer's frame), apparent distance, Doppler factor, searchlight;
-//! * [`view`]: one kernel per effect over a body's points (and the
-//!   composed [`observe`] the pre-schedule commands still call).
+//! * [`view`]: one kernel per effect over a body's points, the body's
+//!   shape (contracted or at rest) given as data, and the composed
+//!   [`observe`], the engine tests' reference for the schedule.
 //!
 //! The frame schedule (`crate::ecs`) runs the kernels per view.
 //! The rest-frame meshes moved to [`crate::worldline::mesh`] (re-exported

@@ -272,7 +272,16 @@ impl Observed<'_> {
     fn points(&self, puck: usize, shapes: &impl ShapeMaps, offsets: &[DVec3]) -> Vec<PointView> {
         let (mut e, mut s) = (Vec::new(), Vec::new());
         let w = self.billiard.worldline(puck);
-        emissions_with_shape(shapes, puck, w, offsets, self.eye, self.effects, self.method, &mut e);
+        emissions_with_shape(
+            shapes,
+            puck,
+            w,
+            offsets,
+            self.eye,
+            self.effects,
+            self.method,
+            &mut e,
+        );
         seen(self.eye, self.billiard.c(), self.effects, &e, &mut s);
         doppler(self.eye, &e, &mut s);
         e.iter()

@@ -255,13 +255,16 @@ mod tests {
             DVec3::new(-0.8, 0.6, 0.3),
         ] {
             let expected = r - 0.2 * r.dot(n) * n;
-            assert!((map.apply(r) - expected).length() <= 4.0 * f64::EPSILON * r.length(), "{r}");
+            assert!(
+                (map.apply(r) - expected).length() <= 4.0 * f64::EPSILON * r.length(),
+                "{r}"
+            );
         }
+        assert_eq!(LorentzMap::of(ProperVelocity::ZERO), LorentzMap::IDENTITY);
         assert_eq!(
-            LorentzMap::of(ProperVelocity::ZERO),
-            LorentzMap::IDENTITY
+            LorentzMap::IDENTITY.apply(DVec3::new(1.0, -2.0, 3.0)),
+            DVec3::new(1.0, -2.0, 3.0)
         );
-        assert_eq!(LorentzMap::IDENTITY.apply(DVec3::new(1.0, -2.0, 3.0)), DVec3::new(1.0, -2.0, 3.0));
     }
 
     #[test]
@@ -276,6 +279,30 @@ mod tests {
             assert_eq!(shape.place(s, 0.7, r), s.place_at(0.7, r));
             assert_eq!(Rigid.on_segment(k, s).place(s, 0.7, r), s.rotate(r));
         }
+    }
+
+    #[test]
+    fn a_moving_puck_is_an_ellipse_of_semi_axes_r_over_gamma_and_r() {
+        let shape = crate::worldline::RestShape::puck(0.5, 0.1, 64);
+        let u = ProperVelocity::try_from_beta(DVec3::new(0.8, 0.0, 0.0)).unwrap();
+        let w = Worldline::new(Event::new(0.0, DVec3::new(1.0, 1.0, 0.0)), u, 1.0);
+        let s = &w.segments()[0];
+        let contracted = ContractedShape::of(&w).on_segment(0, s);
+        for &r in &shape.vertices {
+            let d = contracted.place(s, 1.0, r);
+            // (x γ / R)² + (y / R)² = 1 on the rim (γ = 5/3); the axis points at 0.
+            let e = (d.x / 0.6 / 0.5).powi(2) + (d.y / 0.5).powi(2);
+            assert!(e < 1.0 + 1e-12, "{e}");
+        }
+        let max_x = |m: SegmentShape| {
+            shape
+                .vertices
+                .iter()
+                .map(|&r| m.place(s, 1.0, r).x)
+                .fold(0.0, f64::max)
+        };
+        assert!((max_x(contracted) - 0.3).abs() < 1e-15);
+        assert!((max_x(Rigid.on_segment(0, s)) - 0.5).abs() < 1e-15);
     }
 
     #[test]

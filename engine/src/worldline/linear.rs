@@ -2,8 +2,8 @@
 
 use glam::DVec3;
 
-use super::sliding::Braking;
 use super::contraction::LorentzMap;
+use super::sliding::Braking;
 use crate::spacetime::{Event, ProperVelocity, rotation_of_velocity_change};
 
 /// Why a kink cannot be appended to a worldline.

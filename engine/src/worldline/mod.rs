@@ -1,5 +1,6 @@
 //! Worldlines: the history of each body as analytic segments, the body's
-//! shape at any board time, and the rest-frame meshes.
+//! contracted shape along it (segment by segment), and the rest-frame
+//! meshes.
 
 pub mod contraction;
 mod linear;
@@ -7,6 +8,6 @@ pub mod mesh;
 mod shape;
 pub mod sliding;
 
-pub use linear::{BodyState, Segment, Worldline, WorldlineError};
 pub use contraction::{ContractedShape, LorentzMap, Rigid, SegmentShape, ShapeMaps};
+pub use linear::{BodyState, Segment, Worldline, WorldlineError};
 pub use shape::{RestShape, contract};

@@ -1,8 +1,8 @@
-//! A body's rest-frame geometry and its Lorentz-contracted board-frame shape.
+//! A body's rest-frame geometry and the Lorentz contraction of one offset
+//! (along a worldline, segment by segment: [`super::contraction`]).
 
 use glam::DVec3;
 
-use super::Worldline;
 use crate::spacetime::ProperVelocity;
 
 /// Contracts a rest-frame offset `r` along the direction `n` of `u` by `1/γ`
@@ -40,33 +40,11 @@ impl RestShape {
     pub fn puck(radius: f64, height: f64, segments: u32) -> Self {
         super::mesh::puck(radius, height, segments)
     }
-
-    /// Board-frame vertex positions at board time `t`, with the rest shape
-    /// contracted along the body's velocity of that moment when `contracted`
-    /// is set (bodies are rigid about their reference point, the paper's
-    /// §3.3.1 convention, so the shape follows the velocity at once).
-    pub fn board_vertices_at<'a>(
-        &'a self,
-        worldline: &Worldline,
-        t: f64,
-        contracted: bool,
-    ) -> impl Iterator<Item = DVec3> + 'a {
-        let state = worldline.state_at(t);
-        let u = if contracted {
-            state.u
-        } else {
-            ProperVelocity::ZERO
-        };
-        self.vertices
-            .iter()
-            .map(move |&r| state.position + contract(r, u))
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spacetime::Event;
 
     #[test]
     fn contraction_is_one_over_gamma_along_motion_only() {
@@ -90,24 +68,5 @@ mod tests {
         let n = DVec3::new(0.6, 0.8, 0.0);
         let r = contract(n * 0.03, ProperVelocity(n * 1e8));
         assert!((r - n * 3e-10).length() < 4.0 * f64::EPSILON * 0.03);
-    }
-
-    #[test]
-    fn puck_shape_at_a_time_is_an_ellipse_of_semi_axes_r_over_gamma_and_r() {
-        let shape = RestShape::puck(0.5, 0.1, 64);
-        let u = ProperVelocity::try_from_beta(DVec3::new(0.8, 0.0, 0.0)).unwrap();
-        let w = Worldline::new(Event::new(0.0, DVec3::new(1.0, 1.0, 0.0)), u, 1.0);
-        let at = w.position_at(1.0);
-        for p in shape.board_vertices_at(&w, 1.0, true) {
-            let d = p - at;
-            // (x γ / R)² + (y / R)² = 1 on the rim; the axis points at 0.
-            let e = (d.x * 1.0 / 0.6 / 0.5).powi(2) + (d.y / 0.5).powi(2);
-            assert!(e < 1.0 + 1e-12, "{e}");
-        }
-        let max_x = shape
-            .board_vertices_at(&w, 1.0, false)
-            .map(|p| p.x - at.x)
-            .fold(0.0, f64::max);
-        assert!((max_x - 0.5).abs() < 1e-15);
     }
 }

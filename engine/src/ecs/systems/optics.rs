@@ -18,7 +18,6 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::camera::{self, FIT_MARGIN, Framing};
-use crate::scene::Effects;
 use crate::ecs::components::{
     Aberration, Apparent, ApparentBody, BodyContraction, BodyRef, Contraction, Doppler, Fixture,
     FramingMarks, Lens, LightDelay, Mesh, Observer, OwnWorldline, PuckIndex, Searchlight,
@@ -28,6 +27,7 @@ use crate::ecs::resources::{Clock, History, OpticsMethod, Physics, SpeedOfLight}
 use crate::optics::history::Search;
 use crate::optics::view as kernel;
 use crate::optics::{Emission, Eye, SampledHistory};
+use crate::scene::Effects;
 use crate::spacetime::Event;
 use crate::worldline::{ContractedShape, Rigid, ShapeMaps, Worldline};
 
@@ -225,9 +225,16 @@ fn light_delayed(
     out: &mut Vec<Emission>,
 ) {
     match (body.id, sampled) {
-        (BodyRef::Puck(i), Some((h, search))) => {
-            kernel::light_delayed_sampled(h, search, i, body.worldline, body.points, shapes, eye, out)
-        }
+        (BodyRef::Puck(i), Some((h, search))) => kernel::light_delayed_sampled(
+            h,
+            search,
+            i,
+            body.worldline,
+            body.points,
+            shapes,
+            eye,
+            out,
+        ),
         _ => kernel::light_delayed(body.worldline, body.points, shapes, eye, out),
     }
 }
