@@ -123,8 +123,9 @@ fn the_seen_fast_puck_lags_behind_the_truth() {
     let mut b = Billiard::from_scene(&scene);
     b.advance_to(t);
     let (e, _) = frame::eye_of(&scene, 0, t);
-    let delayed =
-        lightcone_engine::optics::emission::solve(b.worldline(0), DVec3::ZERO, true, e.event);
+    let w = b.worldline(0);
+    let contracted = lightcone_engine::worldline::ContractedShape::of(w);
+    let delayed = lightcone_engine::optics::emission::solve(w, DVec3::ZERO, &contracted, e.event);
     // About 1.2 m behind (light takes ≈ 1.2 s from where it was).
     let behind = b.worldline(0).position_at(t).x - delayed.event.position.x;
     assert!((0.9..1.5).contains(&behind), "{behind}");
