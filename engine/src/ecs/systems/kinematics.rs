@@ -3,6 +3,7 @@
 //! at the clock's board time, each run only when some view has the effect.
 
 use bevy_ecs::prelude::*;
+use rayon::prelude::*;
 
 use crate::ecs::components::{BodyContraction, OwnWorldline, ProperTime, PuckIndex};
 use crate::ecs::resources::{Clock, Physics};
@@ -11,15 +12,17 @@ use crate::ecs::resources::{Clock, Physics};
 /// shape contracted by `1/γ` along each segment's velocity (the paper's
 /// §3.2.2; Born-rigid on a braking segment), one map per segment
 /// ([`crate::worldline::SegmentShape::contracted`]). Only the maps of
-/// segments added or changed since the last frame are computed.
+/// segments added or changed since the last frame are computed; pucks in
+/// parallel.
 pub fn contraction(
     physics: Res<Physics>,
     mut pucks: Query<(&PuckIndex, &mut BodyContraction)>,
     mut others: Query<(&OwnWorldline, &mut BodyContraction), Without<PuckIndex>>,
 ) {
-    for (index, mut shape) in &mut pucks {
-        shape.0.update(physics.0.worldline(index.0));
-    }
+    let mut pucks: Vec<_> = pucks.iter_mut().collect();
+    pucks
+        .par_iter_mut()
+        .for_each(|(index, shape)| shape.0.update(physics.0.worldline(index.0)));
     for (worldline, mut shape) in &mut others {
         shape.0.update(&worldline.0);
     }
