@@ -11,8 +11,8 @@ use lightcone_engine::optics::view::{Method, observe};
 use lightcone_engine::report::ObserveReport;
 use lightcone_engine::scene::{self, Effect, Effects, Scene};
 use lightcone_engine::spacetime::ProperVelocity;
-use lightcone_engine::worldline::SegmentShape;
 use lightcone_engine::worldline::mesh::{CUSHION_HEIGHT, CUSHION_WIDTH};
+use lightcone_engine::worldline::{ContractedShape, SegmentShape};
 
 /// Two fast pucks that collide, a moving observer.
 const SCENE: &str = r#"
@@ -288,6 +288,14 @@ fn the_contraction_system_does_not_run_for_a_view_without_contraction() {
         rigid.bodies[0].emissions,
         both.apparent(contracted).unwrap().bodies[0].emissions
     );
+    // Another run of the scene put in place: its shapes are built afresh.
+    let mut other = lightcone_engine::physics::Billiard::from_scene(&s);
+    other.advance_to(1.5);
+    both.replace_physics(other);
+    both.advance_to(1.5);
+    let w = both.physics().worldline(0);
+    let maps = both.world.get::<BodyContraction>(a).unwrap().0.maps();
+    assert_eq!(maps, ContractedShape::of(w).maps());
 }
 
 #[test]

@@ -164,9 +164,16 @@ impl Simulation {
     /// Puts `billiard` (of the same scene, run as far as wanted) in place
     /// of the physics: the pucks' worldlines every view then sees. Used to
     /// look at a billiard run elsewhere (the Python `Simulation`, a lesson)
-    /// through this world's views.
+    /// through this world's views. The pucks' contracted shapes are
+    /// computed afresh for the new worldlines at the next frame.
     pub fn replace_physics(&mut self, billiard: Billiard) {
         self.world.resource_mut::<Physics>().0 = billiard;
+        let mut shapes = self
+            .world
+            .query_filtered::<&mut BodyContraction, With<PuckIndex>>();
+        for mut shape in shapes.iter_mut(&mut self.world) {
+            shape.0.clear();
+        }
     }
 
     /// Table size, m.

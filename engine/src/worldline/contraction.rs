@@ -163,9 +163,11 @@ impl ShapeMaps for Rigid {
 /// oldest ([`Worldline::push`], [`Worldline::relocate`],
 /// [`Worldline::forget_before`]); [`Self::update`] checks its first segment
 /// and the one before its last against those it saw and starts again when
-/// either changed (a worldline replaced, a history forgotten). A worldline
-/// rewritten in its middle with both of those unchanged (possible only
-/// through [`Worldline::truncate_after`]) needs [`Self::of`] instead.
+/// either changed (a history forgotten, friction put on). A worldline
+/// rewritten in its middle with both of those unchanged
+/// ([`Worldline::truncate_after`], or another worldline put in its place)
+/// would keep stale maps: [`Self::clear`] first (as
+/// `ecs::Simulation::replace_physics` does).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ContractedShape {
     maps: Vec<SegmentShape>,
