@@ -94,8 +94,9 @@ pub struct ProperTime(pub f64);
 
 /// A view: what one observer sees, with its own effect set (one marker
 /// component per effect: [`Contraction`], [`LightDelay`], [`Aberration`],
-/// [`Doppler`], [`Searchlight`], [`TimeDilation`]) and its own [`Lens`]. Several views run in the same frame; the optics systems
-/// write each one's [`Apparent`].
+/// [`Doppler`], [`Searchlight`], [`TimeDilation`]) and its own [`Lens`].
+/// Several views run in the same frame; the optics systems write each
+/// one's [`Apparent`].
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct View {
     /// The observer entity (with [`Observer`] and [`OwnWorldline`]).

@@ -5,8 +5,9 @@
 //! segment `k`, as `x(t) = cₖ(t) + rₖ` with `cₖ` the centre's straight line
 //! and `rₖ` the offset placed by the body's shape on that segment (its
 //! [`SegmentShape`]: contracted along the segment's velocity, or the rest
-//! shape; the kernels take the shape as data, [`ShapeMaps`]). Its light reaches the observation event `(t₀, x₀)`
-//! from the event at look-back time `τ` where `|x₀ − x(t₀ − τ)| = c τ`:
+//! shape; the kernels take the shape as data, [`ShapeMaps`]). Its light
+//! reaches the observation event `(t₀, x₀)` from the event at look-back
+//! time `τ` where `|x₀ − x(t₀ − τ)| = c τ`:
 //!
 //! ```text
 //! (c² − v²) τ² − 2 (d·v) τ − |d|² = 0,   d = x₀ − x(t₀) (extrapolated on the segment)
@@ -65,8 +66,12 @@ fn in_past_cone(
     c * (observation.t - s.start.t) >= (observation.position - a).length()
 }
 
-/// Index of `s` in `segments`, of which it is an element (the binary
-/// search below hands out elements; their shapes are looked up by index).
+/// Index of `s` in `segments`, of which it is an element. The search in
+/// [`segment_index`] is the slice's own `partition_point`, which hands its
+/// predicate elements, not indices; the shape of each probed segment is
+/// looked up by this index. (Kept rather than a hand-written bisection:
+/// where a kink's jump in the contracted offset makes the predicate
+/// non-monotone, the same probes give the same segment as before.)
 #[inline]
 fn index_in(segments: &[Segment], s: &Segment) -> usize {
     (std::ptr::from_ref(s).addr() - segments.as_ptr().addr()) / std::mem::size_of::<Segment>()
