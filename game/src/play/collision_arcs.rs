@@ -171,7 +171,7 @@ mod tests {
     /// centre, at the speed `beta` when light goes at `c`.
     fn glancing(c: f64, beta: f64) -> (Billiard, f64) {
         let text = format!(
-            "c = {c}\n[[puck]]\nname = \"a\"\nposition = [0.5, 0.7]\nbeta = [{beta}, 0.0]\n\
+            "c = {c}\n[table]\nfriction = 0\n[[puck]]\nname = \"a\"\nposition = [0.5, 0.7]\nbeta = [{beta}, 0.0]\n\
              [[puck]]\nname = \"b\"\nposition = [1.4, 0.73]\n"
         );
         let scene = scene::parse(&text, "glancing.toml").expect("scene");
