@@ -44,13 +44,21 @@ fn check_summarises_speeds_as_beta_and_gamma() {
     let out = lightcone(&["check", "assets/scenes/paper_carom.toml"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success());
-    // white: β = (0.8, 0.12), |β| = 0.8089499366, γ = 1/√(1 − 0.6544) = 1.701035.
+    // white: β = (0.94, 0.141), |β| = 0.9505161756,
+    // γ = 1/√(1 − 0.883600 − 0.019881) = 3.218797.
     let white = stdout
         .lines()
         .find(|l| l.contains("white"))
         .expect("white listed");
-    assert!(white.contains("|β| = 0.808949937"), "{white}");
-    assert!(white.contains("γ = 1.701035"), "{white}");
+    assert!(white.contains("|β| = 0.950516176"), "{white}");
+    assert!(white.contains("γ = 3.218797"), "{white}");
+    // The cloth: μ = 0.2 at g = 9.81 m/s², μg = 1.962 m/s².
+    assert!(
+        stdout.contains("sliding friction μ = 0.2 at g = 9.81 m/s²"),
+        "{stdout}"
+    );
+    let frictionless = lightcone(&["check", "assets/scenes/parallel_tracks.toml"]);
+    assert!(String::from_utf8_lossy(&frictionless.stdout).contains("no friction (friction = 0)"));
     assert!(stdout.contains("effects on: contraction, light_delay, aberration, time_dilation"));
 }
 

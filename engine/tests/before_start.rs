@@ -15,6 +15,8 @@ fn scene_text(before: &str) -> String {
         r#"
 c = 1.0
 {before}
+[table]
+friction = 0.0
 [[puck]]
 name = "a"
 position = [1.0, 0.7]

@@ -218,9 +218,9 @@ fn a_puck_that_stops_against_another_rests_there_without_events() {
 
 #[test]
 fn frictionless_tables_are_untouched() {
-    // μ = 0 (the loader's default): uniform segments as before.
+    // μ = 0: uniform segments as before.
     let scene = lightcone_engine::scene::parse(
-        "[[puck]]\nposition = [0.5, 0.5]\nbeta = [0.5, 0.0]\n",
+        "[table]\nfriction = 0\n[[puck]]\nposition = [0.5, 0.5]\nbeta = [0.5, 0.0]\n",
         "s.toml",
     )
     .unwrap();
@@ -372,11 +372,11 @@ fn random_scenes_with_friction_collide_and_come_to_rest() {
 
 #[test]
 fn friction_set_after_loading_a_scene_that_rests_before_start_is_the_scenes_own() {
-    // friction.toml rests before its start (the default `before_start`):
+    // The paper's scene (μ = 0.2) rests before its start (the default `before_start`):
     // friction set on the frictionless scene afterwards must give the same
     // run as the scene with its friction, bit for bit.
     let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/friction.toml");
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml");
     let scene = lightcone_engine::scene::load(&path).expect("the shipped scene");
     assert!(scene.table.deceleration() > 0.0);
     let mut frictionless = scene.clone();

@@ -1,7 +1,7 @@
 //! Every bad input a scene file can hold gets a message that names the
 //! file, the line and the field.
 
-use lightcone_engine::scene::{self, SceneError};
+use lightcone_engine::scene::{self, SceneError, TableSpec};
 
 const GOOD_PUCK: &str = "[[puck]]\nname = \"a\"\nposition = [0.5, 0.5]\n";
 
@@ -546,9 +546,32 @@ fn friction_and_gravity_out_of_range() {
         "table.friction",
         "cannot brake rigidly",
     );
-    // Defaults: frictionless, standard gravity; given values are kept.
+    // The default friction, a carom cloth's, is checked too, and the
+    // error, with no `friction` to point at, names the puck and the way out.
+    expect_one(
+        "c = 0.1\n[[puck]]\nposition = [0.5, 0.5]\nradius = 0.03\n",
+        4,
+        "puck[0].radius",
+        "the default, a carom cloth: write [table] friction = 0",
+    );
+    expect_one(
+        "c = 0.1\n[[puck]]\nposition = [0.5, 0.5]\n",
+        3,
+        "puck[0].position",
+        "cannot brake rigidly",
+    );
+    assert!(
+        lightcone_engine::scene::parse(
+            "c = 0.1\n[table]\nfriction = 0\n[[puck]]\nposition = [0.5, 0.5]\n",
+            "ok.toml"
+        )
+        .is_ok()
+    );
+    // Defaults: a carom cloth (μ = 0.2), standard gravity; given values are
+    // kept.
     let s = lightcone_engine::scene::parse("", "ok.toml").unwrap();
-    assert_eq!(s.table.friction, 0.0);
+    assert_eq!(s.table.friction, TableSpec::CAROM_CLOTH_FRICTION);
+    assert_eq!(s.table.friction, 0.2);
     assert_eq!(s.table.gravity, 9.80665);
     let s = lightcone_engine::scene::parse("[table]\nfriction = 0.2\ngravity = 1.62\n", "ok.toml")
         .unwrap();

@@ -18,6 +18,7 @@ use lightcone_engine::worldline::{ContractedShape, SegmentShape};
 const SCENE: &str = r#"
     [table]
     size = [2.84, 1.42]
+    friction = 0.0
     [[puck]]
     name = "a"
     position = [0.6, 0.7]

@@ -40,10 +40,6 @@ pub const SCENES: &[(&str, &str)] = &[
         "wigner_box.toml",
         include_str!("../../assets/scenes/wigner_box.toml"),
     ),
-    (
-        "friction.toml",
-        include_str!("../../assets/scenes/friction.toml"),
-    ),
 ];
 
 /// The built-in scene `name` (a file name of [`SCENES`]).

@@ -552,9 +552,12 @@ mod tests {
     use lightcone_engine::optics::emission;
 
     /// The frame's line passes through the puck's event now, with slope
-    /// β_x / c (closed form from the scene: the white puck at β = (0.8,
-    /// 0.12) before its hit at 1.19 s); points on it are simultaneous with
-    /// that event in the puck's frame (Lorentz transform t' = γ(t − v·x/c²)).
+    /// β_x / c, in closed form from the scene: the white puck, struck at
+    /// proper velocity u₀ (|β₀| = 0.95), brakes on the cloth (μg) with
+    /// u(t) = u₀ − μg t / c along its line and has slid
+    /// (c²/μg)(γ₀ − γ(t)) by t = 0.8 s, before its hit; points on the line
+    /// are simultaneous with that event in the puck's frame (Lorentz
+    /// transform t' = γ(t − v·x/c²)).
     #[test]
     fn the_frame_line_is_the_pucks_now() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
@@ -563,6 +566,7 @@ mod tests {
         let t = 0.8;
         let mut billiard = Billiard::from_scene(&scene);
         billiard.advance_to(t);
+        assert!(billiard.collisions().iter().all(|k| k.t > t));
         let options = Options {
             axis: Axis::X,
             frame: Some(white),
@@ -570,12 +574,18 @@ mod tests {
         let drawn = draw_with(&scene, &billiard, 0, t, (320, 200), options);
         let sim = drawn.simultaneity.expect("a frame line");
         let c = scene.c;
-        assert!((sim.slope - 0.8 / c).abs() < 1e-12, "{}", sim.slope);
+        let a = scene.table.deceleration();
+        assert!(a > 0.0, "the paper's scene is on a cloth");
+        let u0 = scene.pucks[white].u.0.truncate();
+        let n = u0.normalize();
+        let u = u0.length() - a * t / c;
+        let gamma = (1.0 + u * u).sqrt();
+        let (bx, by) = (u * n.x / gamma, u * n.y / gamma);
+        let slid = c * c / a * ((1.0 + u0.length_squared()).sqrt() - gamma);
+        assert!((sim.slope - bx / c).abs() < 1e-12, "{}", sim.slope);
         let start = scene.pucks[white].position;
         assert!((sim.event.t - t).abs() < 1e-15);
-        assert!((sim.event.position.x - (start.x + 0.8 * c * t)).abs() < 1e-12);
-        let (bx, by) = (0.8, 0.12);
-        let gamma = 1.0 / (1.0f64 - bx * bx - by * by).sqrt();
+        assert!((sim.event.position.x - (start.x + slid * n.x)).abs() < 1e-12);
         let t_frame = |t: f64, x: f64, y: f64| gamma * (t - (bx * x + by * y) / c);
         let y = sim.event.position.y;
         let now = t_frame(sim.event.t, sim.event.position.x, y);
@@ -592,7 +602,7 @@ mod tests {
         };
         let drawn = draw_with(&scene, &billiard, 0, t, (320, 200), y_options);
         let slope = drawn.simultaneity.unwrap().slope;
-        assert!((slope - 0.12 / c).abs() < 1e-12, "{slope}");
+        assert!((slope - by / c).abs() < 1e-12, "{slope}");
     }
 
     #[test]

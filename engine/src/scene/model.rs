@@ -122,7 +122,9 @@ pub struct TableSpec {
     /// Puck–cushion restitution in [0, 1].
     pub cushion_restitution: f64,
     /// Coefficient of sliding friction between pucks and cloth, `μ ≥ 0`
-    /// (dimensionless; 0, the default, is a frictionless table). A sliding
+    /// (dimensionless; 0 is a frictionless table). A scene file without
+    /// `[table] friction` gets [`Self::CAROM_CLOTH_FRICTION`]; a scene
+    /// built in code ([`Scene::empty`]) starts frictionless. A sliding
     /// puck feels `dp/dt = −μ m g v̂` in the board frame: constant proper
     /// deceleration `μ g` (see [`crate::worldline::sliding`]). A carom
     /// cloth's sliding value is about [`Self::CAROM_CLOTH_FRICTION`].

@@ -164,10 +164,10 @@ fn friction_costs(quick: bool) -> Result<String, String> {
          | --- | --- | --- | --- | --- | --- |\n",
     );
     let seconds = if quick { 5.0 } else { 30.0 };
-    // The friction scene as shipped (μ = 0.2) and with its friction off;
+    // The paper's scene as shipped (μ = 0.2) and with its friction off;
     // the ten-puck scene as shipped (frictionless) and with μ = 0.2.
     for file in [
-        "assets/scenes/friction.toml",
+        "assets/scenes/paper_carom.toml",
         "assets/scenes/ten_pucks.toml",
     ] {
         let s = scene::load(Path::new(file)).map_err(|e| e.to_string())?;

@@ -84,6 +84,11 @@ pub fn summary(path: &Path, s: &Scene) -> String {
             number((a * 1e6).round() / 1e6),
             number((s.c * s.c / a * 1e6).round() / 1e6)
         );
+    } else {
+        let _ = writeln!(
+            out,
+            "  no friction (friction = 0): pucks glide uniformly between contacts"
+        );
     }
     let _ = writeln!(out, "  effects on: {}; off: {}", list(&on), list(&off));
     let _ = writeln!(out, "  {} puck(s):", s.pucks.len());

@@ -4,8 +4,8 @@
 //!
 //! In the truth view an arc appears once both velocities have changed
 //! (the two kicks, see the README's collision convention) and stays for
-//! [`ARC_S`] seconds of board time or until either puck's velocity
-//! changes again. In the seen view the same, but late by the light delay
+//! [`ARC_S`] seconds of board time or until either puck is kicked again
+//! (braking on the cloth and stopping do not end it). In the seen view the same, but late by the light delay
 //! from the contact point to the eye: it appears when the contact is
 //! seen. The angle is the board-frame angle between the outgoing
 //! velocities (the engine's exact proper velocities).
@@ -56,10 +56,16 @@ pub fn showing(billiard: &Billiard, t: f64, delay: impl Fn(DVec3) -> f64) -> Opt
         if last_kick > then {
             return None; // the outcome is not complete yet
         }
-        // Gone when either puck's velocity changed again since.
-        let changed = k.pucks.iter().any(|o| {
-            let s = billiard.worldline(o.puck).segment_at(then);
-            s.start.t > o.t + 1e-12
+        // Gone when either puck was kicked again since (a later contact's
+        // velocity change); braking on the cloth and coming to rest keep
+        // the direction, so the arc stays.
+        let changed = records[index + 1..].iter().any(|later| {
+            later.pucks.iter().any(|o| {
+                o.t <= then
+                    && k.pucks
+                        .iter()
+                        .any(|mine| mine.puck == o.puck && o.t > mine.t)
+            })
         });
         if changed {
             return None;
@@ -168,10 +174,15 @@ mod tests {
     use lightcone_engine::scene;
 
     /// A glancing elastic hit on an equal puck at rest, half a radius off
-    /// centre, at the speed `beta` when light goes at `c`.
+    /// centre, at the speed `beta` when light goes at `c`, frictionless.
     fn glancing(c: f64, beta: f64) -> (Billiard, f64) {
+        glancing_on(c, beta, 0.0)
+    }
+
+    /// The same on a cloth of sliding friction `friction`.
+    fn glancing_on(c: f64, beta: f64, friction: f64) -> (Billiard, f64) {
         let text = format!(
-            "c = {c}\n[[puck]]\nname = \"a\"\nposition = [0.5, 0.7]\nbeta = [{beta}, 0.0]\n\
+            "c = {c}\n[table]\nfriction = {friction}\n[[puck]]\nname = \"a\"\nposition = [0.5, 0.7]\nbeta = [{beta}, 0.0]\n\
              [[puck]]\nname = \"b\"\nposition = [1.4, 0.73]\n"
         );
         let scene = scene::parse(&text, "glancing.toml").expect("scene");
@@ -217,5 +228,32 @@ mod tests {
         assert!(showing(&billiard, contact_t + 0.1, |_| 2.0).is_none());
         assert!(showing(&billiard, t * 1.2, |_| 0.0).is_some());
         assert!(showing(&billiard, contact_t + ARC_S + 0.5, |_| 0.0).is_none());
+    }
+
+    #[test]
+    fn on_a_cloth_the_arc_stays_while_the_pucks_brake_and_rest() {
+        let (mut billiard, _) = glancing_on(1.42, 0.9, 0.2);
+        billiard.advance_to(4.0);
+        let k = billiard
+            .collisions()
+            .iter()
+            .position(|k| k.kind == CollisionKind::PuckPuck)
+            .expect("a hit");
+        let hit = billiard.collisions()[k].t;
+        // Both pucks at rest well before the arc's time is up.
+        let rest = hit + 1.5;
+        for i in 0..2 {
+            assert_eq!(
+                billiard.worldline(i).proper_velocity_at(rest).0,
+                DVec3::ZERO
+            );
+        }
+        let arc = showing(&billiard, rest, |_| 0.0).expect("the arc outlives the braking");
+        assert_eq!(arc.collision, k);
+        let outcome = &billiard.collisions()[k].pucks;
+        for (d, o) in arc.directions.iter().zip(outcome) {
+            assert!((*d - o.u_after.0.normalize()).length() < 1e-15);
+        }
+        assert!(showing(&billiard, hit + ARC_S + 0.1, |_| 0.0).is_none());
     }
 }
