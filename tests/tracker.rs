@@ -9,7 +9,7 @@ mod common;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{cloth_pixels as cloth, lightcone, play_under_xvfb, repo};
+use common::{cloth_pixels as cloth, lightcone, play_on_screen, play_under_xvfb, repo};
 use glam::DVec3;
 use lightcone::cave::TrackedHead;
 use lightcone::model::GameState;
@@ -522,6 +522,107 @@ fn play_with_a_tracker_and_a_cave_runs_under_xvfb() {
     assert!(
         green_text > 100,
         "no live tracker status: {green_text} green pixels"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `play --cave` with `[[output]]`s opens one window per output beside the
+/// main one, on one large Xvfb screen with the outputs mapped to regions:
+/// a stereo pair side by side in one output, and each eye of the same wall
+/// in an output of its own, all drawn in the same frame.
+#[test]
+fn play_cave_opens_one_window_per_output() {
+    let dir = std::env::temp_dir().join(format!("lightcone-cave-out-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string(repo().join("assets/cave.toml")).unwrap();
+    let outputs = "\n[[output]]\nname = \"pair\"\nwall = \"front\"\neye = \"side-by-side\"\n\
+                   region = [1280, 0, 1280, 480]\n\
+                   [[output]]\nwall = \"front\"\neye = \"left\"\nregion = [1280, 480, 640, 480]\n\
+                   [[output]]\nwall = \"front\"\neye = \"right\"\nregion = [1920, 480, 640, 480]\n";
+    let cave = dir.join("cave.toml");
+    std::fs::write(&cave, format!("{base}{outputs}")).unwrap();
+    let shot = dir.join("main.png");
+    let cave_arg = cave.to_string_lossy().into_owned();
+    let (out, img) = play_on_screen(
+        &[
+            "play",
+            "assets/scenes/paper_carom.toml",
+            "--cave",
+            &cave_arg,
+            "--at",
+            "1.0",
+        ],
+        &shot,
+        20,
+        &[],
+        "2560x1440x24",
+    );
+    let main = img.unwrap_or_else(|| panic!("{}", String::from_utf8_lossy(&out.stderr)));
+    assert_eq!((main.width, main.height), (1280, 720));
+    let load = |name: &str| {
+        lightcone_render::headless::Image::load_png(&dir.join(format!("main.{name}.png")))
+            .unwrap_or_else(|e| panic!("output {name}: {e}"))
+    };
+    let (pair, left, right) = (load("pair"), load("front-left"), load("front-right"));
+    assert_eq!((pair.width, pair.height), (1280, 480));
+    assert_eq!((left.width, left.height), (640, 480));
+    assert!(cloth(&left) > 5000, "{} cloth pixels", cloth(&left));
+    assert!(cloth(&right) > 5000, "{} cloth pixels", cloth(&right));
+    // The two eyes see the wall from 64 mm apart: different pictures.
+    let differ = left
+        .rgba
+        .iter()
+        .zip(&right.rgba)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        differ > 1000,
+        "left and right eyes alike: {differ} bytes differ"
+    );
+    // Each half of the pair is that eye's own output, pixel for pixel
+    // (the same wall, eye, frame and size; only the viewport moved).
+    let half = |x0: usize| -> Vec<u8> {
+        pair.rgba
+            .chunks(4 * 1280)
+            .flat_map(|row| row[4 * x0..4 * (x0 + 640)].to_vec())
+            .collect()
+    };
+    let mismatch =
+        |a: &[u8], b: &[u8]| a.iter().zip(b).filter(|(x, y)| x.abs_diff(**y) > 2).count();
+    assert!(
+        mismatch(&half(0), &left.rgba) < 200,
+        "left half: {}",
+        mismatch(&half(0), &left.rgba)
+    );
+    assert!(
+        mismatch(&half(640), &right.rgba) < 200,
+        "right half: {}",
+        mismatch(&half(640), &right.rgba)
+    );
+    // A monitor that is not there: a clear error naming the output and the
+    // monitors there are, and no window left open.
+    std::fs::write(
+        &cave,
+        format!("{base}\n[[output]]\nwall = \"front\"\nmonitor = \"NO-SUCH-1\"\n"),
+    )
+    .unwrap();
+    let (out, img) = play_on_screen(
+        &[
+            "play",
+            "assets/scenes/paper_carom.toml",
+            "--cave",
+            &cave_arg,
+        ],
+        &shot,
+        5,
+        &[],
+        "1280x720x24",
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(img.is_none() && !out.status.success());
+    assert!(
+        err.contains("CAVE output \"front\": no monitor is named \"NO-SUCH-1\" (monitors: "),
+        "{err}"
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

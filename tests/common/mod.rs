@@ -38,10 +38,22 @@ pub fn play_under_xvfb_with(
     frames: u32,
     env: &[(&str, &str)],
 ) -> (Output, Option<Image>) {
+    play_on_screen(args, shot, frames, env, "1280x720x24")
+}
+
+/// [`play_under_xvfb_with`] on an Xvfb screen of `screen` (`WxHxDEPTH`),
+/// for windows beside the main one (CAVE outputs).
+pub fn play_on_screen(
+    args: &[&str],
+    shot: &Path,
+    frames: u32,
+    env: &[(&str, &str)],
+    screen: &str,
+) -> (Output, Option<Image>) {
     let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
     let out = Command::new("xvfb-run")
         .envs(env.iter().copied())
-        .args(["-a", "-s", "-screen 0 1280x720x24"])
+        .args(["-a", "-s", &format!("-screen 0 {screen}")])
         .arg(env!("CARGO_BIN_EXE_lightcone"))
         .args(args)
         .arg("--screenshot")

@@ -44,6 +44,19 @@
 //! lower_right = [ 1.5, 0.0, -1.5]
 //! upper_left  = [-1.5, 2.5, -1.5]
 //! pixels = [1920, 1600]     # projector resolution, width x height
+//!
+//! # Optional: one table per video output (projector) the game drives with
+//! # a borderless window of its own. A wall no output names is drawn tiled
+//! # in the main window (the desktop preview).
+//! [[output]]
+//! name = "front-left"       # optional, default "<wall>" or "<wall>-<eye>"
+//! wall = "front"
+//! eye = "left"              # "mono" (default: between the eyes), "left",
+//!                           # "right", or both eyes in one output:
+//!                           # "side-by-side" (left eye left) or
+//!                           # "top-bottom" (left eye on top)
+//! monitor = "DP-1"          # full screen on this monitor, or instead
+//! # region = [0, 0, 1920, 1600]  # x, y, width, height in desktop pixels
 //! ```
 //!
 //! Walls must be rectangles (edges at 90° within 0.5°) with non-zero size;
@@ -393,6 +406,61 @@ pub struct CaveConfig {
     pub tracker: TrackerToBoard,
     /// Projection surfaces, in file order.
     pub walls: Vec<Wall>,
+    /// Video outputs, each showing one wall in a window of its own, in file
+    /// order (none: every wall tiled in the main window).
+    pub outputs: Vec<Output>,
+}
+
+/// Which eye (or eyes) an output shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputEyes {
+    /// Between the eyes (no stereo).
+    Mono,
+    /// The left eye only (its own projector, or one of a pair).
+    Left,
+    /// The right eye only.
+    Right,
+    /// Both, the left eye in the left half.
+    SideBySide,
+    /// Both, the left eye in the top half.
+    TopBottom,
+}
+
+impl OutputEyes {
+    /// The name in the file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Mono => "mono",
+            Self::Left => "left",
+            Self::Right => "right",
+            Self::SideBySide => "side-by-side",
+            Self::TopBottom => "top-bottom",
+        }
+    }
+}
+
+/// Where an output's window goes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Placement {
+    /// Borderless full screen on the monitor of this name (as the window
+    /// system names it).
+    Monitor(String),
+    /// A borderless window over this rectangle of the desktop: x, y (top
+    /// left), width, height, pixels.
+    Region([i32; 2], [u32; 2]),
+}
+
+/// One video output: a wall, an eye or a stereo pair, and a place.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Output {
+    /// Unique name (screenshots are saved as `FILE.<name>.png`).
+    pub name: String,
+    /// Index into [`CaveConfig::walls`].
+    pub wall: usize,
+    /// Which eyes, and how a stereo pair shares the output.
+    pub eyes: OutputEyes,
+    /// Where its window goes.
+    pub placement: Placement,
 }
 
 #[derive(Deserialize)]
@@ -402,6 +470,18 @@ struct RawCave {
     tracker: Option<RawTracker>,
     #[serde(default)]
     wall: Vec<RawWall>,
+    #[serde(default)]
+    output: Vec<RawOutput>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawOutput {
+    name: Option<String>,
+    wall: String,
+    eye: Option<String>,
+    monitor: Option<String>,
+    region: Option<[i64; 4]>,
 }
 
 #[derive(Deserialize)]
@@ -421,6 +501,86 @@ struct RawWall {
     lower_right: [f64; 3],
     upper_left: [f64; 3],
     pixels: [u32; 2],
+}
+
+/// Checks `[[output]]` number `i` against the walls.
+fn output(i: usize, o: RawOutput, walls: &[Wall]) -> Result<Output, CaveConfigError> {
+    let wall = walls.iter().position(|w| w.name == o.wall).ok_or_else(|| {
+        let names: Vec<&str> = walls.iter().map(|w| w.name.as_str()).collect();
+        field_err(
+            format!("output[{i}].wall"),
+            format!(
+                "no wall is named {:?} (walls: {})",
+                o.wall,
+                names.join(", ")
+            ),
+        )
+    })?;
+    let eyes = match o.eye.as_deref().unwrap_or("mono") {
+        "mono" => OutputEyes::Mono,
+        "left" => OutputEyes::Left,
+        "right" => OutputEyes::Right,
+        "side-by-side" => OutputEyes::SideBySide,
+        "top-bottom" => OutputEyes::TopBottom,
+        other => {
+            return Err(field_err(
+                format!("output[{i}].eye"),
+                format!(
+                    "{other:?} is not \"mono\", \"left\", \"right\", \"side-by-side\" or \"top-bottom\""
+                ),
+            ));
+        }
+    };
+    let placement = match (o.monitor, o.region) {
+        (Some(m), None) if !m.trim().is_empty() => Placement::Monitor(m),
+        (Some(_), None) => {
+            return Err(field_err(
+                format!("output[{i}].monitor"),
+                "must not be empty",
+            ));
+        }
+        (None, Some([x, y, w, h])) => {
+            let fits = |v: i64| (-65_536..=65_536).contains(&v);
+            if !(fits(x) && fits(y) && (1..=16_384).contains(&w) && (1..=16_384).contains(&h)) {
+                return Err(field_err(
+                    format!("output[{i}].region"),
+                    format!(
+                        "[{x}, {y}, {w}, {h}] must be x, y within ±65536 and a width and \
+                         height from 1 to 16384 pixels"
+                    ),
+                ));
+            }
+            Placement::Region([x as i32, y as i32], [w as u32, h as u32])
+        }
+        (Some(_), Some(_)) => {
+            return Err(field_err(
+                format!("output[{i}]"),
+                "give `monitor` or `region`, not both",
+            ));
+        }
+        (None, None) => {
+            return Err(field_err(
+                format!("output[{i}]"),
+                "needs `monitor = \"NAME\"` or `region = [x, y, width, height]`",
+            ));
+        }
+    };
+    let name = match o.name {
+        Some(n) if n.trim().is_empty() => {
+            return Err(field_err(format!("output[{i}].name"), "must not be empty"));
+        }
+        Some(n) => n,
+        None => match eyes {
+            OutputEyes::Mono | OutputEyes::SideBySide | OutputEyes::TopBottom => o.wall,
+            OutputEyes::Left | OutputEyes::Right => format!("{}-{}", o.wall, eyes.name()),
+        },
+    };
+    Ok(Output {
+        name,
+        wall,
+        eyes,
+        placement,
+    })
 }
 
 fn field_err(field: impl Into<String>, message: impl Into<String>) -> CaveConfigError {
@@ -537,11 +697,33 @@ impl CaveConfig {
             }
             walls.push(wall);
         }
+        let outputs = raw
+            .output
+            .into_iter()
+            .enumerate()
+            .map(|(i, o)| output(i, o, &walls))
+            .collect::<Result<Vec<_>, _>>()?;
+        for (i, o) in outputs.iter().enumerate() {
+            if outputs[..i].iter().any(|p| p.name == o.name) {
+                return Err(field_err(
+                    format!("output[{i}].name"),
+                    format!("{:?} names two outputs: give each its own `name`", o.name),
+                ));
+            }
+        }
         Ok(Self {
             eye_separation,
             tracker,
             walls,
+            outputs,
         })
+    }
+
+    /// Indices of the walls no output shows (tiled in the main window).
+    pub fn unmapped_walls(&self) -> Vec<usize> {
+        (0..self.walls.len())
+            .filter(|&i| self.outputs.iter().all(|o| o.wall != i))
+            .collect()
     }
 
     /// Reads, parses and validates a TOML file.
@@ -845,6 +1027,71 @@ mod tests {
         let a = m_board.project_point3(c.tracker.point(p));
         let b = m_tracker.project_point3(p);
         assert!((a - b).length() < 1e-9);
+    }
+
+    #[test]
+    fn outputs_map_walls_and_eyes_to_windows() {
+        let text = format!(
+            "{EXAMPLE}\n[[output]]\nwall = \"front\"\neye = \"left\"\nregion = [0, 0, 960, 800]\n\
+             [[output]]\nwall = \"front\"\neye = \"right\"\nregion = [960, 0, 960, 800]\n\
+             [[output]]\nname = \"floor projector\"\nwall = \"floor\"\neye = \"top-bottom\"\nmonitor = \"HDMI-2\"\n"
+        );
+        let c = CaveConfig::from_toml_str(&text).expect("outputs parse");
+        let names: Vec<&str> = c.outputs.iter().map(|o| o.name.as_str()).collect();
+        assert_eq!(names, ["front-left", "front-right", "floor projector"]);
+        assert_eq!(c.outputs[1].eyes, OutputEyes::Right);
+        assert_eq!(
+            c.outputs[1].placement,
+            Placement::Region([960, 0], [960, 800])
+        );
+        assert_eq!(c.outputs[2].wall, 3);
+        assert_eq!(c.outputs[2].placement, Placement::Monitor("HDMI-2".into()));
+        // Left and right are unmapped: the main window tiles them.
+        assert_eq!(c.unmapped_walls(), [1, 2]);
+        assert!(example().outputs.is_empty());
+        assert_eq!(example().unmapped_walls(), [0, 1, 2, 3]);
+        let bad = |output: &str, field: &str, words: &str| {
+            let e = CaveConfig::from_toml_str(&format!("{EXAMPLE}\n[[output]]\n{output}"))
+                .expect_err(output)
+                .to_string();
+            assert!(e.contains(field) && e.contains(words), "{output}: {e}");
+        };
+        bad(
+            "wall = \"ceiling\"\nregion = [0, 0, 10, 10]",
+            "output[0].wall",
+            "front, left, right, floor",
+        );
+        bad(
+            "wall = \"front\"\neye = \"both\"\nregion = [0, 0, 10, 10]",
+            "output[0].eye",
+            "side-by-side",
+        );
+        bad("wall = \"front\"", "output[0]", "needs `monitor");
+        bad(
+            "wall = \"front\"\nmonitor = \"A\"\nregion = [0, 0, 10, 10]",
+            "output[0]",
+            "not both",
+        );
+        bad(
+            "wall = \"front\"\nregion = [0, 0, 0, 10]",
+            "output[0].region",
+            "from 1 to 16384",
+        );
+        bad(
+            "wall = \"front\"\nmonitor = \" \"",
+            "output[0].monitor",
+            "empty",
+        );
+        bad(
+            "wall = \"front\"\nregion = [0, 0, 10, 10]\nscreen = 1",
+            "screen",
+            "unknown field",
+        );
+        bad(
+            "wall = \"front\"\nregion = [0, 0, 10, 10]\n[[output]]\nwall = \"front\"\nregion = [0, 0, 10, 10]",
+            "output[1].name",
+            "names two outputs",
+        );
     }
 
     #[test]

@@ -15,6 +15,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use super::lesson_panel::{self, LessonAction};
+use super::outputs::{self, OutputWindow};
 use super::overlay::{aspect, markers, overlays, project, ring_colour};
 use crate::cave::{self, Side, TrackedHead};
 use crate::lesson::LessonHost;
@@ -66,6 +67,7 @@ pub fn run(options: Options) -> Result<(), String> {
         flight_v: DVec3::ZERO,
         cave_eye: Side::Mono,
         stereo: Vec::new(),
+        outputs: Vec::new(),
         state: game,
         lesson,
         screenshot,
@@ -113,8 +115,11 @@ struct App {
     flight_v: DVec3,
     /// Which eye the window shows the CAVE walls for (E cycles).
     cave_eye: Side,
-    /// That eye's view this frame, and where it is (tracker space).
-    stereo: Vec<(lightcone_engine::ecs::Entity, DVec3)>,
+    /// The eyes drawn this frame (the window's first, then those the
+    /// outputs need): each side, its view and where it is (tracker space).
+    stereo: Vec<(Side, lightcone_engine::ecs::Entity, DVec3)>,
+    /// One window per `[[output]]` of the CAVE file.
+    outputs: Vec<OutputWindow>,
     lesson: Option<LessonHost>,
     /// Screenshot path and frame count (see [`Options`]).
     screenshot: Option<PathBuf>,
@@ -167,18 +172,25 @@ fn clamp_rect(rect: [f32; 4], w: f32, h: f32) -> Option<[f32; 4]> {
 
 /// The CAVE walls tiled in a grid over `[x0, x0 + w] × [0, h]`, each tile
 /// keeping its wall's aspect ratio.
-fn wall_tiles(cave: &CaveConfig, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], Plan)> {
-    let n = cave.walls.len().max(1);
+fn wall_tiles(
+    cave: &CaveConfig,
+    walls: &[usize],
+    x0: f32,
+    w: f32,
+    h: f32,
+) -> Vec<([f32; 4], Plan)> {
+    let n = walls.len().max(1);
     let cols = (n as f32).sqrt().ceil() as usize;
     let rows = n.div_ceil(cols);
     let (tw, th) = (
         w.max(cols as f32) / cols as f32,
         h.max(rows as f32) / rows as f32,
     );
-    cave.walls
+    walls
         .iter()
         .enumerate()
-        .map(|(i, wall)| {
+        .map(|(i, &index)| {
+            let wall = &cave.walls[index];
             let aspect = (wall.width() / wall.height()) as f32;
             let (mut rw, mut rh) = ((tw - 4.0).max(1.0), (th - 4.0).max(1.0));
             if rw / rh > aspect {
@@ -192,7 +204,7 @@ fn wall_tiles(cave: &CaveConfig, x0: f32, w: f32, h: f32) -> Vec<([f32; 4], Plan
             );
             (
                 [cx - rw / 2.0, cy - rh / 2.0, rw.max(1.0), rh.max(1.0)],
-                Plan::Wall(i),
+                Plan::Wall(index),
             )
         })
         .collect()
@@ -231,7 +243,15 @@ impl App {
         let surface = instance
             .create_surface(window.clone())
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
+        let mut outputs = match &self.cave {
+            Some(c) => outputs::open(event_loop, &instance, c)?,
+            None => Vec::new(),
+        };
         let gpu = gpu::open(instance, Some(&surface))?;
+        for o in &mut outputs {
+            o.configure(&gpu)?;
+        }
+        self.outputs = outputs;
         let size = window.inner_size();
         let mut config = surface
             .get_default_config(&gpu.handle, size.width.max(1), size.height.max(1))
@@ -800,8 +820,13 @@ impl App {
                     (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
                     TrackedHead::head,
                 );
-                self.stereo =
-                    cave::stereo_views(&mut self.state, c, head, &[self.cave_eye], self.flight);
+                let sides = outputs::sides_needed(c, self.cave_eye);
+                let views = cave::stereo_views(&mut self.state, c, head, &sides, self.flight);
+                self.stereo = sides
+                    .into_iter()
+                    .zip(views)
+                    .map(|(side, (view, eye))| (side, view, eye))
+                    .collect();
             }
             None => {
                 let panes: Vec<(Pane, f64)> = self
@@ -900,7 +925,17 @@ impl App {
         };
         let mut cleared = false;
         let plans: Vec<([f32; 4], Plan)> = match &self.cave {
-            Some(c) => wall_tiles(c, self.scene_left, right - self.scene_left, h),
+            Some(c) => {
+                // The walls no output shows; all of them (a preview) when
+                // every wall has an output.
+                let unmapped = c.unmapped_walls();
+                let walls = if unmapped.is_empty() {
+                    (0..c.walls.len()).collect()
+                } else {
+                    unmapped
+                };
+                wall_tiles(c, &walls, self.scene_left, right - self.scene_left, h)
+            }
             None => layout(
                 &self.state.pane_list(),
                 self.scene_left,
@@ -915,7 +950,7 @@ impl App {
             vertices.clear();
             let view_proj = match (plan, &self.cave) {
                 (Plan::Wall(i), Some(c)) => {
-                    let Some(&(view, tracker_eye)) = self.stereo.first() else {
+                    let Some(&(_, view, tracker_eye)) = self.stereo.first() else {
                         continue;
                     };
                     match cave::wall_frame(
@@ -1010,7 +1045,12 @@ impl App {
                 .render(&mut pass.forget_lifetime(), &jobs, &screen);
         }
         let readback = if screenshot {
-            Some(copy_out(gfx, &frame.texture, &mut encoder))
+            Some(copy_out(
+                &gfx.gpu,
+                &gfx.config,
+                &frame.texture,
+                &mut encoder,
+            ))
         } else {
             None
         };
@@ -1019,10 +1059,21 @@ impl App {
             gfx.egui_renderer.free_texture(id);
         }
         if let (Some((buffer, padded)), Some(path)) = (readback, &self.screenshot) {
-            save(gfx, &buffer, padded, path)?;
+            save(&gfx.gpu, &gfx.config, &buffer, padded, path)?;
             self.save_layout(&path.with_extension("json"), w, h)?;
         }
         gfx.gpu.queue.present(frame);
+        // The outputs: the same frame's views, each output's wall.
+        if let Some(c) = &self.cave {
+            let shot = if screenshot {
+                self.screenshot.as_deref()
+            } else {
+                None
+            };
+            for o in &mut self.outputs {
+                o.draw(&gfx.gpu, &self.state, c, &self.stereo, shot)?;
+            }
+        }
         Ok(())
     }
 }
@@ -1068,16 +1119,18 @@ impl App {
     }
 }
 
-/// Records a copy of the frame into a readable buffer (for `--screenshot`).
-fn copy_out(
-    gfx: &Gfx,
+/// Records a copy of a surface's frame (configured as `config`) into a
+/// readable buffer (for `--screenshot`).
+pub(super) fn copy_out(
+    gpu: &Gpu,
+    config: &wgpu::SurfaceConfiguration,
     texture: &wgpu::Texture,
     encoder: &mut wgpu::CommandEncoder,
 ) -> (wgpu::Buffer, u32) {
-    let (w, h) = (gfx.config.width, gfx.config.height);
+    let (w, h) = (config.width, config.height);
     let padded =
         (4 * w).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let buffer = gfx.gpu.device.create_buffer(&wgpu::BufferDescriptor {
+    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("screenshot"),
         size: u64::from(padded) * u64::from(h),
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
@@ -1109,16 +1162,17 @@ fn copy_out(
 
 /// Reads the screenshot buffer back and writes it as PNG (RGBA; BGRA
 /// surfaces are swizzled).
-fn save(
-    gfx: &Gfx,
+pub(super) fn save(
+    gpu: &Gpu,
+    config: &wgpu::SurfaceConfiguration,
     buffer: &wgpu::Buffer,
     padded: u32,
     path: &std::path::Path,
 ) -> Result<(), String> {
-    let (w, h) = (gfx.config.width, gfx.config.height);
-    let mut rgba = lightcone_render::headless::read_rows(&gfx.gpu, buffer, padded, w, h)?;
+    let (w, h) = (config.width, config.height);
+    let mut rgba = lightcone_render::headless::read_rows(gpu, buffer, padded, w, h)?;
     let bgra = matches!(
-        gfx.config.format,
+        config.format,
         wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
     );
     for px in rgba.chunks_mut(4) {
@@ -1135,6 +1189,25 @@ fn save(
     .save_png(path)
 }
 
+impl App {
+    /// A key pressed or released in any of the game's windows.
+    fn keyboard(&mut self, event: &winit::event::KeyEvent) {
+        if let PhysicalKey::Code(code) = event.physical_key {
+            match event.state {
+                ElementState::Pressed => {
+                    if !event.repeat {
+                        self.key(code);
+                    }
+                    self.keys.insert(code);
+                }
+                ElementState::Released => {
+                    self.keys.remove(&code);
+                }
+            }
+        }
+    }
+}
+
 impl ApplicationHandler for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.gfx.is_none()
@@ -1145,8 +1218,26 @@ impl ApplicationHandler for App {
         }
     }
 
-    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, id: WindowId, event: WindowEvent) {
         let Some(gfx) = self.gfx.as_mut() else { return };
+        if let Some(o) = self.outputs.iter_mut().find(|o| o.id() == id) {
+            // An output window: it follows its size; it is drawn with the
+            // main window's frame, and keys pressed in it fly the head
+            // as in the main window. Closing one ends the game, as closing
+            // the main window does.
+            match event {
+                WindowEvent::Resized(_) => {
+                    if let Err(e) = o.configure(&gfx.gpu) {
+                        self.result = Err(e);
+                        event_loop.exit();
+                    }
+                }
+                WindowEvent::CloseRequested => event_loop.exit(),
+                WindowEvent::KeyboardInput { event, .. } => self.keyboard(&event),
+                _ => {}
+            }
+            return;
+        }
         let consumed = gfx.egui_state.on_window_event(&gfx.window, &event).consumed;
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
@@ -1156,21 +1247,7 @@ impl ApplicationHandler for App {
                 gfx.surface.configure(&gfx.gpu.device, &gfx.config);
             }
             WindowEvent::RedrawRequested => self.frame(event_loop),
-            WindowEvent::KeyboardInput { event, .. } if !consumed => {
-                if let PhysicalKey::Code(code) = event.physical_key {
-                    match event.state {
-                        ElementState::Pressed => {
-                            if !event.repeat {
-                                self.key(code);
-                            }
-                            self.keys.insert(code);
-                        }
-                        ElementState::Released => {
-                            self.keys.remove(&code);
-                        }
-                    }
-                }
-            }
+            WindowEvent::KeyboardInput { event, .. } if !consumed => self.keyboard(&event),
             WindowEvent::CursorMoved { position, .. } => {
                 let p = DVec2::new(position.x, position.y);
                 let d = p - self.cursor;

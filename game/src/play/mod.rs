@@ -6,5 +6,6 @@ pub mod app;
 pub mod collision_arcs;
 pub mod diagram_controls;
 pub mod lesson_panel;
+pub mod outputs;
 pub mod overlay;
 pub mod scene_menu;
