@@ -214,7 +214,7 @@ impl TrackedHead {
 }
 
 /// Sets the eye at `position` with velocity `v` (board frame), capped at
-/// [`MAX_BETA`] c; returns whether it had to be capped.
+/// `MAX_BETA` (0.99) c; returns whether it had to be capped.
 pub fn set_eye(game: &mut GameState, position: DVec3, v: DVec3) -> bool {
     let c = game.scene.c;
     let mut v = if v.is_finite() { v } else { DVec3::ZERO };

@@ -20,7 +20,7 @@
 //! the hooks stop, the game keeps the state it had (time pauses), and a
 //! reload — of the edited file, without restarting — starts again. A hook
 //! that runs past its time limit is stopped whatever it does
-//! ([`watchdog`]); `lightcone lesson` runs each lesson in a child process
+//! (`watchdog`); `lightcone lesson` runs each lesson in a child process
 //! ([`supervise`]). After `world.finish()` no hook runs again.
 
 pub mod headless;

@@ -1,5 +1,5 @@
 //! The window: winit events, the wgpu surface, the scene renderer and the
-//! egui panels. The rules live in [`super::state`].
+//! egui panels. The rules live in [`crate::model`].
 
 use std::collections::HashSet;
 use std::path::PathBuf;
