@@ -15,7 +15,7 @@ use super::predict::{Cushion, braking, puck_cushion, puck_puck};
 use super::resolve::{self, Body};
 use crate::scene::Scene;
 use crate::spacetime::{Event, ProperVelocity, rotation_of_velocity_change};
-use crate::worldline::Worldline;
+use crate::worldline::{Segment, Worldline};
 
 /// A puck as the physics starts it, at board time 0.
 #[derive(Clone, Debug, PartialEq)]
@@ -1577,9 +1577,19 @@ impl Billiard {
             };
             let (a, b) = (i.min(j), i.max(j));
             let limit = best.t.min(self.exits[j]);
-            // (No cheap bound for a braking puck: every candidate is solved.)
-            if !self.reference && !self.hot[a].braking && !self.hot[b].braking {
-                match disc_touch(&self.hot[a], &self.hot[b], now) {
+            if !self.reference {
+                let bound = if self.hot[a].braking || self.hot[b].braking {
+                    braking_touch(
+                        self.pucks[a].worldline.last(),
+                        self.pucks[a].radius,
+                        self.pucks[b].worldline.last(),
+                        self.pucks[b].radius,
+                        now,
+                    )
+                } else {
+                    disc_touch(&self.hot[a], &self.hot[b], now)
+                };
+                match bound {
                     Some(t) if t <= limit => {}
                     _ => {
                         self.stats.pruned += 1;
@@ -1671,6 +1681,38 @@ impl Billiard {
         };
         self.time + tau
     }
+}
+
+/// A lower bound on the board time at which pucks on segments `sa` and
+/// `sb` (rest radii `ra`, `rb`, m) can touch from `now` on, when either is
+/// braking (for two uniform segments [`disc_touch`] is sharper); `None`
+/// when they never can. Each centre moves on a straight line, never faster
+/// than at `now` (braking only slows it: `|x(t) − x(now)| ≤ |v(now)| (t −
+/// now)`), and a braking one no farther than to where it stops. Every
+/// Lorentz-contracted (or Born-rigid) body lies inside its rest disc, so
+/// the pucks touch only once the two displacements together have closed
+/// the gap between the rest discs, `|Δx(now)| − ra − rb`. The gap is
+/// shrunk by 1e-9 relative so rounding never makes the bound late.
+fn braking_touch(sa: &Segment, ra: f64, sb: &Segment, rb: f64, now: f64) -> Option<f64> {
+    let motion = |s: &Segment| {
+        let x = s.position_at(now).truncate();
+        let speed = s.velocity_at(now).truncate().length();
+        let left = s.stop_time().map_or(f64::INFINITY, |stop| {
+            (s.position_at(stop.max(now)).truncate() - x).length()
+        });
+        (x, speed, if s.is_rest() { 0.0 } else { left })
+    };
+    let (xa, va, la) = motion(sa);
+    let (xb, vb, lb) = motion(sb);
+    let gap = ((xb - xa).length() - (ra + rb)) * (1.0 - 1e-9) - 1e-12;
+    if gap <= 0.0 {
+        return Some(now);
+    }
+    if la + lb < gap {
+        return None; // they stop apart
+    }
+    let closing = va + vb;
+    (closing > 0.0).then(|| now + gap / closing)
 }
 
 /// A lower bound on when two pucks, moving uniformly as `a` and `b` say, can next have a contact event or a velocity change of
