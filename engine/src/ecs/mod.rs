@@ -14,6 +14,7 @@
 //! views that have it. The output is each view's [`Apparent`].
 
 pub mod components;
+pub mod frame_cost;
 pub mod phase;
 pub mod resources;
 pub mod schedule;

@@ -7,14 +7,14 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use glam::DVec3;
-use lightcone_engine::ecs::Simulation;
+use lightcone_engine::ecs::frame_cost;
 use lightcone_engine::optics::eye::Eye;
 use lightcone_engine::optics::history::{SampledHistory, Search};
 use lightcone_engine::optics::view::{self, Method};
 use lightcone_engine::optics::{Emission, mesh};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::physics::gas::dense_box;
-use lightcone_engine::scene::{self, Effect, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
+use lightcone_engine::scene::{self, Effects, Scene};
 use lightcone_engine::spacetime::{Event, ProperVelocity};
 use lightcone_engine::worldline::mesh::PUCK_SEGMENTS;
 use lightcone_engine::worldline::{RestShape, Worldline};
@@ -50,7 +50,7 @@ pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let progress = crate::progress::steps(4, "bench optics");
+    let progress = crate::progress::steps(5, "bench optics");
     progress.step("accuracy of the emission solves");
     let rows = accuracy(&scene, quick);
     progress.inc();
@@ -92,9 +92,21 @@ pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
     progress.inc();
     progress.suspend(|| crate::sayln!("{solves}"));
     progress.step("cost of each effect");
-    let costs = effect_costs(quick);
+    let frames = if quick { 5 } else { 120 };
+    let costs = frame_cost::effect_costs(if quick { 50 } else { 400 }, frames);
+    progress.inc();
+    progress.suspend(|| crate::sayln!("{costs}"));
+    progress.step("frame time per number of views");
+    let mut thousand = frame_cost::lanes(if quick { 100 } else { 1000 });
+    thousand.effects = Effects::default();
+    // The paper's scene as built in (whatever the working directory).
+    let scenes = match crate::assets::shipped_scene("paper_carom.toml") {
+        Some(Ok(paper)) => vec![("paper_carom.toml", paper), ("lanes", thousand)],
+        _ => vec![("lanes", thousand)],
+    };
+    let views = frame_cost::view_counts(&scenes, if quick { 3 } else { 60 });
     progress.finish();
-    crate::sayln!("{costs}");
+    crate::sayln!("{views}");
     ExitCode::SUCCESS
 }
 
@@ -401,85 +413,6 @@ fn throughput(quick: bool) -> String {
                 secs * 1e9 / total as f64
             );
         }
-    }
-    out
-}
-
-/// A scene of `n` pucks in a row of lanes, for the schedule benchmarks.
-fn lanes(n: usize) -> Scene {
-    let size = glam::DVec2::new(2.84 * 4.0, 1.42 * 4.0);
-    let per_row = 40;
-    let pucks = (0..n)
-        .map(|i| PuckSpec {
-            name: format!("p{i}"),
-            position: glam::DVec2::new(
-                0.2 + 0.25 * (i % per_row) as f64,
-                0.2 + 0.25 * (i / per_row) as f64,
-            ),
-            u: ProperVelocity::try_from_beta(DVec3::new(
-                0.5 + 0.4 * ((i * 7 % 10) as f64 / 10.0),
-                0.3,
-                0.0,
-            ))
-            .unwrap_or(ProperVelocity::ZERO),
-            radius: 0.0305,
-            height: 0.02,
-            mass: 0.21,
-            color: lightcone_engine::scene::Color::default_for(i),
-        })
-        .collect();
-    Scene {
-        title: "lanes".into(),
-        description: String::new(),
-        c: size.x / 2.0,
-        table: TableSpec::frictionless(size, 1.0),
-        restitution: 1.0,
-        effects: Effects::NONE,
-        optics: Default::default(),
-        before_start: Default::default(),
-        pucks,
-        observers: vec![ObserverSpec {
-            name: "eye".into(),
-            position: DVec3::new(size.x / 2.0, -1.0, 1.0),
-            look_at: Some(DVec3::new(size.x / 2.0, size.y / 2.0, 0.0)),
-            u: ProperVelocity::try_from_beta(DVec3::new(0.3, 0.0, 0.0))
-                .unwrap_or(ProperVelocity::ZERO),
-        }],
-    }
-}
-
-/// Table: time per frame of the whole schedule with each effect alone.
-fn effect_costs(quick: bool) -> String {
-    let n = if quick { 50 } else { 400 };
-    let mut out = format!(
-        "### What each effect costs: one frame of the schedule, {n} pucks (48-segment meshes, {} vertices), one moving observer\n\n\
-         | effects on | ms per frame |\n| --- | --- |\n",
-        n * mesh::puck(0.0305, 0.02, PUCK_SEGMENTS).vertices.len()
-    );
-    let mut configs: Vec<(String, Effects)> = vec![("none".into(), Effects::NONE)];
-    for e in Effect::ALL {
-        let mut fx = Effects::NONE;
-        fx.set(e, true);
-        configs.push((e.key().into(), fx));
-    }
-    let mut all = Effects::NONE;
-    for e in Effect::ALL {
-        all.set(e, true);
-    }
-    configs.push(("all".into(), all));
-    let frames = if quick { 5 } else { 120 };
-    for (name, fx) in configs {
-        let mut s = lanes(n);
-        s.effects = fx;
-        let mut sim = Simulation::new(&s);
-        let start = Instant::now();
-        for f in 1..=frames {
-            sim.advance_to(f as f64 / 60.0);
-        }
-        out += &format!(
-            "| {name} | {:.3} |\n",
-            start.elapsed().as_secs_f64() * 1e3 / frames as f64
-        );
     }
     out
 }
