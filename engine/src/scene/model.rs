@@ -733,6 +733,50 @@ impl Scene {
         Ok(())
     }
 
+    /// The same scene rebuilt through the checks a scene built in code
+    /// gets ([`Self::empty`], [`Self::add_puck`], [`Self::set_friction`],
+    /// [`Self::add_observer`]) plus the ranges of the fields those leave
+    /// (restitutions in [0, 1], the `[optics]` limits): for a scene that
+    /// arrives as data from a process the game does not trust (a lesson
+    /// run in its own process sends `world.start(scene)` as JSON). Errors
+    /// name the first problem.
+    pub fn rebuilt(&self) -> Result<Self, String> {
+        let mut scene = Self::empty(self.table.size, Some(self.c))?;
+        for p in &self.pucks {
+            scene.add_puck(p.clone())?;
+        }
+        scene.set_friction(self.table.friction, self.table.gravity)?;
+        if self.observers.is_empty() {
+            return Err("a scene has at least one observer".to_owned());
+        }
+        for o in &self.observers {
+            scene.add_observer(o.clone())?;
+        }
+        for (what, r) in [
+            ("restitution", self.restitution),
+            ("cushion_restitution", self.table.cushion_restitution),
+        ] {
+            if !(0.0..=1.0).contains(&r) {
+                return Err(format!("{what} {} must be from 0 to 1", number(r)));
+            }
+        }
+        if self.optics.history_frames > MAX_HISTORY_FRAMES
+            || self.optics.dichotomy_steps > MAX_DICHOTOMY_STEPS
+        {
+            return Err(format!(
+                "optics: history_frames at most {MAX_HISTORY_FRAMES}, dichotomy_steps at most {MAX_DICHOTOMY_STEPS}"
+            ));
+        }
+        scene.title = self.title.clone();
+        scene.description = self.description.clone();
+        scene.restitution = self.restitution;
+        scene.table.cushion_restitution = self.table.cushion_restitution;
+        scene.effects = self.effects;
+        scene.optics = self.optics;
+        scene.before_start = self.before_start;
+        Ok(scene)
+    }
+
     /// The same scene under another speed of light `c` (m/s), every
     /// body keeping its proper velocity in m/s (`γ v`, its momentum per unit
     /// mass): its `u = γβ` scales by `c_old / c`. Raising `c` thus tends to
