@@ -210,7 +210,7 @@ pub struct LessonHost {
 }
 
 /// Builds a placeholder game for the host to hold while the real one is lent.
-pub(crate) fn placeholder() -> GameState {
+pub fn placeholder() -> GameState {
     let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
         .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
     GameState::new(scene)
@@ -242,7 +242,17 @@ impl LessonHost {
         fallback: impl FnOnce() -> GameState,
         isolation: remote::Isolation,
     ) -> Result<(Self, GameState), String> {
-        let limit = limit_from_env()?;
+        Self::load_isolated_with_limit(path, limit_from_env()?, fallback, isolation)
+    }
+
+    /// [`Self::load_isolated`] with a hook time limit other than
+    /// [`HOOK_LIMIT`].
+    pub fn load_isolated_with_limit(
+        path: &Path,
+        limit: std::time::Duration,
+        fallback: impl FnOnce() -> GameState,
+        isolation: remote::Isolation,
+    ) -> Result<(Self, GameState), String> {
         init_python()?;
         let dir = path
             .parent()

@@ -15,6 +15,7 @@ scenes as {"$scene": json}. Whatever the game receives is checked again
 there: a scene is rebuilt through the checks of a scene built in code.
 """
 
+import base64
 import builtins
 import json
 import os
@@ -44,17 +45,10 @@ METHODS = (
     "check",
     "bars",
     "finish",
+    "diagram",
 )
 # Read-only attributes served by the game's process.
 GETTERS = ("claims", "scene", "finished")
-# What a lesson in its own process cannot use yet, and why.
-NOT_PROXIED = {
-    "diagram": "world.diagram(...) is not available in the window yet (the lesson runs in "
-    "its own process, and the picture is not sent across): run the lesson with "
-    "`lightcone lesson`, or draw it from a lightcone.Simulation",
-}
-
-
 def encode(value):
     """`value` as JSON data, records and scenes tagged."""
     if value is None or isinstance(value, (bool, int, float, str)):
@@ -63,6 +57,9 @@ def encode(value):
         return {"$record": type(value).__name__, "data": value.to_dict()}
     if isinstance(value, lightcone.Scene):
         return {"$scene": value._to_json()}
+    if isinstance(value, lightcone.Frame):
+        png = base64.b64encode(value.png).decode("ascii")
+        return {"$frame": [png, value.width, value.height, value.t]}
     if isinstance(value, (list, tuple)):
         return [encode(v) for v in value]
     if isinstance(value, dict):
@@ -72,11 +69,15 @@ def encode(value):
     raise TypeError(f"a {type(value).__name__} cannot be passed to the game")
 
 
-def decode(value):
-    """The value `encode` made."""
+def decode(value, frames=False):
+    """The value `encode` made (frames only if `frames`: the lesson's
+    side; the game takes none)."""
     if isinstance(value, list):
-        return [decode(v) for v in value]
+        return [decode(v, frames) for v in value]
     if isinstance(value, dict):
+        if frames and len(value) == 1 and "$frame" in value:
+            png, width, height, t = value["$frame"]
+            return lightcone.Frame._from_png(base64.b64decode(png), width, height, t)
         if len(value) == 1 and isinstance(value.get("$scene"), str):
             return lightcone.Scene._from_json(value["$scene"])
         name = value.get("$record")
@@ -84,7 +85,7 @@ def decode(value):
             cls = getattr(records, name)
             if isinstance(cls, type) and issubclass(cls, records.Record):
                 return cls(value["data"])
-        return {k: decode(v) for k, v in value.items()}
+        return {k: decode(v, frames) for k, v in value.items()}
     return value
 
 
@@ -146,8 +147,7 @@ def _exception(kind):
 class World:
     """The running game, as a lesson run in its own process sees it: the
     same attributes and methods as `lightcone.World` (each a request to
-    the game's process), except those in `NOT_PROXIED`, which raise
-    NotImplementedError. A lesson may keep its own attributes on it."""
+    the game's process). A lesson may keep its own attributes on it."""
 
     def __init__(self, request, directory):
         object.__setattr__(self, "_request", request)
@@ -170,7 +170,7 @@ class World:
         if "error" in reply:
             kind, message = reply["error"]
             raise _exception(kind)(message)
-        return decode(reply["ok"])
+        return decode(reply["ok"], frames=True)
 
     def __getattr__(self, name):
         if name in SNAPSHOT:
@@ -190,14 +190,14 @@ class World:
         if name in GETTERS:
             result = self._call(name, (), {})
             return [tuple(c) for c in result] if name == "claims" else result
-        if name in NOT_PROXIED:
-            raise NotImplementedError(NOT_PROXIED[name])
         raise AttributeError(f"'World' object has no attribute {name!r}")
 
     def __setattr__(self, name, value):
+        # As on lightcone.World: a lesson's own attribute may hide a
+        # method (`world.collisions = 0`), not a read-only attribute.
         if name in SETTABLE:
             self._call("=" + name, (value,), {})
-        elif name in SNAPSHOT or name in METHODS or name in GETTERS:
+        elif name in SNAPSHOT or name in GETTERS:
             raise AttributeError(f"world.{name} cannot be set")
         else:
             object.__setattr__(self, name, value)
@@ -219,4 +219,4 @@ def begin(world, line):
     the hook's name and its arguments (the world first)."""
     msg = json.loads(line)
     world._begin(msg["snapshot"])
-    return msg["call"], tuple([world] + decode(msg["args"]))
+    return msg["call"], tuple([world] + decode(msg["args"], frames=True))

@@ -59,7 +59,7 @@ pub const FRAME_BUDGET: Duration = Duration::from_millis(10);
 
 /// The requests the game serves: `remote.py`'s `METHODS` and `GETTERS`,
 /// and `=name` for its `SETTABLE`.
-const SERVED: [&str; 23] = [
+const SERVED: [&str; 24] = [
     "start",
     "pause",
     "resume",
@@ -76,6 +76,7 @@ const SERVED: [&str; 23] = [
     "check",
     "bars",
     "finish",
+    "diagram",
     "claims",
     "scene",
     "finished",
