@@ -442,7 +442,10 @@ fn in_the_window_no_misbehaving_hook_ends_the_game_or_stops_its_frames() {
             &["TimeoutError", "except BaseException"],
         ),
         ("sleeps", &["TimeoutError", "time.sleep(60)"]),
-        ("long_builtin", &["more than 1 s", "could not be interrupted"]),
+        (
+            "long_builtin",
+            &["more than 1 s", "could not be interrupted"],
+        ),
         (
             "sends_garbage",
             &["misbehaved", "does not understand", "was stopped"],
@@ -505,10 +508,7 @@ fn every_lesson_behaves_the_same_in_its_own_process() {
 fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
     let dir = std::env::temp_dir().join(format!("lightcone-cost-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for (name, body) in [
-        ("t", "seen = world.t"),
-        ("state", "seen = world.state().t"),
-    ] {
+    for (name, body) in [("t", "seen = world.t"), ("state", "seen = world.state().t")] {
         let path = dir.join(format!("cost_{name}.py"));
         std::fs::write(
             &path,
@@ -534,7 +534,10 @@ fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
         )
         .unwrap();
         assert!(host.error.is_none(), "{:?}", host.error);
-        for (pace, calls) in [(Some(Duration::from_secs_f64(1.0 / 60.0)), 150), (None, 1500)] {
+        for (pace, calls) in [
+            (Some(Duration::from_secs_f64(1.0 / 60.0)), 150),
+            (None, 1500),
+        ] {
             let mut times = Vec::new();
             for _ in 0..calls {
                 let before = game.live_time;
@@ -551,7 +554,11 @@ fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
             assert!(host.error.is_none(), "{:?}", host.error);
             times.sort_by(f64::total_cmp);
             let at = |q: f64| times[((times.len() - 1) as f64 * q) as usize];
-            let pace = if pace.is_some() { "60 fps" } else { "back to back" };
+            let pace = if pace.is_some() {
+                "60 fps"
+            } else {
+                "back to back"
+            };
             println!(
                 "hook call in its own process ({name}, {pace}): p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs ({} calls)",
                 at(0.5),

@@ -281,7 +281,9 @@ impl Scene {
     fn _from_json(text: &str) -> PyResult<Self> {
         let raw: scene::Scene = serde_json::from_str(text)
             .map_err(|e| scene_error(format!("a scene sent as JSON: {e}")))?;
-        raw.rebuilt().map(|inner| Self { inner }).map_err(scene_error)
+        raw.rebuilt()
+            .map(|inner| Self { inner })
+            .map_err(scene_error)
     }
 
     fn __repr__(&self) -> String {

@@ -242,7 +242,8 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
     };
     let mut lesson: Option<Py<PyModule>> = None;
     while let Some(line) = read_down() {
-        let done = Python::attach(|py| run_call(py, &line, world.bind(py), path, limit, &mut lesson));
+        let done =
+            Python::attach(|py| run_call(py, &line, world.bind(py), path, limit, &mut lesson));
         match serde_json::to_vec(&done) {
             Ok(bytes) => send_up(&bytes),
             Err(_) => return 1,
@@ -271,7 +272,13 @@ fn run_call(
         .and_then(|r| r.extract::<(String, Bound<'_, pyo3::types::PyTuple>)>());
     let (name, args) = match begun {
         Ok(x) => x,
-        Err(e) => return done(Some(format!("a call the lesson cannot read: {e}")), false, vec![]),
+        Err(e) => {
+            return done(
+                Some(format!("a call the lesson cannot read: {e}")),
+                false,
+                vec![],
+            );
+        }
     };
     let Some(hook) = HOOKS.iter().copied().find(|h| *h == name) else {
         return done(Some(format!("no such hook {name:?}")), false, vec![]);
@@ -347,9 +354,12 @@ pub struct Isolation {
 /// The lesson's process, seen from the game.
 pub(crate) struct Remote {
     child: Child,
-    /// Lines to write to it (a thread writes them, so a lesson that does
-    /// not read never blocks the game).
-    down: mpsc::Sender<Vec<u8>>,
+    /// Its standard input, non-blocking: a short line goes straight in.
+    stdin: std::sync::Arc<std::process::ChildStdin>,
+    /// Lines that did not fit at once, for a thread to write (so a lesson
+    /// that does not read never blocks the game), and how many are there.
+    backlog: mpsc::Sender<Vec<u8>>,
+    queued: std::sync::Arc<std::sync::atomic::AtomicUsize>,
     up: mpsc::Receiver<FromChild>,
     /// The call out: its hook and when it was sent.
     out: Option<(&'static str, Instant)>,
@@ -377,13 +387,26 @@ impl Remote {
             let _ = child.wait();
             return Err("cannot talk to the lesson's process".to_owned());
         };
-        let (down, to_write) = mpsc::channel::<Vec<u8>>();
+        // SAFETY: sets a flag on our own end of the pipe.
+        unsafe {
+            use std::os::fd::AsRawFd;
+            let fd = stdin.as_raw_fd();
+            libc::fcntl(
+                fd,
+                libc::F_SETFL,
+                libc::fcntl(fd, libc::F_GETFL) | libc::O_NONBLOCK,
+            );
+        }
+        let stdin = std::sync::Arc::new(stdin);
+        let queued = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let (backlog, to_write) = mpsc::channel::<Vec<u8>>();
+        let (pipe, count) = (stdin.clone(), queued.clone());
         std::thread::spawn(move || {
-            let mut stdin = stdin;
             for line in to_write {
-                if stdin.write_all(&line).is_err() {
-                    break;
+                if write_all_waiting(&pipe, &line).is_err() {
+                    break; // the lesson's process is gone
                 }
+                count.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
             }
         });
         let (tx, up) = mpsc::channel();
@@ -408,7 +431,9 @@ impl Remote {
         });
         Ok(Self {
             child,
-            down,
+            stdin,
+            backlog,
+            queued,
             up,
             out: None,
             queue: VecDeque::new(),
@@ -417,9 +442,21 @@ impl Remote {
         })
     }
 
+    /// Sends `line`: straight into the pipe when it fits at once (a
+    /// write of at most `PIPE_BUF` bytes is whole or nothing) and no
+    /// earlier line waits; else through the writer thread.
     fn send(&self, mut line: Vec<u8>) {
+        use std::sync::atomic::Ordering;
         line.push(b'\n');
-        let _ = self.down.send(line);
+        if self.queued.load(Ordering::SeqCst) == 0 && line.len() <= libc::PIPE_BUF {
+            match (&*self.stdin).write(&line) {
+                Ok(n) if n == line.len() => return,
+                Err(e) if e.kind() != std::io::ErrorKind::WouldBlock => return, // gone
+                _ => {}
+            }
+        }
+        self.queued.fetch_add(1, Ordering::SeqCst);
+        let _ = self.backlog.send(line);
     }
 
     /// Kills the process group and waits for it, giving a process that is
@@ -436,6 +473,29 @@ impl Remote {
         supervise::kill_group(self.child.id());
         self.child.wait().ok()
     }
+}
+
+/// Writes all of `line` to the non-blocking `pipe`, waiting for room.
+fn write_all_waiting(pipe: &std::process::ChildStdin, mut line: &[u8]) -> std::io::Result<()> {
+    use std::os::fd::AsRawFd;
+    while !line.is_empty() {
+        match (&*pipe).write(line) {
+            Ok(0) => return Err(std::io::ErrorKind::WriteZero.into()),
+            Ok(n) => line = &line[n..],
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                let mut fd = libc::pollfd {
+                    fd: pipe.as_raw_fd(),
+                    events: libc::POLLOUT,
+                    revents: 0,
+                };
+                // SAFETY: one valid pollfd for the call's length.
+                unsafe { libc::poll(&mut fd, 1, -1) };
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(())
 }
 
 impl Drop for Remote {
@@ -518,7 +578,8 @@ impl LessonHost {
         };
         let (result, back, generation) = Python::attach(|py| {
             let world = self.world.bind(py);
-            world.borrow_mut().game = lent.map(|g| Box::new(g) as Box<dyn lightcone_python::LessonGame>);
+            world.borrow_mut().game =
+                lent.map(|g| Box::new(g) as Box<dyn lightcone_python::LessonGame>);
             let result = f(py, world);
             let back = world.borrow_mut().game.take().and_then(lend::taken_back);
             (result, back, world.borrow().generation)
@@ -566,7 +627,7 @@ impl LessonHost {
                     let Some((hook, args)) = remote.queue.pop_front() else {
                         return;
                     };
-                    if hook != "setup" && !(self.error.is_none() && !self.finished) {
+                    if hook != "setup" && (self.error.is_some() || self.finished) {
                         remote.queue.clear();
                         return;
                     }
@@ -582,7 +643,11 @@ impl LessonHost {
                     match line {
                         Ok(line) => remote.send(line.into_bytes()),
                         Err(e) => {
-                            return self.stop(game, Some(format!("cannot call {hook}: {e}")), false);
+                            return self.stop(
+                                game,
+                                Some(format!("cannot call {hook}: {e}")),
+                                false,
+                            );
                         }
                     }
                     let out = (hook, Instant::now());
@@ -601,7 +666,9 @@ impl LessonHost {
                     if !SERVED.contains(&op.as_str()) {
                         return self.stop(
                             game,
-                            Some(format!("it asked the game for {op:?}, which the game does not serve")),
+                            Some(format!(
+                                "it asked the game for {op:?}, which the game does not serve"
+                            )),
                             false,
                         );
                     }
@@ -618,7 +685,9 @@ impl LessonHost {
                                 r.send(line.into_bytes());
                             }
                         }
-                        Err(e) => return self.stop(game, Some(format!("cannot answer: {e}")), false),
+                        Err(e) => {
+                            return self.stop(game, Some(format!("cannot answer: {e}")), false);
+                        }
                     }
                 }
                 Ok(FromChild::Line(Up::Done {
@@ -661,7 +730,12 @@ impl LessonHost {
         let (generation, finished) = Python::attach(|py| {
             let world = self.world.bind(py);
             // What the lesson printed is untrusted text: keep a bounded tail.
-            let lines = printed.into_iter().rev().take(super::PRINTED_LINES).rev().collect();
+            let lines = printed
+                .into_iter()
+                .rev()
+                .take(super::PRINTED_LINES)
+                .rev()
+                .collect();
             keep_printed(world, lines);
             let w = world.borrow();
             (w.generation, w.ui.finished.is_some())
@@ -718,7 +792,9 @@ impl LessonHost {
             (Some(reason), _) => {
                 format!("{place}: the lesson's process misbehaved: {reason}; it was stopped")
             }
-            (None, Some(s)) if !killed && !(over && s.code() == Some(watchdog::HARD_STOP_STATUS)) => {
+            (None, Some(s))
+                if !(killed || over && s.code() == Some(watchdog::HARD_STOP_STATUS)) =>
+            {
                 format!(
                     "{place}: the lesson's process {}; the lesson stopped there",
                     supervise::how_it_ended(s, remote.memory_mb)
@@ -751,9 +827,15 @@ mod tests {
     #[test]
     fn only_the_two_messages_parse() {
         let done = r#"{"done":{"error":null,"timed_out":false,"printed":[],"hooks":["on_frame"]}}"#;
-        assert!(matches!(serde_json::from_str::<Up>(done), Ok(Up::Done { .. })));
+        assert!(matches!(
+            serde_json::from_str::<Up>(done),
+            Ok(Up::Done { .. })
+        ));
         let request = r#"{"request":{"op":"say","args":["hi"],"kwargs":{}}}"#;
-        assert!(matches!(serde_json::from_str::<Up>(request), Ok(Up::Request { .. })));
+        assert!(matches!(
+            serde_json::from_str::<Up>(request),
+            Ok(Up::Request { .. })
+        ));
         for bad in [
             r#"{"shell":"rm -rf /"}"#,
             r#"{"done":{"error":null,"timed_out":false,"printed":[],"hooks":[],"extra":1}}"#,
