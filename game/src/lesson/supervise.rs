@@ -321,7 +321,12 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         Some((name, _)) => format!("in {name}"),
         None => "between hooks".to_owned(),
     };
-    let (stopped, error) = if killed || status.code() == Some(HARD_STOP_STATUS) {
+    // Status 3 is the watchdog's hard stop only for a hook over its limit
+    // (a lesson may end its process with 3 itself, through ctypes).
+    let over = hook
+        .as_ref()
+        .is_some_and(|(_, since)| since.elapsed() > limits.hook);
+    let (stopped, error) = if killed || (over && status.code() == Some(HARD_STOP_STATUS)) {
         (Stop::Timeout, uninterruptible(&place, limits.hook))
     } else {
         let how = how_it_ended(status, limits.memory_mb);
