@@ -227,7 +227,11 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
         ("exits", 1, &["SystemExit", "cannot end the game"]),
         ("forks", 1, &["PermissionError", "may not start processes"]),
         ("crashes", 4, &["SIGSEGV", "in on_frame"]),
-        ("exits_for_real", 4, &["exited with status 3", "in on_frame"]),
+        (
+            "exits_for_real",
+            4,
+            &["exited with status 3", "in on_frame"],
+        ),
         ("memory_bomb", 1, &["MemoryError", "in on_frame"]),
     ];
     let limit = 1.0;

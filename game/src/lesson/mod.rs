@@ -253,31 +253,7 @@ impl LessonHost {
         fallback: impl FnOnce() -> GameState,
         isolation: remote::Isolation,
     ) -> Result<(Self, GameState), String> {
-        init_python()?;
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .map(Path::to_path_buf)
-            .unwrap_or_else(|| PathBuf::from("."));
-        let world = Python::attach(|py| Py::new(py, World::new(dir, lend::new_game)))
-            .map_err(|e| format!("cannot start the lesson host: {e}"))?;
-        let mut host = Self {
-            path: path.to_path_buf(),
-            module: None,
-            world,
-            spare: Some(placeholder()),
-            seen_collisions: 0,
-            generation: 0,
-            modified: None,
-            error: None,
-            timed_out: false,
-            loads: 0,
-            finished: false,
-            limit,
-            remote: None,
-            isolation: None,
-            pending: None,
-        };
+        let mut host = Self::new(path, limit)?;
         host.start_remote(&isolation);
         host.isolation = Some(isolation);
         let mut game = fallback();
@@ -293,21 +269,12 @@ impl LessonHost {
         }
     }
 
-    /// [`Self::load`] with a hook time limit other than [`HOOK_LIMIT`].
-    pub fn load_with_limit(
-        path: &Path,
-        limit: std::time::Duration,
-        fallback: impl FnOnce() -> GameState,
-    ) -> Result<(Self, GameState), String> {
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .map(Path::to_path_buf)
-            .unwrap_or_else(|| PathBuf::from("."));
+    /// A host for the lesson at `path`, nothing loaded yet.
+    fn new(path: &Path, limit: std::time::Duration) -> Result<Self, String> {
         init_python()?;
-        let world = Python::attach(|py| Py::new(py, World::new(dir, lend::new_game)))
+        let world = Python::attach(|py| Py::new(py, World::new(lesson_dir(path), lend::new_game)))
             .map_err(|e| format!("cannot start the lesson host: {e}"))?;
-        let mut host = Self {
+        Ok(Self {
             path: path.to_path_buf(),
             module: None,
             world,
@@ -323,7 +290,16 @@ impl LessonHost {
             remote: None,
             isolation: None,
             pending: None,
-        };
+        })
+    }
+
+    /// [`Self::load`] with a hook time limit other than [`HOOK_LIMIT`].
+    pub fn load_with_limit(
+        path: &Path,
+        limit: std::time::Duration,
+        fallback: impl FnOnce() -> GameState,
+    ) -> Result<(Self, GameState), String> {
+        let mut host = Self::new(path, limit)?;
         let game = host.start().unwrap_or_else(fallback);
         Ok((host, game))
     }
@@ -611,6 +587,14 @@ fn limit_from_env() -> Result<std::time::Duration, String> {
             )),
         },
     }
+}
+
+/// The lesson's directory (relative paths in it are taken from there).
+fn lesson_dir(path: &Path) -> PathBuf {
+    path.parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."))
 }
 
 fn modified(path: &Path) -> Option<SystemTime> {

@@ -49,6 +49,8 @@ METHODS = (
 )
 # Read-only attributes served by the game's process.
 GETTERS = ("claims", "scene", "finished")
+# Every request the game serves (the game refuses any other).
+SERVED = METHODS + GETTERS + tuple("=" + name for name in SETTABLE)
 def encode(value):
     """`value` as JSON data, records and scenes tagged."""
     if value is None or isinstance(value, (bool, int, float, str)):

@@ -57,34 +57,22 @@ pub const MAX_LINE: usize = 16 << 20;
 /// takes longer goes on over the next frames while board time waits.
 pub const FRAME_BUDGET: Duration = Duration::from_millis(10);
 
-/// The requests the game serves: `remote.py`'s `METHODS` and `GETTERS`,
-/// and `=name` for its `SETTABLE`.
-const SERVED: [&str; 24] = [
-    "start",
-    "pause",
-    "resume",
-    "set_effect",
-    "state",
-    "collisions",
-    "velocity",
-    "impulse",
-    "observe",
-    "show_diagram",
-    "simultaneity",
-    "say",
-    "ask",
-    "check",
-    "bars",
-    "finish",
-    "diagram",
-    "claims",
-    "scene",
-    "finished",
-    "=paused",
-    "=time_scale",
-    "=view",
-    "=observer",
-];
+/// Whether the game serves request `op`: `remote.py`'s `SERVED` (its
+/// `METHODS`, `GETTERS`, and `=name` for its `SETTABLE`), read once.
+fn served(op: &str) -> bool {
+    static SERVED: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+    SERVED
+        .get_or_init(|| {
+            Python::attach(|py| {
+                module(py)
+                    .and_then(|m| m.getattr("SERVED"))
+                    .and_then(|s| s.extract())
+                    .unwrap_or_default()
+            })
+        })
+        .iter()
+        .any(|s| s == op)
+}
 
 /// The hooks, by the names a call carries.
 const HOOKS: [&str; 4] = ["setup", "on_frame", "on_collision", "on_answer"];
@@ -221,11 +209,7 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
         eprintln!("{e}");
         return 1;
     }
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| PathBuf::from("."));
+    let dir = super::lesson_dir(path);
     let world = Python::attach(|py| -> PyResult<Py<PyAny>> {
         let f = pyo3::wrap_pyfunction!(request, py)?;
         let w = module(py)?
@@ -294,10 +278,7 @@ fn run_call(
                     ))
                 })
                 .and_then(|source| {
-                    let dir = path
-                        .parent()
-                        .filter(|d| !d.as_os_str().is_empty())
-                        .map_or_else(|| ".".to_owned(), |d| d.display().to_string());
+                    let dir = super::lesson_dir(path).display().to_string();
                     super::load_module(py, path, source, &dir)
                 })
                 .and_then(|m| {
@@ -663,7 +644,7 @@ impl LessonHost {
             };
             match remote.up.recv_timeout(wait) {
                 Ok(FromChild::Line(Up::Request { op, args, kwargs })) => {
-                    if !SERVED.contains(&op.as_str()) {
+                    if !served(&op) {
                         return self.stop(
                             game,
                             Some(format!(
@@ -822,6 +803,18 @@ mod tests {
         let mut long = std::io::Cursor::new(vec![b'x'; MAX_LINE + 10]);
         let err = read_line(&mut long).unwrap_err();
         assert!(err.contains("longer than 16 MiB"), "{err}");
+    }
+
+    #[test]
+    fn the_game_serves_the_world_and_nothing_else() {
+        super::super::init_python().unwrap();
+        for op in ["state", "impulse", "say", "diagram", "claims", "=paused"] {
+            assert!(served(op), "{op}");
+        }
+        // `load` runs in the lesson's process; the rest is not World's.
+        for op in ["load", "__init__", "__class__", "=t", "=claims", "", "dir"] {
+            assert!(!served(op), "{op}");
+        }
     }
 
     #[test]
