@@ -843,6 +843,45 @@ mod tests {
     }
 
     #[test]
+    fn every_shipped_scene_rebuilds_to_itself_and_a_bad_one_does_not() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        let mut n = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                let scene = crate::scene::load(&path).unwrap();
+                assert_eq!(scene.rebuilt().as_ref(), Ok(&scene), "{}", path.display());
+                n += 1;
+            }
+        }
+        assert!(n >= 5);
+        let mut scene = Scene::empty(DVec2::new(2.0, 1.0), None).unwrap();
+        let puck = |name: &str, x: f64| PuckSpec {
+            name: name.to_owned(),
+            position: DVec2::new(x, 0.5),
+            u: ProperVelocity(DVec3::ZERO),
+            radius: 0.1,
+            height: 0.02,
+            mass: 0.2,
+            color: Color::rgb(1, 2, 3),
+        };
+        scene.add_puck(puck("a", 0.5)).unwrap();
+        // What a scene sent as data can hold and a built one cannot.
+        let mut overlapping = scene.clone();
+        overlapping.pucks.push(puck("b", 0.55));
+        assert!(overlapping.rebuilt().unwrap_err().contains("overlaps"));
+        let mut fast = scene.clone();
+        fast.pucks[0].u = ProperVelocity(DVec3::new(f64::INFINITY, 0.0, 0.0));
+        assert!(fast.rebuilt().is_err());
+        let mut bouncy = scene.clone();
+        bouncy.restitution = 1.5;
+        assert!(bouncy.rebuilt().unwrap_err().contains("restitution"));
+        let mut blind = scene;
+        blind.observers.clear();
+        assert!(blind.rebuilt().is_err());
+    }
+
+    #[test]
     fn effects_flags_round_trip() {
         let mut e = Effects::NONE;
         for effect in Effect::ALL {

@@ -21,7 +21,9 @@
 //! reload — of the edited file, without restarting — starts again. A hook
 //! that runs past its time limit is stopped whatever it does
 //! ([`watchdog`]); `lightcone lesson` runs each lesson in a child process
-//! ([`supervise`]). After `world.finish()` no hook runs again.
+//! ([`supervise`]), and so does the window ([`remote`]: the lesson's
+//! `World` there is a stand-in whose methods this host serves on the real
+//! game). After `world.finish()` no hook runs again.
 
 pub mod headless;
 pub mod lend;
