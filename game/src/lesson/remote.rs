@@ -102,22 +102,22 @@ pub(crate) enum Up {
     },
 }
 
-/// `remote.py` as a module, loaded once per interpreter.
+/// `remote.py` as a module, loaded once per interpreter (whole before any
+/// thread sees it).
 fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
-    let modules = py.import("sys")?.getattr("modules")?;
-    if let Ok(m) = modules.get_item("lightcone_remote") {
-        return Ok(m.cast_into::<PyModule>()?);
-    }
-    let code = std::ffi::CString::new(REMOTE_PY)
-        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
-    let m = PyModule::from_code(
-        py,
-        &code,
-        c"<lightcone game>/lesson/remote.py",
-        c"lightcone_remote",
-    )?;
-    modules.set_item("lightcone_remote", &m)?;
-    Ok(m)
+    static MODULE: pyo3::sync::PyOnceLock<Py<PyModule>> = pyo3::sync::PyOnceLock::new();
+    let m = MODULE.get_or_try_init(py, || -> PyResult<Py<PyModule>> {
+        let code = std::ffi::CString::new(REMOTE_PY)
+            .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        let m = PyModule::from_code(
+            py,
+            &code,
+            c"<lightcone game>/lesson/remote.py",
+            c"lightcone_remote",
+        )?;
+        Ok(m.unbind())
+    })?;
+    Ok(m.bind(py).clone())
 }
 
 /// Reads one line of at most [`MAX_LINE`] bytes (without its newline).
@@ -313,6 +313,33 @@ fn run_call(
 }
 
 // ---- The game's side.
+
+/// What `remote.py`'s `snapshot(world)` gives for `game` (the same keys
+/// and values as the `World` getters), built without Python.
+fn snapshot(game: &GameState) -> Value {
+    use lightcone_python::{LessonGame, Pictures};
+    let view = match game.pictures() {
+        Pictures::Seen => "seen",
+        Pictures::Truth => "truth",
+        Pictures::Split => "split",
+    };
+    let observer = LessonGame::observer(game)
+        .and_then(|i| game.scene.observers.get(i))
+        .map(|o| o.name.clone());
+    let effects: serde_json::Map<String, Value> = lightcone_engine::scene::Effect::ALL
+        .iter()
+        .map(|e| (e.key().to_owned(), Value::Bool(game.effects.is_on(*e))))
+        .collect();
+    serde_json::json!({
+        "t": game.live_time,
+        "c": game.scene.c,
+        "paused": game.paused,
+        "time_scale": game.time_scale,
+        "view": view,
+        "observer": observer,
+        "effects": effects,
+    })
+}
 
 /// What the reader thread passes on.
 enum FromChild {
@@ -612,12 +639,23 @@ impl LessonHost {
                         remote.queue.clear();
                         return;
                     }
-                    let args = args.to_string();
-                    let line = self.lend(game, hook == "setup", |py, world| {
-                        module(py)
-                            .and_then(|m| m.call_method1("call", (world, hook, args)))
-                            .and_then(|l| l.extract::<String>())
-                    });
+                    let line = if hook == "setup" {
+                        // No game yet: the world says why, in its words.
+                        let args = args.to_string();
+                        self.lend(game, true, |py, world| {
+                            module(py)
+                                .and_then(|m| m.call_method1("call", (world, hook, args)))
+                                .and_then(|l| l.extract::<String>())
+                        })
+                    } else {
+                        // Built here, without Python: the common case.
+                        let call = serde_json::json!({
+                            "call": hook,
+                            "args": args,
+                            "snapshot": snapshot(game),
+                        });
+                        Ok(call.to_string())
+                    };
                     let Some(remote) = self.remote.as_mut() else {
                         return;
                     };
@@ -815,6 +853,34 @@ mod tests {
         for op in ["load", "__init__", "__class__", "=t", "=claims", "", "dir"] {
             assert!(!served(op), "{op}");
         }
+    }
+
+    #[test]
+    fn the_snapshot_built_in_rust_is_the_worlds() {
+        super::super::init_python().unwrap();
+        let scene = lightcone_engine::scene::load(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml"),
+        )
+        .unwrap();
+        let mut game = GameState::new(scene);
+        game.step(0.25);
+        game.time_scale = 0.5;
+        game.observer = Some(0);
+        let ours = snapshot(&game);
+        let world =
+            Python::attach(|py| Py::new(py, World::new(".".into(), lend::new_game))).unwrap();
+        let theirs = Python::attach(|py| -> PyResult<String> {
+            let w = world.bind(py);
+            w.borrow_mut().game = Some(Box::new(game));
+            let text = module(py)?
+                .call_method1("call", (w, "on_frame", "[]"))?
+                .extract::<String>()?;
+            w.borrow_mut().game = None;
+            Ok(text)
+        })
+        .unwrap();
+        let theirs: Value = serde_json::from_str(&theirs).unwrap();
+        assert_eq!(ours, theirs["snapshot"]);
     }
 
     #[test]
