@@ -417,7 +417,9 @@ impl Remote {
                 count.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
             }
         });
-        let (tx, up) = mpsc::channel();
+        // Bounded: a lesson that floods the pipe waits for the game (its
+        // lines do not pile up in the game's memory).
+        let (tx, up) = mpsc::sync_channel(4);
         std::thread::spawn(move || {
             let mut reader = BufReader::new(stdout);
             loop {
