@@ -580,3 +580,55 @@ fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
         assert!(claims[0].ok && claims[0].detail == "1650", "{claims:?}");
     }
 }
+
+#[test]
+fn in_the_window_a_reload_after_a_crash_starts_a_new_process() {
+    let dir = std::env::temp_dir().join(format!("lightcone-reload-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("reload.py");
+    let lesson = |on_frame: &str| {
+        format!(
+            "import ctypes, lightcone\n\
+             def setup(world):\n\
+             \x20   s = lightcone.Scene(title='reload')\n\
+             \x20   s.add_puck('a', (0.5, 0.71), beta=(0.5, 0.0))\n\
+             \x20   world.start(s)\n\
+             def on_frame(world, t):\n\
+             \x20   {on_frame}\n"
+        )
+    };
+    std::fs::write(&path, lesson("ctypes.string_at(0)")).unwrap();
+    let (mut host, mut game) = LessonHost::load_isolated_with_limit(
+        &path,
+        Duration::from_secs(2),
+        lightcone::lesson::placeholder,
+        isolation(),
+    )
+    .unwrap();
+    assert_eq!(game.scene.title, "reload");
+    let step = |host: &mut LessonHost, game: &mut lightcone::model::GameState| {
+        let before = game.live_time;
+        game.paused = false;
+        game.step(0.05);
+        host.after_step(game, before);
+        host.settle(game);
+    };
+    step(&mut host, &mut game);
+    let error = host.error.clone().expect("the crash is reported");
+    assert!(error.contains("SIGSEGV"), "{error}");
+    assert!(!host.running());
+    // Fixed and reloaded (F5, or the saved file): a new process runs it.
+    std::fs::write(&path, lesson("world.check('ran', world.t == t)")).unwrap();
+    host.reload(&mut game);
+    host.settle(&mut game);
+    assert!(host.error.is_none(), "{:?}", host.error);
+    assert_eq!(game.live_time, 0.0, "the lesson's new game");
+    for _ in 0..3 {
+        step(&mut host, &mut game);
+    }
+    assert!(host.running(), "{:?}", host.error);
+    let claims = host.with_ui(|ui| ui.claims.clone());
+    assert_eq!(claims.len(), 3);
+    assert!(claims.iter().all(|c| c.ok));
+    assert_eq!(host.loads, 2);
+}

@@ -181,7 +181,8 @@ pub struct LessonHost {
     path: PathBuf,
     /// The lesson's module (its globals), while it loads and runs.
     module: Option<Py<PyModule>>,
-    world: Py<World>,
+    /// Dropped attached to Python, on the host's thread (see `Drop`).
+    world: std::mem::ManuallyDrop<Py<World>>,
     /// What the game holds while its real state is lent to the world.
     spare: Option<GameState>,
     /// Collisions already passed to `on_collision`.
@@ -279,7 +280,7 @@ impl LessonHost {
         Ok(Self {
             path: path.to_path_buf(),
             module: None,
-            world,
+            world: std::mem::ManuallyDrop::new(world),
             spare: Some(placeholder()),
             seen_collisions: 0,
             generation: 0,
@@ -333,7 +334,7 @@ impl LessonHost {
             let module = load_module(py, &self.path, source, &dir)?;
             // A fresh world (screen, attributes, no game): setup builds it.
             let dir = self.world.borrow(py).dir.clone();
-            self.world = Py::new(py, World::new(dir, lend::new_game))?;
+            *self.world = Py::new(py, World::new(dir, lend::new_game))?;
             let world = self.world.bind(py);
             let setup = module.call_method1("setup", (world,));
             drop(running);
@@ -597,6 +598,17 @@ fn lesson_dir(path: &Path) -> PathBuf {
         .filter(|d| !d.as_os_str().is_empty())
         .map(Path::to_path_buf)
         .unwrap_or_else(|| PathBuf::from("."))
+}
+
+impl Drop for LessonHost {
+    /// Releases the world here, attached: the world is unsendable, and a
+    /// release left for whichever thread next attaches is refused (with an
+    /// error printed) and leaks it.
+    fn drop(&mut self) {
+        // SAFETY: `world` is not used after this; the field is never
+        // dropped otherwise (`ManuallyDrop`).
+        Python::attach(|_| unsafe { std::mem::ManuallyDrop::drop(&mut self.world) });
+    }
 }
 
 fn modified(path: &Path) -> Option<SystemTime> {

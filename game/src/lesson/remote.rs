@@ -534,7 +534,7 @@ impl LessonHost {
             Py::new(py, World::new(dir, lend::new_game))
         });
         match fresh {
-            Ok(w) => self.world = w,
+            Ok(w) => Python::attach(|_| *self.world = w),
             Err(e) => return self.fail(format!("cannot start the lesson host: {e}")),
         }
         match Remote::spawn(&self.path, self.limit, isolation) {
@@ -881,6 +881,7 @@ mod tests {
             Ok(text)
         })
         .unwrap();
+        Python::attach(|_| drop(world)); // unsendable: released here
         let theirs: Value = serde_json::from_str(&theirs).unwrap();
         assert_eq!(ours, theirs["snapshot"]);
     }
