@@ -8,7 +8,11 @@ mod common;
 use std::path::Path;
 use std::process::Output;
 
+use std::time::{Duration, Instant};
+
 use common::{cloth_pixels, lightcone, play_under_xvfb, play_under_xvfb_with, repo};
+use lightcone::lesson::remote::Isolation;
+use lightcone::lesson::{LessonHost, headless};
 use lightcone_render::headless::Image;
 
 fn lessons() -> Vec<String> {
@@ -223,6 +227,11 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
         ("exits", 1, &["SystemExit", "cannot end the game"]),
         ("forks", 1, &["PermissionError", "may not start processes"]),
         ("crashes", 4, &["SIGSEGV", "in on_frame"]),
+        (
+            "exits_for_real",
+            4,
+            &["exited with status 3", "in on_frame"],
+        ),
         ("memory_bomb", 1, &["MemoryError", "in on_frame"]),
     ];
     let limit = 1.0;
@@ -329,33 +338,297 @@ fn an_endless_hook_is_stopped_with_a_timeout() {
 }
 
 #[test]
-fn in_the_window_a_hook_that_swallows_its_stop_is_stopped_and_the_game_goes_on() {
+fn in_the_window_a_lesson_that_crashes_blocks_or_swallows_its_stop_leaves_the_game_running() {
     let dir = std::env::temp_dir().join(format!("lightcone-lesson-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let limit = [("LIGHTCONE_HOOK_LIMIT", "1")];
-    let (out, img) = play_under_xvfb_with(
-        &["play", "tests/lessons/swallow_base_exception.py"],
-        &dir.join("swallow.png"),
-        30,
-        &limit,
-    );
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let img = img.unwrap_or_else(|| panic!("the game did not survive:\n{stderr}"));
-    assert!(stderr.contains("TimeoutError"), "{stderr}");
-    assert!(traceback_pixels(&img) > 200, "no traceback on screen");
-    assert!(cloth_pixels(&img) > 1280 * 720 / 20, "no table on screen");
+    let env = [
+        ("LIGHTCONE_HOOK_LIMIT", "1"),
+        ("LIGHTCONE_MEMORY_LIMIT", "384"),
+    ];
+    // (lesson, what the panel and stderr say). A C call that never
+    // returns used to end the game with status 3; a segfault, with
+    // SIGSEGV. The lesson runs in its own process now: the game takes its
+    // screenshot (frames went on being drawn) and exits 0.
+    for (lesson, says) in [
+        ("crashes", "crashed (SIGSEGV"),
+        ("long_builtin", "could not be interrupted"),
+    ] {
+        let (out, img) = play_under_xvfb_with(
+            &["play", &format!("tests/lessons/{lesson}.py")],
+            &dir.join(format!("window-{lesson}.png")),
+            30,
+            &env,
+        );
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let img = img.unwrap_or_else(|| panic!("{lesson}: the game did not survive:\n{stderr}"));
+        assert!(stderr.contains(says), "{lesson}: {says:?} not in\n{stderr}");
+        assert!(
+            traceback_pixels(&img) > 200,
+            "{lesson}: no reason on screen"
+        );
+        assert!(
+            cloth_pixels(&img) > 1280 * 720 / 20,
+            "{lesson}: no table on screen"
+        );
+    }
+}
 
-    // One C call that never returns to Python: the game ends with status 3
-    // and the reason, instead of hanging.
-    let start = std::time::Instant::now();
-    let (out, _) = play_under_xvfb_with(
-        &["play", "tests/lessons/long_builtin.py"],
-        &dir.join("builtin.png"),
-        30,
-        &limit,
-    );
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(3), "{stderr}");
-    assert!(stderr.contains("could not be interrupted"), "{stderr}");
-    assert!(start.elapsed().as_secs_f64() < 20.0);
+/// How the window runs lessons: in their own process, started from the
+/// game's binary, with a 384 MiB address space.
+fn isolation() -> Isolation {
+    Isolation {
+        exe: env!("CARGO_BIN_EXE_lightcone").into(),
+        memory_mb: 384,
+    }
+}
+
+/// What the window's frame loop saw while driving a lesson at 60 fps for
+/// `seconds`: the error shown, the longest frame (ms), the frames drawn,
+/// the board time kept.
+struct WindowRun {
+    error: Option<String>,
+    longest_ms: f64,
+    frames: u32,
+    t: f64,
+    running: bool,
+}
+
+/// Drives `lesson` as the window does (`LessonHost::after_step` once a
+/// frame; board time waits while a hook is out), with a hook limit of 1 s.
+fn drive_window_host(lesson: &str, seconds: f64) -> WindowRun {
+    let path = repo().join(lesson);
+    let (mut host, mut game) = LessonHost::load_isolated_with_limit(
+        &path,
+        Duration::from_secs(1),
+        lightcone::lesson::placeholder,
+        isolation(),
+    )
+    .unwrap();
+    assert!(host.error.is_none(), "{lesson}: {:?}", host.error);
+    let frame = Duration::from_secs_f64(1.0 / 60.0);
+    let start = Instant::now();
+    let mut longest = Duration::ZERO;
+    let mut frames = 0;
+    while start.elapsed().as_secs_f64() < seconds {
+        let t0 = Instant::now();
+        let before = game.live_time;
+        if !host.busy() {
+            game.step(frame.as_secs_f64());
+        }
+        host.after_step(&mut game, before);
+        let took = t0.elapsed();
+        longest = longest.max(took);
+        frames += 1;
+        std::thread::sleep(frame.saturating_sub(took));
+    }
+    WindowRun {
+        error: host.error.clone(),
+        longest_ms: longest.as_secs_f64() * 1e3,
+        frames,
+        t: game.live_time,
+        running: host.running(),
+    }
+}
+
+#[test]
+fn in_the_window_no_misbehaving_hook_ends_the_game_or_stops_its_frames() {
+    // (lesson, what the reason says): exits with status 3 (past the
+    // guard on os._exit, and through it), a segfault through ctypes, a
+    // memory bomb, an endless loop inside `except BaseException`, a
+    // 60 s sleep, a C builtin that never returns, garbage on the channel
+    // to the game.
+    let cases: &[(&str, &[&str])] = &[
+        ("exits_for_real", &["in on_frame", "exited with status 3"]),
+        ("exits", &["SystemExit", "cannot end the game"]),
+        ("crashes", &["in on_frame", "SIGSEGV"]),
+        ("memory_bomb", &["in on_frame", "MemoryError"]),
+        (
+            "swallow_base_exception",
+            &["TimeoutError", "except BaseException"],
+        ),
+        ("sleeps", &["TimeoutError", "time.sleep(60)"]),
+        (
+            "long_builtin",
+            &["more than 1 s", "could not be interrupted"],
+        ),
+        (
+            "sends_garbage",
+            &["misbehaved", "does not understand", "was stopped"],
+        ),
+    ];
+    // All at once (each waits out its limit): each has its own process.
+    let runs: Vec<_> = cases
+        .iter()
+        .map(|(name, _)| {
+            let lesson = format!("tests/lessons/{name}.py");
+            std::thread::spawn(move || drive_window_host(&lesson, 3.0))
+        })
+        .collect();
+    for ((name, says), run) in cases.iter().zip(runs) {
+        let run = run.join().unwrap();
+        let error = run
+            .error
+            .unwrap_or_else(|| panic!("{name}: no reason shown"));
+        for s in *says {
+            assert!(error.contains(s), "{name}: {s:?} not in\n{error}");
+        }
+        assert!(!run.running, "{name}: hooks stop");
+        // The state before the misbehaviour is kept: one frame ran.
+        assert!(run.t > 0.0, "{name}: board time {}", run.t);
+        // The frame loop went on: ~180 frames in 3 s, none held for long
+        // (the frame budget is 10 ms; the margin is for 8 lessons at once
+        // on a loaded 2-core machine).
+        assert!(run.frames > 60, "{name}: only {} frames", run.frames);
+        assert!(
+            run.longest_ms < 300.0,
+            "{name}: a frame took {:.0} ms",
+            run.longest_ms
+        );
+        println!(
+            "{name}: {} frames, longest {:.1} ms",
+            run.frames, run.longest_ms
+        );
+    }
+}
+
+#[test]
+fn every_lesson_behaves_the_same_in_its_own_process() {
+    for lesson in lessons() {
+        let path = repo().join(&lesson);
+        let limit = Duration::from_secs(10);
+        let here = headless::run(&path, 600.0, 30.0, limit).unwrap();
+        let there = headless::run_isolated(&path, 600.0, 30.0, limit, isolation()).unwrap();
+        assert!(there.error.is_none(), "{lesson}: {:?}", there.error);
+        let json = |o: &headless::Outcome| serde_json::to_value(o).unwrap();
+        assert_eq!(json(&here), json(&there), "{lesson}");
+    }
+}
+
+/// The cost of one hook call across processes (the call, the hook's
+/// requests answered on the game, its end), measured on hooks that read
+/// the board time from the snapshot, and that also ask for `state()`: the
+/// figures in BENCHMARKS.md. At 60 fps (a call every 16.7 ms, so each
+/// round trip wakes both processes) and back to back.
+#[test]
+fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
+    let dir = std::env::temp_dir().join(format!("lightcone-cost-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, body) in [("t", "seen = world.t"), ("state", "seen = world.state().t")] {
+        let path = dir.join(format!("cost_{name}.py"));
+        std::fs::write(
+            &path,
+            format!(
+                "import lightcone\n\
+                 def setup(world):\n\
+                 \x20   s = lightcone.Scene(title='cost')\n\
+                 \x20   s.add_puck('a', (0.5, 0.71), beta=(0.5, 0.0))\n\
+                 \x20   world.start(s)\n\
+                 def on_frame(world, t):\n\
+                 \x20   world.n = getattr(world, 'n', 0) + 1\n\
+                 \x20   {body}\n\
+                 \x20   if seen != t or world.n == 1650:\n\
+                 \x20       world.check('calls', seen == t, str(world.n))\n"
+            ),
+        )
+        .unwrap();
+        let (mut host, mut game) = LessonHost::load_isolated_with_limit(
+            &path,
+            Duration::from_secs(10),
+            lightcone::lesson::placeholder,
+            isolation(),
+        )
+        .unwrap();
+        assert!(host.error.is_none(), "{:?}", host.error);
+        for (pace, calls) in [
+            (Some(Duration::from_secs_f64(1.0 / 60.0)), 150),
+            (None, 1500),
+        ] {
+            let mut times = Vec::new();
+            for _ in 0..calls {
+                let before = game.live_time;
+                game.step(1e-4);
+                let start = Instant::now();
+                host.after_step(&mut game, before);
+                host.settle(&mut game);
+                let took = start.elapsed();
+                times.push(took.as_secs_f64() * 1e6);
+                if let Some(p) = pace {
+                    std::thread::sleep(p.saturating_sub(took));
+                }
+            }
+            assert!(host.error.is_none(), "{:?}", host.error);
+            times.sort_by(f64::total_cmp);
+            let at = |q: f64| times[((times.len() - 1) as f64 * q) as usize];
+            let pace = if pace.is_some() {
+                "60 fps"
+            } else {
+                "back to back"
+            };
+            println!(
+                "hook call in its own process ({name}, {pace}): p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs ({} calls)",
+                at(0.5),
+                at(0.99),
+                at(1.0),
+                times.len()
+            );
+            // Loose, for a shared machine: the goal (BENCHMARKS.md) is 100 µs.
+            assert!(at(0.5) < 5000.0, "p50 {} µs", at(0.5));
+        }
+        // One claim, at the last call: every call saw its t as world.t.
+        let claims = host.with_ui(|ui| ui.claims.clone());
+        assert_eq!(claims.len(), 1, "{claims:?}");
+        assert!(claims[0].ok && claims[0].detail == "1650", "{claims:?}");
+    }
+}
+
+#[test]
+fn in_the_window_a_reload_after_a_crash_starts_a_new_process() {
+    let dir = std::env::temp_dir().join(format!("lightcone-reload-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("reload.py");
+    let lesson = |on_frame: &str| {
+        format!(
+            "import ctypes, lightcone\n\
+             def setup(world):\n\
+             \x20   s = lightcone.Scene(title='reload')\n\
+             \x20   s.add_puck('a', (0.5, 0.71), beta=(0.5, 0.0))\n\
+             \x20   world.start(s)\n\
+             def on_frame(world, t):\n\
+             \x20   {on_frame}\n"
+        )
+    };
+    std::fs::write(&path, lesson("ctypes.string_at(0)")).unwrap();
+    let (mut host, mut game) = LessonHost::load_isolated_with_limit(
+        &path,
+        Duration::from_secs(2),
+        lightcone::lesson::placeholder,
+        isolation(),
+    )
+    .unwrap();
+    assert_eq!(game.scene.title, "reload");
+    let step = |host: &mut LessonHost, game: &mut lightcone::model::GameState| {
+        let before = game.live_time;
+        game.paused = false;
+        game.step(0.05);
+        host.after_step(game, before);
+        host.settle(game);
+    };
+    step(&mut host, &mut game);
+    let error = host.error.clone().expect("the crash is reported");
+    assert!(error.contains("SIGSEGV"), "{error}");
+    assert!(!host.running());
+    // Fixed and reloaded (F5, or the saved file): a new process runs it.
+    std::fs::write(&path, lesson("world.check('ran', world.t == t)")).unwrap();
+    host.reload(&mut game);
+    host.settle(&mut game);
+    assert!(host.error.is_none(), "{:?}", host.error);
+    assert_eq!(game.live_time, 0.0, "the lesson's new game");
+    for _ in 0..3 {
+        step(&mut host, &mut game);
+    }
+    assert!(host.running(), "{:?}", host.error);
+    let claims = host.with_ui(|ui| ui.claims.clone());
+    assert_eq!(claims.len(), 3);
+    assert!(claims.iter().all(|c| c.ok));
+    assert_eq!(host.loads, 2);
 }

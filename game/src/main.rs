@@ -241,6 +241,10 @@ enum Command {
         /// parent `lightcone lesson` (see lesson::supervise).
         #[arg(long, hide = true)]
         child: bool,
+        /// Internal: run the lesson's hooks for the window `lightcone play`
+        /// (see lesson::remote).
+        #[arg(long, hide = true, conflicts_with = "child")]
+        window_child: bool,
         /// Print the outcome as one JSON object (schema in the README).
         #[arg(long)]
         json: bool,
@@ -383,6 +387,7 @@ fn main() -> ExitCode {
             hook_limit,
             memory_limit,
             child,
+            window_child,
             json,
         }) => commands::lesson::run(
             &lessons,
@@ -392,6 +397,7 @@ fn main() -> ExitCode {
                 hook_limit,
                 memory_limit,
                 child,
+                window_child,
                 json,
             },
         ),

@@ -81,6 +81,18 @@ impl Frame {
         self.save(path)
     }
 
+    /// A frame from its PNG bytes: how a lesson run in its own process
+    /// receives `world.diagram(...)` from the game (which made the PNG).
+    #[staticmethod]
+    fn _from_png(png: &[u8], width: u32, height: u32, t: f64) -> Self {
+        Self {
+            png: png.to_vec(),
+            width,
+            height,
+            t,
+        }
+    }
+
     fn _repr_png_<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
         PyBytes::new(py, &self.png)
     }

@@ -267,6 +267,25 @@ impl Scene {
         Ok(d)
     }
 
+    /// The scene as JSON (the engine's serde form): how a lesson run in
+    /// its own process sends `world.start(scene)` to the game.
+    fn _to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.inner)
+            .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
+    }
+
+    /// The scene [`Self::_to_json`] wrote, checked again as a scene built
+    /// in code is (`SceneError` otherwise): the game does not trust what a
+    /// lesson's process sends.
+    #[staticmethod]
+    fn _from_json(text: &str) -> PyResult<Self> {
+        let raw: scene::Scene = serde_json::from_str(text)
+            .map_err(|e| scene_error(format!("a scene sent as JSON: {e}")))?;
+        raw.rebuilt()
+            .map(|inner| Self { inner })
+            .map_err(scene_error)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Scene({:?}, {} pucks, c = {} m/s)",

@@ -735,6 +735,50 @@ impl Scene {
         Ok(())
     }
 
+    /// The same scene rebuilt through the checks a scene built in code
+    /// gets ([`Self::empty`], [`Self::add_puck`], [`Self::set_friction`],
+    /// [`Self::add_observer`]) plus the ranges of the fields those leave
+    /// (restitutions in [0, 1], the `[optics]` limits): for a scene that
+    /// arrives as data from a process the game does not trust (a lesson
+    /// run in its own process sends `world.start(scene)` as JSON). Errors
+    /// name the first problem.
+    pub fn rebuilt(&self) -> Result<Self, String> {
+        let mut scene = Self::empty(self.table.size, Some(self.c))?;
+        for p in &self.pucks {
+            scene.add_puck(p.clone())?;
+        }
+        scene.set_friction(self.table.friction, self.table.gravity)?;
+        if self.observers.is_empty() {
+            return Err("a scene has at least one observer".to_owned());
+        }
+        for o in &self.observers {
+            scene.add_observer(o.clone())?;
+        }
+        for (what, r) in [
+            ("restitution", self.restitution),
+            ("cushion_restitution", self.table.cushion_restitution),
+        ] {
+            if !(0.0..=1.0).contains(&r) {
+                return Err(format!("{what} {} must be from 0 to 1", number(r)));
+            }
+        }
+        if self.optics.history_frames > MAX_HISTORY_FRAMES
+            || self.optics.dichotomy_steps > MAX_DICHOTOMY_STEPS
+        {
+            return Err(format!(
+                "optics: history_frames at most {MAX_HISTORY_FRAMES}, dichotomy_steps at most {MAX_DICHOTOMY_STEPS}"
+            ));
+        }
+        scene.title = self.title.clone();
+        scene.description = self.description.clone();
+        scene.restitution = self.restitution;
+        scene.table.cushion_restitution = self.table.cushion_restitution;
+        scene.effects = self.effects;
+        scene.optics = self.optics;
+        scene.before_start = self.before_start;
+        Ok(scene)
+    }
+
     /// The same scene under another speed of light `c` (m/s), every
     /// body keeping its proper velocity in m/s (`γ v`, its momentum per unit
     /// mass): its `u = γβ` scales by `c_old / c`. Raising `c` thus tends to
@@ -798,6 +842,45 @@ mod tests {
         assert_eq!(Color::parse("#ééé"), None);
         assert_eq!(Color::parse("mauve"), None);
         assert_eq!(Color::rgb(1, 2, 255).to_hex(), "#0102ff");
+    }
+
+    #[test]
+    fn every_shipped_scene_rebuilds_to_itself_and_a_bad_one_does_not() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        let mut n = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                let scene = crate::scene::load(&path).unwrap();
+                assert_eq!(scene.rebuilt().as_ref(), Ok(&scene), "{}", path.display());
+                n += 1;
+            }
+        }
+        assert!(n >= 5);
+        let mut scene = Scene::empty(DVec2::new(2.0, 1.0), None).unwrap();
+        let puck = |name: &str, x: f64| PuckSpec {
+            name: name.to_owned(),
+            position: DVec2::new(x, 0.5),
+            u: ProperVelocity(DVec3::ZERO),
+            radius: 0.1,
+            height: 0.02,
+            mass: 0.2,
+            color: Color::rgb(1, 2, 3),
+        };
+        scene.add_puck(puck("a", 0.5)).unwrap();
+        // What a scene sent as data can hold and a built one cannot.
+        let mut overlapping = scene.clone();
+        overlapping.pucks.push(puck("b", 0.55));
+        assert!(overlapping.rebuilt().unwrap_err().contains("overlaps"));
+        let mut fast = scene.clone();
+        fast.pucks[0].u = ProperVelocity(DVec3::new(f64::INFINITY, 0.0, 0.0));
+        assert!(fast.rebuilt().is_err());
+        let mut bouncy = scene.clone();
+        bouncy.restitution = 1.5;
+        assert!(bouncy.rebuilt().unwrap_err().contains("restitution"));
+        let mut blind = scene;
+        blind.observers.clear();
+        assert!(blind.rebuilt().is_err());
     }
 
     #[test]

@@ -21,6 +21,8 @@ pub struct Options {
     pub memory_limit: u64,
     /// This is the child process of a `lesson` run (internal).
     pub child: bool,
+    /// This is the lesson's process of a window (internal).
+    pub window_child: bool,
     /// Print each outcome as one JSON line.
     pub json: bool,
 }
@@ -53,6 +55,16 @@ pub fn run(paths: &[PathBuf], options: Options) -> ExitCode {
         hook: std::time::Duration::from_secs_f64(options.hook_limit),
         memory_mb: options.memory_limit,
     };
+    if options.window_child {
+        return match paths {
+            [path] => ExitCode::from(crate::lesson::remote::child(
+                path,
+                limits.hook,
+                limits.memory_mb,
+            )),
+            _ => ExitCode::FAILURE,
+        };
+    }
     if options.child {
         return match paths {
             [path] => ExitCode::from(supervise::child(path, limits)),

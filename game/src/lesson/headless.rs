@@ -136,7 +136,35 @@ pub fn run_reporting(
         return Err(format!("--fps {fps}: give a positive frame rate"));
     }
     // Headless, a lesson that fails before starting a game needs no table.
-    let (mut host, mut game) = LessonHost::load_with_limit(path, hook_limit, super::placeholder)?;
+    let (host, game) = LessonHost::load_with_limit(path, hook_limit, super::placeholder)?;
+    Ok(drive(path, host, game, until, fps, report))
+}
+
+/// [`run`] with the lesson in its own process, as the window runs it
+/// ([`super::remote`]), each hook waited for: the same outcome as [`run`]
+/// for a lesson that behaves (the tests compare them).
+pub fn run_isolated(
+    path: &Path,
+    until: f64,
+    fps: f64,
+    hook_limit: std::time::Duration,
+    isolation: super::remote::Isolation,
+) -> Result<Outcome, String> {
+    let (host, game) =
+        LessonHost::load_isolated_with_limit(path, hook_limit, super::placeholder, isolation)?;
+    Ok(drive(path, host, game, until, fps, &mut |_| {}))
+}
+
+/// Steps `game` and runs `host`'s hooks until the lesson finishes, fails,
+/// or board time reaches `until`.
+fn drive(
+    path: &Path,
+    mut host: LessonHost,
+    mut game: crate::model::GameState,
+    until: f64,
+    fps: f64,
+    report: &mut dyn FnMut(Progress),
+) -> Outcome {
     let mut frames = 0u64;
     let mut answers = Vec::new();
     let mut claims_seen = 0;
@@ -164,6 +192,7 @@ pub fn run_reporting(
             report(Progress::Answer(text.clone(), choice.clone()));
             answers.push((text, choice));
             host.answer(&mut game, i);
+            host.settle(&mut game);
             new_claims(&host, &mut claims_seen, report);
             continue;
         }
@@ -182,6 +211,7 @@ pub fn run_reporting(
             frames,
         });
         host.after_step(&mut game, before);
+        host.settle(&mut game);
         new_claims(&host, &mut claims_seen, report);
     }
     let (claims, finished) = host.with_ui(|ui| {
@@ -197,7 +227,7 @@ pub fn run_reporting(
             ui.finished.clone(),
         )
     });
-    Ok(Outcome {
+    Outcome {
         file: path.display().to_string(),
         t: game.live_time,
         frames,
@@ -206,5 +236,5 @@ pub fn run_reporting(
         stopped: (host.error.is_some() && host.timed_out).then_some(Stop::Timeout),
         claims,
         answers,
-    })
+    }
 }

@@ -21,10 +21,13 @@
 //! reload — of the edited file, without restarting — starts again. A hook
 //! that runs past its time limit is stopped whatever it does
 //! (`watchdog`); `lightcone lesson` runs each lesson in a child process
-//! ([`supervise`]). After `world.finish()` no hook runs again.
+//! ([`supervise`]), and so does the window ([`remote`]: the lesson's
+//! `World` there is a stand-in whose methods this host serves on the real
+//! game). After `world.finish()` no hook runs again.
 
 pub mod headless;
 pub mod lend;
+pub mod remote;
 pub mod supervise;
 mod watchdog;
 
@@ -142,12 +145,44 @@ fn traceback(py: Python<'_>, err: &PyErr) -> String {
     }
 }
 
+/// Runs the lesson's file (its `source`, read from `path`) as a new module
+/// whose directory `dir` comes first on `sys.path` (so it can import
+/// helpers beside it); fails if it has no `setup`.
+fn load_module<'py>(
+    py: Python<'py>,
+    path: &Path,
+    source: String,
+    dir: &str,
+) -> PyResult<Bound<'py, PyModule>> {
+    let code = CString::new(source)
+        .map_err(|_| pyo3::exceptions::PySyntaxError::new_err("the lesson contains a NUL byte"))?;
+    let file = CString::new(path.display().to_string()).unwrap_or_default();
+    // A name no other load used: `from_code` would run the code in an
+    // existing module of the same name (another host's lesson).
+    static LOADED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = LOADED.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+    let name = CString::new(format!("lightcone_lesson_{n}")).unwrap_or_default();
+    let sys_path = py.import("sys")?.getattr("path")?;
+    if !sys_path.contains(dir)? {
+        sys_path.call_method1("insert", (0, dir))?;
+    }
+    let module = PyModule::from_code(py, &code, &file, &name)?;
+    if !module.hasattr("setup")? {
+        return Err(pyo3::exceptions::PyAttributeError::new_err(format!(
+            "{}: a lesson needs a function setup(world) that calls world.start(scene)",
+            path.display()
+        )));
+    }
+    Ok(module)
+}
+
 /// One lesson, running or failed.
 pub struct LessonHost {
     path: PathBuf,
     /// The lesson's module (its globals), while it loads and runs.
     module: Option<Py<PyModule>>,
-    world: Py<World>,
+    /// Dropped attached to Python, on the host's thread (see `Drop`).
+    world: std::mem::ManuallyDrop<Py<World>>,
     /// What the game holds while its real state is lent to the world.
     spare: Option<GameState>,
     /// Collisions already passed to `on_collision`.
@@ -169,10 +204,16 @@ pub struct LessonHost {
     finished: bool,
     /// Longest a hook may run before it is stopped ([`HOOK_LIMIT`]).
     pub limit: std::time::Duration,
+    /// The lesson's own process, when it runs in one (the window).
+    remote: Option<remote::Remote>,
+    /// How to start that process (`None`: the lesson runs in this one).
+    isolation: Option<remote::Isolation>,
+    /// The game `setup` is building in the lesson's process.
+    pending: Option<GameState>,
 }
 
 /// Builds a placeholder game for the host to hold while the real one is lent.
-pub(crate) fn placeholder() -> GameState {
+pub fn placeholder() -> GameState {
     let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
         .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
     GameState::new(scene)
@@ -192,40 +233,54 @@ impl LessonHost {
         path: &Path,
         fallback: impl FnOnce() -> GameState,
     ) -> Result<(Self, GameState), String> {
-        let limit = match std::env::var("LIGHTCONE_HOOK_LIMIT") {
-            Err(_) => HOOK_LIMIT,
-            Ok(text) => match text.trim().parse::<f64>() {
-                Ok(s) if s.is_finite() && s > 0.0 && s <= 86_400.0 => {
-                    std::time::Duration::from_secs_f64(s)
-                }
-                _ => {
-                    return Err(format!(
-                        "LIGHTCONE_HOOK_LIMIT={text:?}: give seconds in (0, 86400]"
-                    ));
-                }
-            },
-        };
+        let limit = limit_from_env()?;
         Self::load_with_limit(path, limit, fallback)
     }
 
-    /// [`Self::load`] with a hook time limit other than [`HOOK_LIMIT`].
-    pub fn load_with_limit(
+    /// [`Self::load`], the lesson running in its own process (the window):
+    /// nothing it does ends the game ([`remote`]). Waits for its `setup`
+    /// (the window is not open yet).
+    pub fn load_isolated(
+        path: &Path,
+        fallback: impl FnOnce() -> GameState,
+        isolation: remote::Isolation,
+    ) -> Result<(Self, GameState), String> {
+        Self::load_isolated_with_limit(path, limit_from_env()?, fallback, isolation)
+    }
+
+    /// [`Self::load_isolated`] with a hook time limit other than
+    /// [`HOOK_LIMIT`].
+    pub fn load_isolated_with_limit(
         path: &Path,
         limit: std::time::Duration,
         fallback: impl FnOnce() -> GameState,
+        isolation: remote::Isolation,
     ) -> Result<(Self, GameState), String> {
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .map(Path::to_path_buf)
-            .unwrap_or_else(|| PathBuf::from("."));
+        let mut host = Self::new(path, limit)?;
+        host.start_remote(&isolation);
+        host.isolation = Some(isolation);
+        let mut game = fallback();
+        host.settle(&mut game);
+        Ok((host, game))
+    }
+
+    /// Serves the lesson's process until no hook is out or waiting (each
+    /// ends by its limit): for tests and the first load.
+    pub fn settle(&mut self, game: &mut GameState) {
+        while self.busy() {
+            self.poll(game, std::time::Duration::from_millis(50));
+        }
+    }
+
+    /// A host for the lesson at `path`, nothing loaded yet.
+    fn new(path: &Path, limit: std::time::Duration) -> Result<Self, String> {
         init_python()?;
-        let world = Python::attach(|py| Py::new(py, World::new(dir, lend::new_game)))
+        let world = Python::attach(|py| Py::new(py, World::new(lesson_dir(path), lend::new_game)))
             .map_err(|e| format!("cannot start the lesson host: {e}"))?;
-        let mut host = Self {
+        Ok(Self {
             path: path.to_path_buf(),
             module: None,
-            world,
+            world: std::mem::ManuallyDrop::new(world),
             spare: Some(placeholder()),
             seen_collisions: 0,
             generation: 0,
@@ -235,7 +290,19 @@ impl LessonHost {
             loads: 0,
             finished: false,
             limit,
-        };
+            remote: None,
+            isolation: None,
+            pending: None,
+        })
+    }
+
+    /// [`Self::load`] with a hook time limit other than [`HOOK_LIMIT`].
+    pub fn load_with_limit(
+        path: &Path,
+        limit: std::time::Duration,
+        fallback: impl FnOnce() -> GameState,
+    ) -> Result<(Self, GameState), String> {
+        let mut host = Self::new(path, limit)?;
         let game = host.start().unwrap_or_else(fallback);
         Ok((host, game))
     }
@@ -261,34 +328,13 @@ impl LessonHost {
             }
         };
         let result = Python::attach(|py| -> PyResult<Option<GameState>> {
-            let code = CString::new(source).map_err(|_| {
-                pyo3::exceptions::PySyntaxError::new_err("the lesson contains a NUL byte")
-            })?;
-            let file = CString::new(self.path.display().to_string()).unwrap_or_default();
-            // A name no other load used: `from_code` would run the code in an
-            // existing module of the same name (another host's lesson).
-            static LOADED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-            let n = LOADED.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            let name = CString::new(format!("lightcone_lesson_{n}")).unwrap_or_default();
-            // The lesson's own directory comes first on sys.path, so it can
-            // import helpers beside it.
             let dir = self.world.borrow(py).dir.display().to_string();
-            let sys_path = py.import("sys")?.getattr("path")?;
-            if !sys_path.contains(&dir)? {
-                sys_path.call_method1("insert", (0, &dir))?;
-            }
             // The module's own code and setup are timed like a hook.
             let running = watchdog::Running::start(self.limit, "setup");
-            let module = PyModule::from_code(py, &code, &file, &name)?;
-            if !module.hasattr("setup")? {
-                return Err(pyo3::exceptions::PyAttributeError::new_err(format!(
-                    "{}: a lesson needs a function setup(world) that calls world.start(scene)",
-                    self.path.display()
-                )));
-            }
+            let module = load_module(py, &self.path, source, &dir)?;
             // A fresh world (screen, attributes, no game): setup builds it.
             let dir = self.world.borrow(py).dir.clone();
-            self.world = Py::new(py, World::new(dir, lend::new_game))?;
+            *self.world = Py::new(py, World::new(dir, lend::new_game))?;
             let world = self.world.bind(py);
             let setup = module.call_method1("setup", (world,));
             drop(running);
@@ -338,6 +384,12 @@ impl LessonHost {
     /// success the game is replaced by the lesson's new one; on failure the
     /// game is left exactly as it was and the error is shown.
     pub fn reload(&mut self, game: &mut GameState) {
+        if let Some(isolation) = self.isolation.clone() {
+            // The new process's setup replaces the game when it ends.
+            self.start_remote(&isolation);
+            self.poll(game, remote::FRAME_BUDGET);
+            return;
+        }
         if let Some(new) = self.start() {
             *game = new;
         } else {
@@ -359,7 +411,7 @@ impl LessonHost {
     /// Whether hooks run: the lesson loaded, has not failed and has not
     /// called `world.finish()`.
     pub fn running(&self) -> bool {
-        self.module.is_some() && self.error.is_none() && !self.finished
+        (self.module.is_some() || self.remote.is_some()) && self.error.is_none() && !self.finished
     }
 
     /// Whether the lesson called `world.finish()` (its hooks then stop, in
@@ -450,6 +502,14 @@ impl LessonHost {
                 continue;
             };
             let line = CollisionLine::new(game.physics(), record);
+            if self.isolation.is_some() {
+                let Ok(data) = serde_json::to_value(&line) else {
+                    continue;
+                };
+                let event = serde_json::json!([{"$record": "Collision", "data": data}]);
+                self.queue_remote("on_collision", event);
+                continue;
+            }
             let text = match serde_json::to_string(&line) {
                 Ok(t) => t,
                 Err(_) => continue,
@@ -462,6 +522,13 @@ impl LessonHost {
                     .call1((data,))?;
                 PyTuple::new(py, [world.clone().into_any(), event])
             });
+        }
+        if self.isolation.is_some() {
+            if game.live_time > before {
+                self.queue_remote("on_frame", serde_json::json!([game.live_time]));
+            }
+            self.poll(game, remote::FRAME_BUDGET);
+            return;
         }
         if game.live_time > before {
             let t = game.live_time;
@@ -492,6 +559,11 @@ impl LessonHost {
         if resume {
             game.paused = false;
         }
+        if self.isolation.is_some() {
+            self.queue_remote("on_answer", serde_json::json!([question, chosen]));
+            self.poll(game, remote::FRAME_BUDGET);
+            return;
+        }
         self.call(game, "on_answer", move |py, world| {
             PyTuple::new(
                 py,
@@ -502,6 +574,40 @@ impl LessonHost {
                 ],
             )
         });
+    }
+}
+
+/// The hook limit: [`HOOK_LIMIT`], or the seconds in `LIGHTCONE_HOOK_LIMIT`.
+fn limit_from_env() -> Result<std::time::Duration, String> {
+    match std::env::var("LIGHTCONE_HOOK_LIMIT") {
+        Err(_) => Ok(HOOK_LIMIT),
+        Ok(text) => match text.trim().parse::<f64>() {
+            Ok(s) if s.is_finite() && s > 0.0 && s <= 86_400.0 => {
+                Ok(std::time::Duration::from_secs_f64(s))
+            }
+            _ => Err(format!(
+                "LIGHTCONE_HOOK_LIMIT={text:?}: give seconds in (0, 86400]"
+            )),
+        },
+    }
+}
+
+/// The lesson's directory (relative paths in it are taken from there).
+fn lesson_dir(path: &Path) -> PathBuf {
+    path.parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."))
+}
+
+impl Drop for LessonHost {
+    /// Releases the world here, attached: the world is unsendable, and a
+    /// release left for whichever thread next attaches is refused (with an
+    /// error printed) and leaks it.
+    fn drop(&mut self) {
+        // SAFETY: `world` is not used after this; the field is never
+        // dropped otherwise (`ManuallyDrop`).
+        Python::attach(|_| unsafe { std::mem::ManuallyDrop::drop(&mut self.world) });
     }
 }
 

@@ -21,7 +21,7 @@
 use std::io::{BufRead, BufReader, Write};
 use std::os::unix::process::{CommandExt, ExitStatusExt};
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::sync::Mutex;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -82,23 +82,25 @@ fn hook_event(name: Option<&'static str>) {
     send(&Event::Hook(name.map(str::to_owned)));
 }
 
-/// The child's side (`lightcone lesson FILE --child`): limits its memory,
-/// moves standard output to the event channel (the lesson's prints go to
-/// standard error), runs the lesson and reports. Returns the exit status.
-pub fn child(path: &Path, limits: Limits) -> u8 {
-    // Die with the parent: a `lesson` run killed from outside (or ended by
-    // Ctrl-C) must not leave its lesson running.
+/// Sets up a lesson's own process (the child of `lightcone lesson`, or of
+/// the window): dies with its parent, limits its address space to
+/// `memory_mb` MiB, and moves standard output to standard error (what the
+/// lesson prints goes there). Returns the original standard output, the
+/// channel to the parent.
+pub(crate) fn child_process(memory_mb: u64) -> Result<std::fs::File, String> {
+    // Die with the parent: a run killed from outside (or ended by Ctrl-C)
+    // must not leave its lesson running.
     // SAFETY: a plain system call on this process.
     unsafe {
         libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL);
     }
     if std::os::unix::process::parent_id() == 1 {
-        return 1; // the parent is already gone
+        return Err("the parent is already gone".to_owned());
     }
-    let bytes = limits.memory_mb.saturating_mul(1 << 20);
+    let bytes = memory_mb.saturating_mul(1 << 20);
     // SAFETY: plain system calls on this process's own descriptors and
     // limits; `dup` returns a fresh descriptor we own.
-    let events = unsafe {
+    unsafe {
         let limit = libc::rlimit {
             rlim_cur: bytes,
             rlim_max: bytes,
@@ -106,10 +108,76 @@ pub fn child(path: &Path, limits: Limits) -> u8 {
         libc::setrlimit(libc::RLIMIT_AS, &limit);
         let fd = libc::dup(1);
         if fd < 0 || libc::dup2(2, 1) < 0 {
-            eprintln!("cannot set up the lesson's process");
+            return Err("cannot set up the lesson's process".to_owned());
+        }
+        Ok(<std::fs::File as std::os::fd::FromRawFd>::from_raw_fd(fd))
+    }
+}
+
+/// Starts `lightcone ARGS` (this binary, `exe`) as a lesson's process: its
+/// own process group, standard input and output piped, standard error
+/// inherited.
+pub(crate) fn spawn(exe: &Path, args: &[std::ffi::OsString]) -> Result<Child, String> {
+    Command::new(exe)
+        .args(args)
+        // For the headless child, a pipe nobody writes to: `input()`
+        // waits, as in a terminal. The window's child reads its calls
+        // there (and gives the lesson such a pipe instead).
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .process_group(0)
+        .spawn()
+        .map_err(|e| format!("cannot start the lesson's process: {e}"))
+}
+
+/// Kills the process group `pid` leads (a child from [`spawn`]) with
+/// everything the lesson started.
+pub(crate) fn kill_group(pid: u32) {
+    // SAFETY: signals the child's own process group (its id is the
+    // child's pid, from `process_group(0)`).
+    unsafe {
+        libc::kill(-(pid as libc::pid_t), libc::SIGKILL);
+    }
+}
+
+/// How a lesson's process that ended without reporting ended, in words
+/// ("exited with status 7", "crashed (SIGSEGV: …)").
+pub(crate) fn how_it_ended(status: std::process::ExitStatus, memory_mb: u64) -> String {
+    match (status.code(), status.signal()) {
+        (Some(code), _) => format!("exited with status {code}"),
+        (None, Some(libc::SIGSEGV)) => {
+            "crashed (SIGSEGV: a bad memory access, e.g. through ctypes)".to_owned()
+        }
+        (None, Some(libc::SIGKILL)) => {
+            "was killed (SIGKILL: out of memory, or killed from outside)".to_owned()
+        }
+        (None, Some(libc::SIGABRT)) => {
+            format!("aborted (SIGABRT: out of memory? the limit is {memory_mb} MiB)")
+        }
+        (None, Some(sig)) => format!("was ended by signal {sig}"),
+        (None, None) => "ended".to_owned(),
+    }
+}
+
+/// What the student is told of a hook stopped by killing its process.
+pub(crate) fn uninterruptible(place: &str, limit: Duration) -> String {
+    format!(
+        "{place}: the hook ran for more than {} s and could not be interrupted (a long computation inside one call, such as a C builtin?); its process was stopped",
+        limit.as_secs_f64()
+    )
+}
+
+/// The child's side (`lightcone lesson FILE --child`): limits its memory,
+/// moves standard output to the event channel (the lesson's prints go to
+/// standard error), runs the lesson and reports. Returns the exit status.
+pub fn child(path: &Path, limits: Limits) -> u8 {
+    let events = match child_process(limits.memory_mb) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("{e}");
             return 1;
         }
-        <std::fs::File as std::os::fd::FromRawFd>::from_raw_fd(fd)
     };
     *EVENTS.lock().unwrap_or_else(|e| e.into_inner()) = Some(events);
     watchdog::observe_hooks(hook_event);
@@ -143,29 +211,23 @@ struct Partial {
 /// the run cannot (a bad argument, no Python).
 pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find lightcone itself: {e}"))?;
-    let mut child = Command::new(exe)
-        .arg("lesson")
-        .arg(path)
-        .args(["--until", &limits.until.to_string()])
-        .args(["--fps", &limits.fps.to_string()])
-        .args(["--hook-limit", &limits.hook.as_secs_f64().to_string()])
-        .args(["--memory-limit", &limits.memory_mb.to_string()])
-        .arg("--child")
-        // A pipe nobody writes to: `input()` waits, as in a terminal.
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::inherit())
-        .process_group(0)
-        .spawn()
-        .map_err(|e| format!("cannot start the lesson's process: {e}"))?;
-    let pid = child.id() as libc::pid_t;
-    let kill_group = || {
-        // SAFETY: signals the child's own process group (its id is the
-        // child's pid, from `process_group(0)`).
-        unsafe {
-            libc::kill(-pid, libc::SIGKILL);
-        }
-    };
+    let args: Vec<std::ffi::OsString> = [
+        "lesson".into(),
+        path.as_os_str().to_owned(),
+        "--until".into(),
+        limits.until.to_string().into(),
+        "--fps".into(),
+        limits.fps.to_string().into(),
+        "--hook-limit".into(),
+        limits.hook.as_secs_f64().to_string().into(),
+        "--memory-limit".into(),
+        limits.memory_mb.to_string().into(),
+        "--child".into(),
+    ]
+    .into();
+    let mut child = spawn(&exe, &args)?;
+    let pid = child.id();
+    let kill_group = || kill_group(pid);
     let (tx, rx) = mpsc::channel();
     if let Some(out) = child.stdout.take() {
         std::thread::spawn(move || {
@@ -259,32 +321,15 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         Some((name, _)) => format!("in {name}"),
         None => "between hooks".to_owned(),
     };
-    let (stopped, error) = if killed || status.code() == Some(HARD_STOP_STATUS) {
-        (
-            Stop::Timeout,
-            format!(
-                "{place}: the hook ran for more than {} s and could not be interrupted (a long computation inside one call, such as a C builtin?); its process was stopped",
-                limits.hook.as_secs_f64()
-            ),
-        )
+    // Status 3 is the watchdog's hard stop only for a hook over its limit
+    // (a lesson may end its process with 3 itself, through ctypes).
+    let over = hook
+        .as_ref()
+        .is_some_and(|(_, since)| since.elapsed() > limits.hook);
+    let (stopped, error) = if killed || (over && status.code() == Some(HARD_STOP_STATUS)) {
+        (Stop::Timeout, uninterruptible(&place, limits.hook))
     } else {
-        let how = match (status.code(), status.signal()) {
-            (Some(code), _) => format!("exited with status {code}"),
-            (None, Some(libc::SIGSEGV)) => {
-                "crashed (SIGSEGV: a bad memory access, e.g. through ctypes)".to_owned()
-            }
-            (None, Some(libc::SIGKILL)) => {
-                "was killed (SIGKILL: out of memory, or killed from outside)".to_owned()
-            }
-            (None, Some(libc::SIGABRT)) => {
-                format!(
-                    "aborted (SIGABRT: out of memory? the limit is {} MiB)",
-                    limits.memory_mb
-                )
-            }
-            (None, Some(sig)) => format!("was ended by signal {sig}"),
-            (None, None) => "ended".to_owned(),
-        };
+        let how = how_it_ended(status, limits.memory_mb);
         (
             Stop::Died,
             format!("{place}: the lesson's process {how}; the lesson stopped there"),

@@ -18,7 +18,8 @@
 //!    ends the process with exit status [`HARD_STOP_STATUS`] and the reason
 //!    on stderr: the game cannot be saved from inside, but it does not hang.
 //!    `lightcone lesson` runs each lesson in a child process
-//!    ([`super::supervise`]), whose parent reports it and carries on.
+//!    ([`super::supervise`]), and so does the window ([`super::remote`]):
+//!    the parent reports it and carries on.
 //!
 //! Signals and pending calls reach only the process's main thread, where
 //! the game and `lightcone lesson` run hooks; hooks run on other threads

@@ -489,7 +489,10 @@ impl App {
         self.last = now;
         self.fly(dt);
         let before = self.state.live_time;
-        self.state.step(dt);
+        // Board time waits while a lesson hook is out in its process.
+        if !self.lesson.as_ref().is_some_and(LessonHost::busy) {
+            self.state.step(dt);
+        }
         if let Some(lesson) = &mut self.lesson {
             lesson.after_step(&mut self.state, before);
             // An edited lesson reloads by itself (checked twice a second).

@@ -30,6 +30,19 @@ pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<LessonAction
     });
     ui.separator();
     egui::ScrollArea::vertical().show(ui, |ui| {
+        if let Some((hook, running)) = host.hook_running()
+            && running.as_secs_f64() > 0.25
+        {
+            ui.colored_label(
+                Color32::LIGHT_YELLOW,
+                format!(
+                    "{hook} running {:.1} s (board time waits; stopped at {} s)",
+                    running.as_secs_f64(),
+                    host.limit.as_secs_f64()
+                ),
+            );
+            ui.separator();
+        }
         if let Some(error) = &host.error {
             ui.colored_label(
                 Color32::from_rgb(255, 110, 110),

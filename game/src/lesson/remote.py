@@ -1,0 +1,224 @@
+"""A lesson run in its own process, as the window runs it (see remote.rs).
+
+Loaded in both processes:
+
+- in the lesson's process, `World` stands for the game: each method that
+  reads what the last snapshot does not hold, or that changes the game or
+  the lesson's panel, is a request to the game's process, which answers;
+- in the game's process, `call` and `serve` build the lines sent to the
+  lesson: a hook to run, and the answer to a request (with the snapshot
+  of the world's simple attributes that the lesson then reads without
+  asking).
+
+Values travel as JSON: records as {"$record": class, "data": dict},
+scenes as {"$scene": json}. Whatever the game receives is checked again
+there: a scene is rebuilt through the checks of a scene built in code.
+"""
+
+import base64
+import builtins
+import json
+import os
+
+import lightcone
+from lightcone import records
+
+# Read from the snapshot sent with each call and each answer.
+SNAPSHOT = ("t", "c", "paused", "time_scale", "view", "observer", "effects")
+# Attributes a lesson may set (`world.paused = True`): requests.
+SETTABLE = ("paused", "time_scale", "view", "observer")
+# Methods served by the game's process.
+METHODS = (
+    "start",
+    "pause",
+    "resume",
+    "set_effect",
+    "state",
+    "collisions",
+    "velocity",
+    "impulse",
+    "observe",
+    "show_diagram",
+    "simultaneity",
+    "say",
+    "ask",
+    "check",
+    "bars",
+    "finish",
+    "diagram",
+)
+# Read-only attributes served by the game's process.
+GETTERS = ("claims", "scene", "finished")
+# Every request the game serves (the game refuses any other).
+SERVED = METHODS + GETTERS + tuple("=" + name for name in SETTABLE)
+def encode(value):
+    """`value` as JSON data, records and scenes tagged."""
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    if isinstance(value, records.Record):
+        return {"$record": type(value).__name__, "data": value.to_dict()}
+    if isinstance(value, lightcone.Scene):
+        return {"$scene": value._to_json()}
+    if isinstance(value, lightcone.Frame):
+        png = base64.b64encode(value.png).decode("ascii")
+        return {"$frame": [png, value.width, value.height, value.t]}
+    if isinstance(value, (list, tuple)):
+        return [encode(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): encode(v) for k, v in value.items()}
+    if hasattr(value, "tolist"):  # a numpy array or number
+        return encode(value.tolist())
+    raise TypeError(f"a {type(value).__name__} cannot be passed to the game")
+
+
+def decode(value, frames=False):
+    """The value `encode` made (frames only if `frames`: the lesson's
+    side; the game takes none)."""
+    if isinstance(value, list):
+        return [decode(v, frames) for v in value]
+    if isinstance(value, dict):
+        if frames and len(value) == 1 and "$frame" in value:
+            png, width, height, t = value["$frame"]
+            return lightcone.Frame._from_png(base64.b64decode(png), width, height, t)
+        if len(value) == 1 and isinstance(value.get("$scene"), str):
+            return lightcone.Scene._from_json(value["$scene"])
+        name = value.get("$record")
+        if len(value) == 2 and name in records.__all__ and isinstance(value.get("data"), dict):
+            cls = getattr(records, name)
+            if isinstance(cls, type) and issubclass(cls, records.Record):
+                return cls(value["data"])
+        return {k: decode(v, frames) for k, v in value.items()}
+    return value
+
+
+# The game's side.
+
+
+def snapshot(world):
+    """The world's simple attributes, or why there are none (no game yet)."""
+    try:
+        return {name: getattr(world, name) for name in SNAPSHOT}
+    except Exception as e:  # no game: every getter says so
+        return {"$none": str(e)}
+
+
+def call(world, hook, args):
+    """The line that runs `hook` with `args` (JSON text) in the lesson."""
+    return json.dumps({"call": hook, "args": json.loads(args), "snapshot": snapshot(world)})
+
+
+def _message(e):
+    if len(e.args) == 1 and isinstance(e.args[0], str):
+        return e.args[0]
+    return str(e)
+
+
+def serve(world, op, args, kwargs):
+    """Runs request `op` (one of METHODS or GETTERS, or "=name" to set
+    one of SETTABLE: checked by the caller) on `world` with `args` and
+    `kwargs` (JSON text); the answer line."""
+    try:
+        a = decode(json.loads(args))
+        k = decode(json.loads(kwargs))
+        if op.startswith("="):
+            if len(a) != 1 or k:
+                raise TypeError(f"world.{op[1:]} = takes one value")
+            setattr(world, op[1:], a[0])
+            result = None
+        elif op in METHODS:
+            result = getattr(world, op)(*a, **k)
+        else:
+            result = getattr(world, op)
+        reply = {"ok": encode(result)}
+    except Exception as e:
+        reply = {"error": [type(e).__name__, _message(e)]}
+    reply["snapshot"] = snapshot(world)
+    return json.dumps(reply)
+
+
+# The lesson's side.
+
+
+def _exception(kind):
+    cls = getattr(lightcone, kind, None) or getattr(builtins, kind, None)
+    if isinstance(cls, type) and issubclass(cls, Exception):
+        return cls
+    return RuntimeError
+
+
+class World:
+    """The running game, as a lesson run in its own process sees it: the
+    same attributes and methods as `lightcone.World` (each a request to
+    the game's process). A lesson may keep its own attributes on it."""
+
+    def __init__(self, request, directory):
+        object.__setattr__(self, "_request", request)
+        object.__setattr__(self, "_snapshot", {"$none": "no game yet"})
+        object.__setattr__(self, "_dir", directory)
+
+    def _begin(self, snap):
+        object.__setattr__(self, "_snapshot", snap)
+
+    def _call(self, op, args, kwargs):
+        try:
+            line = json.dumps(
+                {"request": {"op": op, "args": encode(list(args)), "kwargs": encode(kwargs)}},
+                allow_nan=False,
+            )
+        except ValueError:
+            raise ValueError(f"world.{op.lstrip('=')}: every number must be finite") from None
+        reply = json.loads(self._request(line))
+        object.__setattr__(self, "_snapshot", reply["snapshot"])
+        if "error" in reply:
+            kind, message = reply["error"]
+            raise _exception(kind)(message)
+        return decode(reply["ok"], frames=True)
+
+    def __getattr__(self, name):
+        if name in SNAPSHOT:
+            snap = self._snapshot
+            if name not in snap:
+                raise RuntimeError(snap.get("$none", "no game"))
+            value = snap[name]
+            return dict(value) if isinstance(value, dict) else value
+        if name in METHODS:
+
+            def method(*args, **kwargs):
+                result = self._call(name, args, kwargs)
+                return tuple(result) if name == "velocity" else result
+
+            method.__name__ = name
+            return method
+        if name in GETTERS:
+            result = self._call(name, (), {})
+            return [tuple(c) for c in result] if name == "claims" else result
+        raise AttributeError(f"'World' object has no attribute {name!r}")
+
+    def __setattr__(self, name, value):
+        # As on lightcone.World: a lesson's own attribute may hide a
+        # method (`world.collisions = 0`), not a read-only attribute.
+        if name in SETTABLE:
+            self._call("=" + name, (value,), {})
+        elif name in SNAPSHOT or name in GETTERS:
+            raise AttributeError(f"world.{name} cannot be set")
+        else:
+            object.__setattr__(self, name, value)
+
+    def load(self, path):
+        """Loads a scene file; a relative path is taken from the lesson's
+        directory. Raises SceneError naming the file, line and field."""
+        return lightcone.Scene.load(os.path.join(self._dir, os.fspath(path)))
+
+    def __repr__(self):
+        snap = self._snapshot
+        if "t" in snap:
+            return f"World(t = {snap['t']:.3f} s, in the lesson's own process)"
+        return "World(no game)"
+
+
+def begin(world, line):
+    """Reads a call line in the lesson: sets the world's snapshot; returns
+    the hook's name and its arguments (the world first)."""
+    msg = json.loads(line)
+    world._begin(msg["snapshot"])
+    return msg["call"], tuple([world] + decode(msg["args"], frames=True))

@@ -1,0 +1,910 @@
+//! The window runs a lesson in its own process (`lightcone lesson FILE
+//! --window-child`, the same binary), so that nothing the lesson does — a
+//! crash through `ctypes`, a memory bomb, a C call that never returns —
+//! ends the game (docs/window_lesson_isolation.md).
+//!
+//! The game stays in the window's process. The lesson's process holds a
+//! `World` stand-in (`remote.py`) whose methods are requests to the
+//! game's process, served on the real game by the real `lightcone.World`
+//! (the game is lent to it for the length of one request). Both ways,
+//! JSON lines:
+//!
+//! - game → lesson: a call (`{"call": hook, "args": [...], "snapshot": {...}}`)
+//!   and the answer to each request (`{"ok": value}` or
+//!   `{"error": [kind, message]}`, with a fresh snapshot). The snapshot
+//!   (t, c, paused, time_scale, view, observer, effects) answers the
+//!   common getters without a round trip;
+//! - lesson → game: [`Up`], a request or the end of the hook.
+//!
+//! The game reads the lesson's lines on a thread into a channel and writes
+//! its own on another, so the frame loop never blocks on the lesson: each
+//! frame it serves what arrived for at most [`FRAME_BUDGET`]; while a hook
+//! is out, board time waits (the window keeps drawing). Nothing the lesson
+//! sends is trusted: a line over [`MAX_LINE`] bytes, a message that is not
+//! an [`Up`], a request for something the game does not serve, or a
+//! message when no call is out ends the lesson's process, with the reason.
+//!
+//! Limits: the lesson's process runs its hooks under its own watchdog
+//! ([`super::watchdog`]: `TimeoutError` at the limit, so the teacher gets
+//! a traceback at the right line); the game kills its process group at
+//! limit + [`KILL_AFTER`]. A process that ends (a signal, an exit status,
+//! memory beyond its `RLIMIT_AS`) is reported with
+//! [`supervise::how_it_ended`]'s words. Either way the game keeps its
+//! state, paused, hooks stop, and a reload starts a new process.
+
+use std::collections::VecDeque;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::Child;
+use std::sync::Mutex;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use pyo3::prelude::*;
+use pyo3::types::PyModule;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use super::supervise::{self, KILL_AFTER};
+use super::{LessonHost, drain_printed, keep_printed, lend, placeholder, traceback, watchdog};
+use crate::model::GameState;
+use lightcone_python::World;
+
+/// Longest line either process accepts from the other, bytes.
+pub const MAX_LINE: usize = 16 << 20;
+
+/// How long a frame waits for the lesson before it draws: a hook that
+/// takes longer goes on over the next frames while board time waits.
+pub const FRAME_BUDGET: Duration = Duration::from_millis(10);
+
+/// Whether the game serves request `op`: `remote.py`'s `SERVED` (its
+/// `METHODS`, `GETTERS`, and `=name` for its `SETTABLE`), read once.
+fn served(op: &str) -> bool {
+    static SERVED: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+    SERVED
+        .get_or_init(|| {
+            Python::attach(|py| {
+                module(py)
+                    .and_then(|m| m.getattr("SERVED"))
+                    .and_then(|s| s.extract())
+                    .unwrap_or_default()
+            })
+        })
+        .iter()
+        .any(|s| s == op)
+}
+
+/// The hooks, by the names a call carries.
+const HOOKS: [&str; 4] = ["setup", "on_frame", "on_collision", "on_answer"];
+
+/// The Python of both sides (`remote.py`, beside this file).
+const REMOTE_PY: &str = include_str!("remote.py");
+
+/// What a lesson's process writes, one JSON object a line.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub(crate) enum Up {
+    /// A `World` method, getter or setter (`=name`) for the game to run.
+    Request {
+        op: String,
+        args: Vec<Value>,
+        kwargs: serde_json::Map<String, Value>,
+    },
+    /// The hook returned (`error: None`) or raised (its traceback).
+    Done {
+        error: Option<String>,
+        /// The lesson's watchdog stopped the hook at its limit.
+        timed_out: bool,
+        /// What the lesson printed during the hook.
+        printed: Vec<String>,
+        /// The hooks the lesson defines (sent after `setup`).
+        hooks: Vec<String>,
+    },
+}
+
+/// `remote.py` as a module, loaded once per interpreter (whole before any
+/// thread sees it).
+fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
+    static MODULE: pyo3::sync::PyOnceLock<Py<PyModule>> = pyo3::sync::PyOnceLock::new();
+    let m = MODULE.get_or_try_init(py, || -> PyResult<Py<PyModule>> {
+        let code = std::ffi::CString::new(REMOTE_PY)
+            .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        let m = PyModule::from_code(
+            py,
+            &code,
+            c"<lightcone game>/lesson/remote.py",
+            c"lightcone_remote",
+        )?;
+        Ok(m.unbind())
+    })?;
+    Ok(m.bind(py).clone())
+}
+
+/// Reads one line of at most [`MAX_LINE`] bytes (without its newline).
+/// `Ok(None)` at the end of the stream.
+pub(crate) fn read_line(reader: &mut impl BufRead) -> Result<Option<Vec<u8>>, String> {
+    let mut line = Vec::new();
+    let n = reader
+        .by_ref()
+        .take(MAX_LINE as u64 + 1)
+        .read_until(b'\n', &mut line)
+        .map_err(|e| format!("cannot read the lesson's process: {e}"))?;
+    if n == 0 {
+        return Ok(None);
+    }
+    if line.last() == Some(&b'\n') {
+        line.pop();
+    } else if line.len() > MAX_LINE {
+        return Err(format!("it sent a line longer than {} MiB", MAX_LINE >> 20));
+    }
+    Ok(Some(line))
+}
+
+// ---- The lesson's process.
+
+/// Where the lesson's process writes (its original standard output).
+static UP: Mutex<Option<std::fs::File>> = Mutex::new(None);
+/// Where it reads its calls and answers (its original standard input).
+static DOWN: Mutex<Option<BufReader<std::fs::File>>> = Mutex::new(None);
+
+fn send_up(line: &[u8]) {
+    let mut guard = UP.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(out) = guard.as_mut() {
+        let mut all = Vec::with_capacity(line.len() + 1);
+        all.extend_from_slice(line);
+        all.push(b'\n');
+        if out.write_all(&all).is_err() {
+            std::process::exit(0); // the game is gone
+        }
+    }
+}
+
+/// The next line from the game, or `None` when the game closed the pipe.
+fn read_down() -> Option<String> {
+    let mut guard = DOWN.lock().unwrap_or_else(|e| e.into_inner());
+    let reader = guard.as_mut()?;
+    let line = read_line(reader).ok()??;
+    String::from_utf8(line).ok()
+}
+
+/// The lesson's `World` asks the game: sends `line`, waits for the answer.
+#[pyfunction]
+#[pyo3(name = "_request")]
+fn request(py: Python<'_>, line: &str) -> String {
+    send_up(line.as_bytes());
+    match py.detach(read_down) {
+        Some(answer) => answer,
+        // The game is gone: nothing is left to teach.
+        None => std::process::exit(0),
+    }
+}
+
+/// The lesson's side (`lightcone lesson FILE --window-child`): runs the
+/// calls the game sends until the game closes the pipe. Returns the exit
+/// status.
+pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
+    let up = match supervise::child_process(memory_mb) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("{e}");
+            return 1;
+        }
+    };
+    // The calls come on standard input; the lesson gets a pipe nobody
+    // writes to instead (`input()` waits, as in a terminal).
+    // SAFETY: plain system calls on this process's own descriptors; the
+    // pipe's write end stays open (unused) for the life of the process.
+    let down = unsafe {
+        let fd = libc::dup(0);
+        let mut pipe = [0; 2];
+        if fd < 0 || libc::pipe(pipe.as_mut_ptr()) != 0 || libc::dup2(pipe[0], 0) < 0 {
+            eprintln!("cannot set up the lesson's process");
+            return 1;
+        }
+        <std::fs::File as std::os::fd::FromRawFd>::from_raw_fd(fd)
+    };
+    *UP.lock().unwrap_or_else(|e| e.into_inner()) = Some(up);
+    *DOWN.lock().unwrap_or_else(|e| e.into_inner()) = Some(BufReader::new(down));
+    if let Err(e) = super::init_python() {
+        eprintln!("{e}");
+        return 1;
+    }
+    let dir = super::lesson_dir(path);
+    let world = Python::attach(|py| -> PyResult<Py<PyAny>> {
+        let f = pyo3::wrap_pyfunction!(request, py)?;
+        let w = module(py)?
+            .getattr("World")?
+            .call1((f, dir.display().to_string()))?;
+        Ok(w.unbind())
+    });
+    let world = match world {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("cannot start the lesson's world: {e}");
+            return 1;
+        }
+    };
+    let mut lesson: Option<Py<PyModule>> = None;
+    while let Some(line) = read_down() {
+        let done =
+            Python::attach(|py| run_call(py, &line, world.bind(py), path, limit, &mut lesson));
+        match serde_json::to_vec(&done) {
+            Ok(bytes) => send_up(&bytes),
+            Err(_) => return 1,
+        }
+    }
+    0
+}
+
+/// Runs the call in `line` on the lesson; what to tell the game.
+fn run_call(
+    py: Python<'_>,
+    line: &str,
+    world: &Bound<'_, PyAny>,
+    path: &Path,
+    limit: Duration,
+    lesson: &mut Option<Py<PyModule>>,
+) -> Up {
+    let done = |error: Option<String>, timed_out: bool, hooks: Vec<String>| Up::Done {
+        error,
+        timed_out,
+        printed: drain_printed(py),
+        hooks,
+    };
+    let begun = module(py)
+        .and_then(|m| m.call_method1("begin", (world, line)))
+        .and_then(|r| r.extract::<(String, Bound<'_, pyo3::types::PyTuple>)>());
+    let (name, args) = match begun {
+        Ok(x) => x,
+        Err(e) => {
+            return done(
+                Some(format!("a call the lesson cannot read: {e}")),
+                false,
+                vec![],
+            );
+        }
+    };
+    let Some(hook) = HOOKS.iter().copied().find(|h| *h == name) else {
+        return done(Some(format!("no such hook {name:?}")), false, vec![]);
+    };
+    let result = {
+        let _running = watchdog::Running::start(limit, hook);
+        if hook == "setup" {
+            std::fs::read_to_string(path)
+                .map_err(|e| {
+                    pyo3::exceptions::PyOSError::new_err(format!(
+                        "{}: cannot read the lesson: {e}",
+                        path.display()
+                    ))
+                })
+                .and_then(|source| {
+                    let dir = super::lesson_dir(path).display().to_string();
+                    super::load_module(py, path, source, &dir)
+                })
+                .and_then(|m| {
+                    *lesson = Some(m.clone().unbind());
+                    m.call_method1("setup", args).map(|_| ())
+                })
+        } else {
+            match lesson.as_ref().map(|m| m.bind(py).getattr(hook)) {
+                Some(Ok(f)) => f.call1(args).map(|_| ()),
+                _ => Ok(()),
+            }
+        }
+    };
+    let timed_out = watchdog::stopped();
+    let hooks = match (hook, lesson.as_ref()) {
+        ("setup", Some(m)) => HOOKS[1..]
+            .iter()
+            .filter(|h| m.bind(py).hasattr(**h).unwrap_or(false))
+            .map(|h| (*h).to_owned())
+            .collect(),
+        _ => vec![],
+    };
+    let error = result.err().map(|e| {
+        let tb = traceback(py, &e);
+        if hook == "setup" {
+            tb
+        } else {
+            format!("in {hook}:\n{tb}")
+        }
+    });
+    done(error, timed_out, hooks)
+}
+
+// ---- The game's side.
+
+/// What `remote.py`'s `snapshot(world)` gives for `game` (the same keys
+/// and values as the `World` getters), built without Python.
+fn snapshot(game: &GameState) -> Value {
+    use lightcone_python::{LessonGame, Pictures};
+    let view = match game.pictures() {
+        Pictures::Seen => "seen",
+        Pictures::Truth => "truth",
+        Pictures::Split => "split",
+    };
+    let observer = LessonGame::observer(game)
+        .and_then(|i| game.scene.observers.get(i))
+        .map(|o| o.name.clone());
+    let effects: serde_json::Map<String, Value> = lightcone_engine::scene::Effect::ALL
+        .iter()
+        .map(|e| (e.key().to_owned(), Value::Bool(game.effects.is_on(*e))))
+        .collect();
+    serde_json::json!({
+        "t": game.live_time,
+        "c": game.scene.c,
+        "paused": game.paused,
+        "time_scale": game.time_scale,
+        "view": view,
+        "observer": observer,
+        "effects": effects,
+    })
+}
+
+/// What the reader thread passes on.
+enum FromChild {
+    Line(Up),
+    /// A line the game does not accept, and why.
+    Bad(String),
+    /// The lesson's process closed its output (it ended).
+    Closed,
+}
+
+/// How the window runs its lesson's process.
+#[derive(Clone, Debug)]
+pub struct Isolation {
+    /// The `lightcone` binary to start (the game's own).
+    pub exe: PathBuf,
+    /// Address-space limit of the lesson's process, MiB.
+    pub memory_mb: u64,
+}
+
+/// The lesson's process, seen from the game.
+pub(crate) struct Remote {
+    child: Child,
+    /// Its standard input, non-blocking: a short line goes straight in.
+    stdin: std::sync::Arc<std::process::ChildStdin>,
+    /// Lines that did not fit at once, for a thread to write (so a lesson
+    /// that does not read never blocks the game), and how many are there.
+    backlog: mpsc::Sender<Vec<u8>>,
+    queued: std::sync::Arc<std::sync::atomic::AtomicUsize>,
+    up: mpsc::Receiver<FromChild>,
+    /// The call out: its hook and when it was sent.
+    out: Option<(&'static str, Instant)>,
+    /// Calls waiting for the one out to end.
+    queue: VecDeque<(&'static str, Value)>,
+    /// The hooks the lesson defines (known after `setup`).
+    hooks: Vec<String>,
+    memory_mb: u64,
+}
+
+impl Remote {
+    fn spawn(path: &Path, limit: Duration, isolation: &Isolation) -> Result<Self, String> {
+        let args: Vec<std::ffi::OsString> = vec![
+            "lesson".into(),
+            path.as_os_str().to_owned(),
+            "--hook-limit".into(),
+            limit.as_secs_f64().to_string().into(),
+            "--memory-limit".into(),
+            isolation.memory_mb.to_string().into(),
+            "--window-child".into(),
+        ];
+        let mut child = supervise::spawn(&isolation.exe, &args)?;
+        let (Some(stdin), Some(stdout)) = (child.stdin.take(), child.stdout.take()) else {
+            supervise::kill_group(child.id());
+            let _ = child.wait();
+            return Err("cannot talk to the lesson's process".to_owned());
+        };
+        // SAFETY: sets a flag on our own end of the pipe.
+        unsafe {
+            use std::os::fd::AsRawFd;
+            let fd = stdin.as_raw_fd();
+            libc::fcntl(
+                fd,
+                libc::F_SETFL,
+                libc::fcntl(fd, libc::F_GETFL) | libc::O_NONBLOCK,
+            );
+        }
+        let stdin = std::sync::Arc::new(stdin);
+        let queued = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let (backlog, to_write) = mpsc::channel::<Vec<u8>>();
+        let (pipe, count) = (stdin.clone(), queued.clone());
+        std::thread::spawn(move || {
+            for line in to_write {
+                if write_all_waiting(&pipe, &line).is_err() {
+                    break; // the lesson's process is gone
+                }
+                count.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+            }
+        });
+        // Bounded: a lesson that floods the pipe waits for the game (its
+        // lines do not pile up in the game's memory).
+        let (tx, up) = mpsc::sync_channel(4);
+        std::thread::spawn(move || {
+            let mut reader = BufReader::new(stdout);
+            loop {
+                let msg = match read_line(&mut reader) {
+                    Ok(None) => FromChild::Closed,
+                    Err(e) => FromChild::Bad(e),
+                    Ok(Some(line)) => match serde_json::from_slice::<Up>(&line) {
+                        Ok(up) => FromChild::Line(up),
+                        Err(e) => FromChild::Bad(format!(
+                            "it sent a message the game does not understand ({e})"
+                        )),
+                    },
+                };
+                let last = !matches!(msg, FromChild::Line(_));
+                if tx.send(msg).is_err() || last {
+                    break;
+                }
+            }
+        });
+        Ok(Self {
+            child,
+            stdin,
+            backlog,
+            queued,
+            up,
+            out: None,
+            queue: VecDeque::new(),
+            hooks: Vec::new(),
+            memory_mb: isolation.memory_mb,
+        })
+    }
+
+    /// Sends `line`: straight into the pipe when it fits at once (a
+    /// write of at most `PIPE_BUF` bytes is whole or nothing) and no
+    /// earlier line waits; else through the writer thread.
+    fn send(&self, mut line: Vec<u8>) {
+        use std::sync::atomic::Ordering;
+        line.push(b'\n');
+        if self.queued.load(Ordering::SeqCst) == 0 && line.len() <= libc::PIPE_BUF {
+            match (&*self.stdin).write(&line) {
+                Ok(n) if n == line.len() => return,
+                Err(e) if e.kind() != std::io::ErrorKind::WouldBlock => return, // gone
+                _ => {}
+            }
+        }
+        self.queued.fetch_add(1, Ordering::SeqCst);
+        let _ = self.backlog.send(line);
+    }
+
+    /// Kills the process group and waits for it, giving a process that is
+    /// ending by itself `grace` to do so (so its own exit status is read).
+    fn end(&mut self, grace: Duration) -> Option<std::process::ExitStatus> {
+        let until = Instant::now() + grace;
+        while Instant::now() < until {
+            if let Ok(Some(status)) = self.child.try_wait() {
+                supervise::kill_group(self.child.id());
+                return Some(status);
+            }
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        supervise::kill_group(self.child.id());
+        self.child.wait().ok()
+    }
+}
+
+/// Writes all of `line` to the non-blocking `pipe`, waiting for room.
+fn write_all_waiting(pipe: &std::process::ChildStdin, mut line: &[u8]) -> std::io::Result<()> {
+    use std::os::fd::AsRawFd;
+    while !line.is_empty() {
+        match (&*pipe).write(line) {
+            Ok(0) => return Err(std::io::ErrorKind::WriteZero.into()),
+            Ok(n) => line = &line[n..],
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                let mut fd = libc::pollfd {
+                    fd: pipe.as_raw_fd(),
+                    events: libc::POLLOUT,
+                    revents: 0,
+                };
+                // SAFETY: one valid pollfd for the call's length.
+                unsafe { libc::poll(&mut fd, 1, -1) };
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(())
+}
+
+impl Drop for Remote {
+    fn drop(&mut self) {
+        if matches!(self.child.try_wait(), Ok(None)) {
+            supervise::kill_group(self.child.id());
+        }
+        let _ = self.child.wait();
+    }
+}
+
+impl LessonHost {
+    /// Starts a new process for the lesson and queues its `setup` (the
+    /// window's load and reload).
+    pub(super) fn start_remote(&mut self, isolation: &Isolation) {
+        self.loads += 1;
+        self.modified = super::modified(&self.path);
+        self.remote = None; // ends the old process
+        self.pending = None;
+        self.error = None;
+        self.timed_out = false;
+        self.finished = false;
+        self.seen_collisions = 0;
+        let fresh = Python::attach(|py| {
+            let dir = self.world.borrow(py).dir.clone();
+            Py::new(py, World::new(dir, lend::new_game))
+        });
+        match fresh {
+            Ok(w) => Python::attach(|_| *self.world = w),
+            Err(e) => return self.fail(format!("cannot start the lesson host: {e}")),
+        }
+        match Remote::spawn(&self.path, self.limit, isolation) {
+            Ok(mut r) => {
+                r.queue.push_back(("setup", Value::Array(vec![])));
+                self.remote = Some(r);
+            }
+            Err(e) => self.fail(e),
+        }
+    }
+
+    /// Whether a hook is out in the lesson's process (or waiting to be):
+    /// board time waits meanwhile.
+    pub fn busy(&self) -> bool {
+        self.remote
+            .as_ref()
+            .is_some_and(|r| r.out.is_some() || !r.queue.is_empty())
+    }
+
+    /// The hook out in the lesson's process and how long it has run.
+    pub fn hook_running(&self) -> Option<(&'static str, Duration)> {
+        let (hook, since) = self.remote.as_ref()?.out?;
+        Some((hook, since.elapsed()))
+    }
+
+    /// Queues `hook(world, *args)` if the lesson defines it.
+    pub(super) fn queue_remote(&mut self, hook: &'static str, args: Value) {
+        if !self.running() {
+            return;
+        }
+        if let Some(r) = &mut self.remote
+            && r.hooks.iter().any(|h| h == hook)
+        {
+            r.queue.push_back((hook, args));
+        }
+    }
+
+    /// Lends the game (or, in `setup`, the game the lesson is building)
+    /// to the world for `f`, and takes it back.
+    fn lend<R>(
+        &mut self,
+        game: &mut GameState,
+        setup: bool,
+        f: impl FnOnce(Python<'_>, &Bound<'_, World>) -> R,
+    ) -> R {
+        let lent = if setup {
+            self.pending.take()
+        } else {
+            let spare = self.spare.take().unwrap_or_else(placeholder);
+            Some(std::mem::replace(game, spare))
+        };
+        let (result, back, generation) = Python::attach(|py| {
+            let world = self.world.bind(py);
+            world.borrow_mut().game =
+                lent.map(|g| Box::new(g) as Box<dyn lightcone_python::LessonGame>);
+            let result = f(py, world);
+            let back = world.borrow_mut().game.take().and_then(lend::taken_back);
+            (result, back, world.borrow().generation)
+        });
+        if setup {
+            self.pending = back;
+        } else {
+            // The world always holds a game inside a hook (start replaces,
+            // it never removes): the lent one or a restarted one.
+            if let Some(back) = back {
+                self.spare = Some(std::mem::replace(game, back));
+            }
+            if generation != self.generation {
+                self.generation = generation;
+                self.seen_collisions = 0;
+            }
+        }
+        result
+    }
+
+    /// Serves the lesson's process for at most `budget`: sends the next
+    /// queued call, answers its requests on `game`, takes the end of its
+    /// hook, and stops it at its limit or when it misbehaves.
+    pub(super) fn poll(&mut self, game: &mut GameState, budget: Duration) {
+        let deadline = Instant::now() + budget;
+        loop {
+            let Some(remote) = self.remote.as_mut() else {
+                return;
+            };
+            let (hook, since) = match remote.out {
+                Some(out) => out,
+                None => {
+                    // Nothing comes unasked: a line now is a breach.
+                    match remote.up.try_recv() {
+                        Ok(FromChild::Line(_)) => {
+                            let why = "it sent a message while no call was out".to_owned();
+                            return self.stop(game, Some(why), false);
+                        }
+                        Ok(FromChild::Bad(reason)) => return self.stop(game, Some(reason), false),
+                        Ok(FromChild::Closed) | Err(mpsc::TryRecvError::Disconnected) => {
+                            return self.stop(game, None, false);
+                        }
+                        Err(mpsc::TryRecvError::Empty) => {}
+                    }
+                    let Some((hook, args)) = remote.queue.pop_front() else {
+                        return;
+                    };
+                    if hook != "setup" && (self.error.is_some() || self.finished) {
+                        remote.queue.clear();
+                        return;
+                    }
+                    let line = if hook == "setup" {
+                        // No game yet: the world says why, in its words.
+                        let args = args.to_string();
+                        self.lend(game, true, |py, world| {
+                            module(py)
+                                .and_then(|m| m.call_method1("call", (world, hook, args)))
+                                .and_then(|l| l.extract::<String>())
+                        })
+                    } else {
+                        // Built here, without Python: the common case.
+                        let call = serde_json::json!({
+                            "call": hook,
+                            "args": args,
+                            "snapshot": snapshot(game),
+                        });
+                        Ok(call.to_string())
+                    };
+                    let Some(remote) = self.remote.as_mut() else {
+                        return;
+                    };
+                    match line {
+                        Ok(line) => remote.send(line.into_bytes()),
+                        Err(e) => {
+                            return self.stop(
+                                game,
+                                Some(format!("cannot call {hook}: {e}")),
+                                false,
+                            );
+                        }
+                    }
+                    let out = (hook, Instant::now());
+                    remote.out = Some(out);
+                    out
+                }
+            };
+            let kill_at = since + self.limit + KILL_AFTER;
+            let now = Instant::now();
+            let wait = deadline.min(kill_at).saturating_duration_since(now);
+            let Some(remote) = self.remote.as_mut() else {
+                return;
+            };
+            match remote.up.recv_timeout(wait) {
+                Ok(FromChild::Line(Up::Request { op, args, kwargs })) => {
+                    if !served(&op) {
+                        return self.stop(
+                            game,
+                            Some(format!(
+                                "it asked the game for {op:?}, which the game does not serve"
+                            )),
+                            false,
+                        );
+                    }
+                    let args = Value::Array(args).to_string();
+                    let kwargs = Value::Object(kwargs).to_string();
+                    let reply = self.lend(game, hook == "setup", |py, world| {
+                        module(py)
+                            .and_then(|m| m.call_method1("serve", (world, op, args, kwargs)))
+                            .and_then(|l| l.extract::<String>())
+                    });
+                    match reply {
+                        Ok(line) => {
+                            if let Some(r) = &self.remote {
+                                r.send(line.into_bytes());
+                            }
+                        }
+                        Err(e) => {
+                            return self.stop(game, Some(format!("cannot answer: {e}")), false);
+                        }
+                    }
+                }
+                Ok(FromChild::Line(Up::Done {
+                    error,
+                    timed_out,
+                    printed,
+                    hooks,
+                })) => {
+                    remote.out = None;
+                    if hook == "setup" {
+                        remote.hooks = hooks;
+                    }
+                    self.hook_done(game, hook, error, timed_out, printed);
+                }
+                Ok(FromChild::Bad(reason)) => return self.stop(game, Some(reason), false),
+                Ok(FromChild::Closed) | Err(mpsc::RecvTimeoutError::Disconnected) => {
+                    return self.stop(game, None, false);
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {
+                    if Instant::now() >= kill_at {
+                        return self.stop(game, None, true);
+                    }
+                }
+            }
+            if Instant::now() >= deadline {
+                return;
+            }
+        }
+    }
+
+    /// The lesson's hook ended.
+    fn hook_done(
+        &mut self,
+        game: &mut GameState,
+        hook: &'static str,
+        error: Option<String>,
+        timed_out: bool,
+        printed: Vec<String>,
+    ) {
+        let (generation, finished) = Python::attach(|py| {
+            let world = self.world.bind(py);
+            // What the lesson printed is untrusted text: keep a bounded tail.
+            let lines = printed
+                .into_iter()
+                .rev()
+                .take(super::PRINTED_LINES)
+                .rev()
+                .collect();
+            keep_printed(world, lines);
+            let w = world.borrow();
+            (w.generation, w.ui.finished.is_some())
+        });
+        self.finished = finished;
+        if let Some(error) = error {
+            game.paused = true;
+            self.timed_out = timed_out;
+            self.pending = None;
+            self.remote = None;
+            return self.fail(error);
+        }
+        if hook == "setup" {
+            match self.pending.take() {
+                Some(new) => {
+                    *game = new;
+                    self.generation = generation;
+                    self.seen_collisions = 0;
+                }
+                None => {
+                    game.paused = true;
+                    self.remote = None;
+                    self.fail(format!(
+                        "{}: setup(world) did not call world.start(scene)",
+                        self.path.display()
+                    ));
+                }
+            }
+        }
+    }
+
+    /// Ends the lesson's process and shows why: `reason` (it misbehaved),
+    /// or — `None` — how it ended by itself, or (`killed`) that its hook
+    /// passed its limit and could not be interrupted. The game keeps its
+    /// state, paused.
+    fn stop(&mut self, game: &mut GameState, reason: Option<String>, killed: bool) {
+        let Some(mut remote) = self.remote.take() else {
+            return;
+        };
+        let place = match remote.out {
+            Some((hook, _)) => format!("in {hook}"),
+            None => "between hooks".to_owned(),
+        };
+        let over = remote
+            .out
+            .is_some_and(|(_, since)| since.elapsed() > self.limit);
+        let grace = if killed || reason.is_some() {
+            Duration::ZERO
+        } else {
+            Duration::from_millis(200)
+        };
+        let status = remote.end(grace);
+        let message = match (reason, status) {
+            (Some(reason), _) => {
+                format!("{place}: the lesson's process misbehaved: {reason}; it was stopped")
+            }
+            (None, Some(s))
+                if !(killed || over && s.code() == Some(watchdog::HARD_STOP_STATUS)) =>
+            {
+                format!(
+                    "{place}: the lesson's process {}; the lesson stopped there",
+                    supervise::how_it_ended(s, remote.memory_mb)
+                )
+            }
+            (None, _) => supervise::uninterruptible(&place, self.limit),
+        };
+        self.timed_out = killed || over;
+        self.pending = None;
+        game.paused = true;
+        self.fail(message);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_reader_refuses_overlong_lines_and_reads_the_rest() {
+        let mut ok = std::io::Cursor::new(b"{\"a\":1}\nlast".to_vec());
+        assert_eq!(read_line(&mut ok).unwrap().unwrap(), b"{\"a\":1}");
+        assert_eq!(read_line(&mut ok).unwrap().unwrap(), b"last");
+        assert!(read_line(&mut ok).unwrap().is_none());
+        let mut long = std::io::Cursor::new(vec![b'x'; MAX_LINE + 10]);
+        let err = read_line(&mut long).unwrap_err();
+        assert!(err.contains("longer than 16 MiB"), "{err}");
+    }
+
+    #[test]
+    fn the_game_serves_the_world_and_nothing_else() {
+        super::super::init_python().unwrap();
+        for op in ["state", "impulse", "say", "diagram", "claims", "=paused"] {
+            assert!(served(op), "{op}");
+        }
+        // `load` runs in the lesson's process; the rest is not World's.
+        for op in ["load", "__init__", "__class__", "=t", "=claims", "", "dir"] {
+            assert!(!served(op), "{op}");
+        }
+    }
+
+    #[test]
+    fn the_snapshot_built_in_rust_is_the_worlds() {
+        super::super::init_python().unwrap();
+        let scene = lightcone_engine::scene::load(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml"),
+        )
+        .unwrap();
+        let mut game = GameState::new(scene);
+        game.step(0.25);
+        game.time_scale = 0.5;
+        game.observer = Some(0);
+        let ours = snapshot(&game);
+        let world =
+            Python::attach(|py| Py::new(py, World::new(".".into(), lend::new_game))).unwrap();
+        let theirs = Python::attach(|py| -> PyResult<String> {
+            let w = world.bind(py);
+            w.borrow_mut().game = Some(Box::new(game));
+            let text = module(py)?
+                .call_method1("call", (w, "on_frame", "[]"))?
+                .extract::<String>()?;
+            w.borrow_mut().game = None;
+            Ok(text)
+        })
+        .unwrap();
+        Python::attach(|_| drop(world)); // unsendable: released here
+        let theirs: Value = serde_json::from_str(&theirs).unwrap();
+        assert_eq!(ours, theirs["snapshot"]);
+    }
+
+    #[test]
+    fn only_the_two_messages_parse() {
+        let done = r#"{"done":{"error":null,"timed_out":false,"printed":[],"hooks":["on_frame"]}}"#;
+        assert!(matches!(
+            serde_json::from_str::<Up>(done),
+            Ok(Up::Done { .. })
+        ));
+        let request = r#"{"request":{"op":"say","args":["hi"],"kwargs":{}}}"#;
+        assert!(matches!(
+            serde_json::from_str::<Up>(request),
+            Ok(Up::Request { .. })
+        ));
+        for bad in [
+            r#"{"shell":"rm -rf /"}"#,
+            r#"{"done":{"error":null,"timed_out":false,"printed":[],"hooks":[],"extra":1}}"#,
+            r#"{"request":{"op":"say"}}"#,
+            "garbage",
+        ] {
+            assert!(serde_json::from_str::<Up>(bad).is_err(), "{bad}");
+        }
+    }
+}
