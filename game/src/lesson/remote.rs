@@ -14,22 +14,22 @@
 //!   `{"error": [kind, message]}`, with a fresh snapshot). The snapshot
 //!   (t, c, paused, time_scale, view, observer, effects) answers the
 //!   common getters without a round trip;
-//! - lesson → game: [`Up`], a request or the end of the hook.
+//! - lesson → game: `Up`, a request or the end of the hook.
 //!
 //! The game reads the lesson's lines on a thread into a channel and writes
 //! its own on another, so the frame loop never blocks on the lesson: each
 //! frame it serves what arrived for at most [`FRAME_BUDGET`]; while a hook
 //! is out, board time waits (the window keeps drawing). Nothing the lesson
 //! sends is trusted: a line over [`MAX_LINE`] bytes, a message that is not
-//! an [`Up`], a request for something the game does not serve, or a
+//! an `Up`, a request for something the game does not serve, or a
 //! message when no call is out ends the lesson's process, with the reason.
 //!
 //! Limits: the lesson's process runs its hooks under its own watchdog
-//! ([`super::watchdog`]: `TimeoutError` at the limit, so the teacher gets
+//! (`super::watchdog`: `TimeoutError` at the limit, so the teacher gets
 //! a traceback at the right line); the game kills its process group at
 //! limit + [`KILL_AFTER`]. A process that ends (a signal, an exit status,
 //! memory beyond its `RLIMIT_AS`) is reported with
-//! [`supervise::how_it_ended`]'s words. Either way the game keeps its
+//! `supervise::how_it_ended`'s words. Either way the game keeps its
 //! state, paused, hooks stop, and a reload starts a new process.
 
 use std::collections::VecDeque;
