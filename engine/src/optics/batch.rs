@@ -60,21 +60,47 @@ impl Soa {
         z: [0.0; LANES],
     };
 
-    fn load(points: &[DVec3]) -> Self {
-        let mut out = Self::ZERO;
-        for (i, p) in points.iter().enumerate() {
-            out.x[i] = p.x;
-            out.y[i] = p.y;
-            out.z[i] = p.z;
+    fn load(&mut self, points: &[DVec3]) {
+        for (i, p) in points.iter().take(LANES).enumerate() {
+            self.x[i] = p.x;
+            self.y[i] = p.y;
+            self.z[i] = p.z;
         }
-        out
     }
+}
+
+/// Work on arrays of lanes that [`vectorised`] runs: `run` should be
+/// `#[inline(always)]`, so that its loops get the wider instructions.
+pub trait LaneWork {
+    /// Does the work.
+    fn run(self);
+}
+
+/// Runs `work` compiled for AVX2 (4 lanes of `f64`) when the processor has
+/// it, for SSE2 (2 lanes) otherwise: the same operations either way (no
+/// fused multiply-add), so the same results.
+#[inline(always)]
+pub fn vectorised(work: impl LaneWork) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2")]
+        fn wide(work: impl LaneWork) {
+            work.run();
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor was just found to have AVX2.
+            unsafe { wide(work) };
+            return;
+        }
+    }
+    work.run();
 }
 
 /// Board-frame positions at the start of segment `s` (shape `shape`) of
 /// the points at rest-frame offsets `r` (first `n`): the start plus
 /// [`SegmentShape::place`], with the operations of `Segment::rotate` and
 /// `LorentzMap::apply` in their order (so the same bits).
+#[inline(always)]
 fn start_positions(s: &Segment, shape: SegmentShape, r: &Soa, n: usize, out: &mut Soa) {
     let n = n.min(LANES); // no bounds checks: the loops vectorise
     let p = s.start.position;
@@ -120,6 +146,7 @@ fn start_positions(s: &Segment, shape: SegmentShape, r: &Soa, n: usize, out: &mu
 /// Whether each point at `a` (first `n`) has its event at board time `t`
 /// in the past light cone of `observation`, as `emission`'s segment
 /// search decides it, into `inside`.
+#[inline(always)]
 fn in_past_cone(a: &Soa, n: usize, t: f64, observation: Event, c: f64, inside: &mut [bool; LANES]) {
     let lhs = c * (observation.t - t);
     let o = observation.position;
@@ -184,6 +211,93 @@ impl Margin {
     }
 }
 
+/// One batch's work on a uniform segment, all in loops over arrays.
+struct Lanes<'a> {
+    s: &'a Segment,
+    shape: SegmentShape,
+    /// Whether a segment precedes this one.
+    previous: bool,
+    next: Option<(&'a Segment, SegmentShape)>,
+    observation: Event,
+    c: f64,
+    /// Observation time from the segment start.
+    since: f64,
+    /// The emission's allowed times from the segment start.
+    range: (f64, f64),
+    /// `c² − v²`, as `light_catch_up` forms it.
+    a2: f64,
+}
+
+/// [`Lanes`] applied to one batch: the points at rest-frame offsets `r`
+/// (first `n`); their start positions into `a`; whether the start of the
+/// segment and of the next is in the cone for each (`cone`, not tested
+/// when `safe`); their emission events on the segment (`emitted`: times,
+/// positions), [`emission::solve_on_segment`]'s operations lane by lane.
+struct Batch<'a, 'b> {
+    lanes: &'a Lanes<'b>,
+    r: &'a Soa,
+    n: usize,
+    safe: bool,
+    a: &'a mut Soa,
+    a_next: &'a mut Soa,
+    cone: (&'a mut [bool; LANES], &'a mut [bool; LANES]),
+    emitted: (&'a mut [f64; LANES], &'a mut Soa),
+}
+
+impl LaneWork for Batch<'_, '_> {
+    #[inline(always)]
+    fn run(self) {
+        let Batch {
+            lanes: this,
+            r,
+            n,
+            safe,
+            a,
+            a_next,
+            cone,
+            emitted,
+        } = self;
+        let (s, observation, c) = (this.s, this.observation, this.c);
+        let (below, above) = cone;
+        let (t_out, e) = emitted;
+        let n = n.min(LANES);
+        start_positions(s, this.shape, r, n, a);
+        below[..n].fill(true);
+        above[..n].fill(false);
+        if !safe {
+            if this.previous {
+                in_past_cone(a, n, s.start.t, observation, c, below);
+            }
+            if let Some((s1, shape1)) = this.next {
+                start_positions(s1, shape1, r, n, a_next);
+                in_past_cone(a_next, n, s1.start.t, observation, c, above);
+            }
+        }
+        let (o, v, since, a2) = (observation.position, s.velocity(), this.since, this.a2);
+        let (lo, end) = this.range;
+        for i in 0..n {
+            let (ax, ay, az) = (a.x[i], a.y[i], a.z[i]);
+            let dx = o.x - (ax + v.x * since);
+            let dy = o.y - (ay + v.y * since);
+            let dz = o.z - (az + v.z * since);
+            let dv = dx * v.x + dy * v.y + dz * v.z;
+            let dd = dx * dx + dy * dy + dz * dz;
+            let root = (dv * dv + a2 * dd).sqrt();
+            // Both roots' forms, then the one `light_catch_up` takes
+            // (selects, not branches: the loop vectorises).
+            let receding = dd / (root - dv);
+            let approaching = (dv + root) / a2;
+            let tau = if dv <= 0.0 { receding } else { approaching };
+            let tau = if dd == 0.0 { 0.0 } else { tau };
+            let dt = (since - tau).max(lo).min(end);
+            t_out[i] = s.start.t + dt;
+            e.x[i] = ax + v.x * dt;
+            e.y[i] = ay + v.y * dt;
+            e.z[i] = az + v.z * dt;
+        }
+    }
+}
+
 /// Batches deeper than this many segments from the reference point's are
 /// left to the per-vertex walk (it bounds the recursion's stack).
 const MAX_STEPS: usize = 8;
@@ -232,7 +346,6 @@ fn solve_near(
     let next = segments
         .get(k + 1)
         .map(|n| (n, shapes.on_segment(k + 1, n)));
-    let v = s.velocity();
     let since = observation.t - s.start.t;
     let end = next.map_or(f64::INFINITY, |(n, _)| n.start.t - s.start.t);
     let lo = if k > 0 { 0.0 } else { f64::NEG_INFINITY };
@@ -240,53 +353,41 @@ fn solve_near(
     let margin = Margin::of(worldline, k, observation);
     let mut a = Soa::ZERO;
     let mut a_next = Soa::ZERO;
+    let mut r = Soa::ZERO;
     let mut t_out = [0.0; LANES];
     let mut e = Soa::ZERO;
     let mut below = [true; LANES]; // start of k in the cone
     let mut above = [false; LANES]; // start of k + 1 in the cone
     for chunk in offsets.chunks(LANES) {
         let n = chunk.len().min(LANES);
-        let r = Soa::load(chunk);
+        r.load(chunk);
         let rho = chunk
             .iter()
             .map(|r| r.length_squared())
             .fold(0.0, f64::max)
             .sqrt();
         let safe = margin.is_some_and(|m| m.safe(rho));
-        start_positions(s, shape, &r, n, &mut a);
-        below[..n].fill(true);
-        above[..n].fill(false);
-        if !safe {
-            if k > 0 {
-                in_past_cone(&a, n, s.start.t, observation, c, &mut below);
-            }
-            if let Some((s1, shape1)) = next {
-                start_positions(s1, shape1, &r, n, &mut a_next);
-                in_past_cone(&a_next, n, s1.start.t, observation, c, &mut above);
-            }
-        }
-        // `emission::solve_on_segment` on a uniform segment, lane by lane.
-        let o = observation.position;
-        for i in 0..n {
-            let (ax, ay, az) = (a.x[i], a.y[i], a.z[i]);
-            let dx = o.x - (ax + v.x * since);
-            let dy = o.y - (ay + v.y * since);
-            let dz = o.z - (az + v.z * since);
-            let dv = dx * v.x + dy * v.y + dz * v.z;
-            let dd = dx * dx + dy * dy + dz * dz;
-            let root = (dv * dv + a2 * dd).sqrt();
-            // Both roots' forms, then the one `light_catch_up` takes (selects,
-            // not branches: the loop vectorises).
-            let receding = dd / (root - dv);
-            let approaching = (dv + root) / a2;
-            let tau = if dv <= 0.0 { receding } else { approaching };
-            let tau = if dd == 0.0 { 0.0 } else { tau };
-            let dt = (since - tau).max(lo).min(end);
-            t_out[i] = s.start.t + dt;
-            e.x[i] = ax + v.x * dt;
-            e.y[i] = ay + v.y * dt;
-            e.z[i] = az + v.z * dt;
-        }
+        let lanes = Lanes {
+            s,
+            shape,
+            previous: k > 0,
+            next,
+            observation,
+            c,
+            since,
+            range: (lo, end),
+            a2,
+        };
+        vectorised(Batch {
+            lanes: &lanes,
+            r: &r,
+            n,
+            safe,
+            a: &mut a,
+            a_next: &mut a_next,
+            cone: (&mut below, &mut above),
+            emitted: (&mut t_out, &mut e),
+        });
         let base = out.len();
         out.extend((0..n).map(|i| Emission {
             event: Event::new(t_out[i], DVec3::new(e.x[i], e.y[i], e.z[i])),

@@ -16,6 +16,7 @@
 
 use glam::DVec3;
 
+use super::batch::{LANES, LaneWork, vectorised};
 use super::emission::Emission;
 use crate::spacetime::{Boost, Event, FourVector, ProperVelocity};
 
@@ -104,29 +105,25 @@ impl Eye {
         c: f64,
         out: &mut Vec<Seen>,
     ) {
-        const N: usize = super::batch::LANES;
+        const N: usize = LANES;
         let (t0, o) = (self.event.t, self.event.position);
         out.reserve(emissions.len());
+        let (mut ct, mut x, mut y, mut z) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
+        let (mut dist, mut ux, mut uy, mut uz) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
         for chunk in emissions.chunks(N) {
             let n = chunk.len().min(N); // no bounds checks: the loops vectorise
-            let (mut ct, mut x, mut y, mut z) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
-            for (i, e) in chunk.iter().enumerate() {
+            for (i, e) in chunk.iter().enumerate().take(N) {
                 ct[i] = c * (e.event.t - t0);
                 x[i] = e.event.position.x - o.x;
                 y[i] = e.event.position.y - o.y;
                 z[i] = e.event.position.z - o.z;
             }
-            frame.apply_all(&mut ct[..n], &mut x[..n], &mut y[..n], &mut z[..n]);
-            // `seen_at`, lane by lane: distance and direction.
-            let (mut dist, mut ux, mut uy, mut uz) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
-            for i in 0..n {
-                let d = (x[i] * x[i] + y[i] * y[i] + z[i] * z[i]).sqrt();
-                let seen = d > 0.0;
-                dist[i] = d;
-                ux[i] = if seen { x[i] / d } else { 0.0 };
-                uy[i] = if seen { y[i] / d } else { 0.0 };
-                uz[i] = if seen { z[i] / d } else { 0.0 };
-            }
+            vectorised(Aberrated {
+                frame,
+                n,
+                ray: (&mut ct, &mut x, &mut y, &mut z),
+                seen: (&mut dist, &mut ux, &mut uy, &mut uz),
+            });
             out.extend((0..n).map(|i| Seen {
                 position: DVec3::new(x[i], y[i], z[i]),
                 direction: DVec3::new(ux[i], uy[i], uz[i]),
@@ -175,6 +172,45 @@ impl Eye {
             doppler(travel / len, emitter, self.u)
         } else {
             1.0
+        }
+    }
+}
+
+/// Lanes of [`Eye::place_all_in_own_frame`]: the rays (`ct`, `x`, `y`, `z`,
+/// first `n`) boosted in place, then each one's apparent distance and
+/// direction (`seen`), as `seen_at` computes them.
+struct Aberrated<'a> {
+    frame: &'a Boost,
+    n: usize,
+    ray: (
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+    ),
+    seen: (
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+    ),
+}
+
+impl LaneWork for Aberrated<'_> {
+    #[inline(always)]
+    fn run(self) {
+        let n = self.n.min(LANES);
+        let (ct, x, y, z) = self.ray;
+        let (dist, ux, uy, uz) = self.seen;
+        self.frame
+            .apply_all(&mut ct[..n], &mut x[..n], &mut y[..n], &mut z[..n]);
+        for i in 0..n {
+            let d = (x[i] * x[i] + y[i] * y[i] + z[i] * z[i]).sqrt();
+            let seen = d > 0.0;
+            dist[i] = d;
+            ux[i] = if seen { x[i] / d } else { 0.0 };
+            uy[i] = if seen { y[i] / d } else { 0.0 };
+            uz[i] = if seen { z[i] / d } else { 0.0 };
         }
     }
 }

@@ -90,6 +90,7 @@ impl Boost {
     /// [`Self::apply`] to many 4-vectors held as arrays (`ct[i]`, `x[i]`,
     /// `y[i]`, `z[i]`; equal lengths), in place: the same operations per
     /// vector, the form chosen once, in a loop the compiler vectorises.
+    #[inline(always)]
     pub fn apply_all(&self, ct: &mut [f64], x: &mut [f64], y: &mut [f64], z: &mut [f64]) {
         let form = self.form();
         let n = ct.len().min(x.len()).min(y.len()).min(z.len());
@@ -103,7 +104,7 @@ impl Boost {
     }
 
     /// The form [`Self::apply`] uses for this boost, with what it needs.
-    #[inline]
+    #[inline(always)]
     fn form(&self) -> BoostForm {
         let speed = self.frame.0.length();
         BoostForm {
