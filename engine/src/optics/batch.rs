@@ -358,6 +358,8 @@ fn solve_near(
     let mut e = Soa::ZERO;
     let mut below = [true; LANES]; // start of k in the cone
     let mut above = [false; LANES]; // start of k + 1 in the cone
+    // Points handed to a neighbouring segment (allocated only if any are).
+    let (mut moved, mut points, mut solved) = (Vec::new(), Vec::new(), Vec::new());
     for chunk in offsets.chunks(LANES) {
         let n = chunk.len().min(LANES);
         r.load(chunk);
@@ -389,9 +391,10 @@ fn solve_near(
             emitted: (&mut t_out, &mut e),
         });
         let base = out.len();
+        let u = s.u;
         out.extend((0..n).map(|i| Emission {
             event: Event::new(t_out[i], DVec3::new(e.x[i], e.y[i], e.z[i])),
-            u: s.u,
+            u,
             segment: k,
         }));
         if safe {
@@ -399,20 +402,20 @@ fn solve_near(
         }
         // The points on another segment, each side in a batch of its own.
         for (step_down, k_other) in [(true, k.wrapping_sub(1)), (false, k + 1)] {
-            let moved: Vec<usize> = (0..n)
-                .filter(|&i| {
-                    if step_down {
-                        !below[i]
-                    } else {
-                        below[i] && above[i]
-                    }
-                })
-                .collect();
+            moved.clear();
+            moved.extend((0..n).filter(|&i| {
+                if step_down {
+                    !below[i]
+                } else {
+                    below[i] && above[i]
+                }
+            }));
             if moved.is_empty() {
                 continue;
             }
-            let points: Vec<DVec3> = moved.iter().map(|&i| chunk[i]).collect();
-            let mut solved = Vec::with_capacity(points.len());
+            points.clear();
+            points.extend(moved.iter().map(|&i| chunk[i]));
+            solved.clear();
             solve_near(
                 worldline,
                 k_other,
@@ -422,7 +425,7 @@ fn solve_near(
                 &mut solved,
                 steps + 1,
             );
-            for (&i, e) in moved.iter().zip(solved) {
+            for (&i, e) in moved.iter().zip(solved.iter().copied()) {
                 out[base + i] = e;
             }
         }
