@@ -37,6 +37,9 @@
 //! A braking segment `k` (sliding friction) is left to the per-vertex
 //! solve, as is every vertex whose test fails (its emission near a kink).
 
+// The loops index several arrays in step, the form that vectorises.
+#![allow(clippy::needless_range_loop)]
+
 use glam::DVec3;
 
 use super::emission::{self, Emission};

@@ -198,6 +198,7 @@ struct Aberrated<'a> {
 
 impl LaneWork for Aberrated<'_> {
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // arrays in step: the form that vectorises
     fn run(self) {
         let n = self.n.min(LANES);
         let (ct, x, y, z) = self.ray;
