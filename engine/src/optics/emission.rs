@@ -239,7 +239,10 @@ pub fn solve(
 
 /// Emission events of every point of a body (rest-frame `offsets`, shape
 /// `shapes`), the segment search shared: one binary search for
-/// `reference`, then a short walk per point. Appends to `out`.
+/// `reference`, then the points solved in batches on that segment
+/// ([`super::batch::solve_from`], structure of arrays, vectorised), each
+/// with a short walk only when it may lie on another. Appends to `out`;
+/// each result equals [`solve`]'s for its point.
 pub fn solve_body(
     worldline: &Worldline,
     offsets: &[DVec3],
@@ -249,18 +252,7 @@ pub fn solve_body(
     out: &mut Vec<Emission>,
 ) {
     let k0 = segment_index(worldline, reference, shapes, observation);
-    if worldline.segments().len() == 1 {
-        out.extend(
-            offsets
-                .iter()
-                .map(|&r| solve_on_segment(worldline, 0, r, shapes, observation)),
-        );
-        return;
-    }
-    out.extend(offsets.iter().map(|&r| {
-        let k = refine_index(worldline, k0, r, shapes, observation);
-        solve_on_segment(worldline, k, r, shapes, observation)
-    }));
+    super::batch::solve_from(worldline, k0, offsets, shapes, observation, out);
 }
 
 /// The board-frame-simultaneous "emission" (light delay off): the point of

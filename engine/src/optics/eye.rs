@@ -16,6 +16,8 @@
 
 use glam::DVec3;
 
+use super::batch::{LANES, LaneWork, vectorised};
+use super::emission::Emission;
 use crate::spacetime::{Boost, Event, FourVector, ProperVelocity};
 
 /// An observer at one event: where and when, and how fast.
@@ -93,6 +95,44 @@ impl Eye {
         Self::seen_at(frame.apply(ray).space)
     }
 
+    /// [`Self::place_in_own_frame`] for each of `emissions`, appended to
+    /// `out` in order: the same operations per emission, on arrays of
+    /// [`super::batch::LANES`] at a time (vectorised).
+    pub fn place_all_in_own_frame(
+        &self,
+        frame: &Boost,
+        emissions: &[Emission],
+        c: f64,
+        out: &mut Vec<Seen>,
+    ) {
+        const N: usize = LANES;
+        let (t0, o) = (self.event.t, self.event.position);
+        out.reserve(emissions.len());
+        let (mut ct, mut x, mut y, mut z) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
+        let (mut dist, mut ux, mut uy, mut uz) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
+        for chunk in emissions.chunks(N) {
+            let n = chunk.len().min(N); // no bounds checks: the loops vectorise
+            for (i, e) in chunk.iter().enumerate().take(N) {
+                ct[i] = c * (e.event.t - t0);
+                x[i] = e.event.position.x - o.x;
+                y[i] = e.event.position.y - o.y;
+                z[i] = e.event.position.z - o.z;
+            }
+            vectorised(Aberrated {
+                frame,
+                n,
+                ray: (&mut ct, &mut x, &mut y, &mut z),
+                seen: (&mut dist, &mut ux, &mut uy, &mut uz),
+            });
+            out.extend((0..n).map(|i| Seen {
+                position: DVec3::new(x[i], y[i], z[i]),
+                direction: DVec3::new(ux[i], uy[i], uz[i]),
+                distance: dist[i],
+                doppler: 1.0,
+            }));
+        }
+    }
+
     /// Where the light from `emission` appears without aberration: the
     /// board-frame offset from the eye (as if the eye were at rest).
     /// Doppler factor left at 1.
@@ -132,6 +172,46 @@ impl Eye {
             doppler(travel / len, emitter, self.u)
         } else {
             1.0
+        }
+    }
+}
+
+/// Lanes of [`Eye::place_all_in_own_frame`]: the rays (`ct`, `x`, `y`, `z`,
+/// first `n`) boosted in place, then each one's apparent distance and
+/// direction (`seen`), as `seen_at` computes them.
+struct Aberrated<'a> {
+    frame: &'a Boost,
+    n: usize,
+    ray: (
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+    ),
+    seen: (
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+        &'a mut [f64; LANES],
+    ),
+}
+
+impl LaneWork for Aberrated<'_> {
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // arrays in step: the form that vectorises
+    fn run(self) {
+        let n = self.n.min(LANES);
+        let (ct, x, y, z) = self.ray;
+        let (dist, ux, uy, uz) = self.seen;
+        self.frame
+            .apply_all(&mut ct[..n], &mut x[..n], &mut y[..n], &mut z[..n]);
+        for i in 0..n {
+            let d = (x[i] * x[i] + y[i] * y[i] + z[i] * z[i]).sqrt();
+            let seen = d > 0.0;
+            dist[i] = d;
+            ux[i] = if seen { x[i] / d } else { 0.0 };
+            uy[i] = if seen { y[i] / d } else { 0.0 };
+            uz[i] = if seen { z[i] / d } else { 0.0 };
         }
     }
 }
@@ -220,5 +300,45 @@ mod tests {
         assert!((seen.position - DVec3::new(0.0, 2.0, 0.0)).length() < 1e-15);
         assert_eq!(seen.doppler, 1.0);
         assert_eq!(searchlight(2.0), 16.0);
+    }
+
+    #[test]
+    fn placed_in_batches_equals_placed_one_by_one() {
+        // Observers at rest, slow (textbook boost) and fast (light-cone
+        // form), 150 emissions (batches of 64, 64 and 22), one at the eye:
+        // the same bits as `place_in_own_frame`.
+        let emissions: Vec<Emission> = (0..150)
+            .map(|i| {
+                let x = f64::from(i);
+                let position = if i == 7 {
+                    DVec3::new(0.3, -0.2, 1.0)
+                } else {
+                    DVec3::new((0.37 * x).sin() * 2.0, (0.11 * x).cos(), 0.01 * x)
+                };
+                Emission {
+                    event: Event::new(2.0 - 0.013 * x, position),
+                    u: ProperVelocity::ZERO,
+                    segment: 0,
+                }
+            })
+            .collect();
+        for u in [
+            DVec3::ZERO,
+            DVec3::new(0.4, -0.3, 0.0),
+            DVec3::new(-2.5, 1.0, 0.2),
+        ] {
+            let eye = Eye {
+                event: Event::new(2.0 - 0.013 * 7.0, DVec3::new(0.3, -0.2, 1.0)),
+                u: ProperVelocity(u),
+            };
+            let frame = eye.frame();
+            let mut out = Vec::new();
+            eye.place_all_in_own_frame(&frame, &emissions, C, &mut out);
+            assert_eq!(out.len(), emissions.len());
+            for (e, s) in emissions.iter().zip(&out) {
+                assert_eq!(*s, eye.place_in_own_frame(&frame, e.event, C));
+            }
+            assert_eq!(out[7].distance, 0.0);
+        }
     }
 }

@@ -3,6 +3,8 @@
 //!
 //! * [`emission`]: for an observation event, the event on a vertex's
 //!   worldline whose light arrives then (Δs² = 0), exactly, per segment;
+//! * [`batch`]: the same for a body's vertices at once, structure of
+//!   arrays and vector instructions, the segment search shared;
 //! * [`history`]: the paper's method, a sampled per-body history searched
 //!   by dichotomy, with optional linear interpolation (the baseline);
 //! * [`eye`]: the observer: aberration (the light's direction in the
@@ -15,6 +17,7 @@
 //! The rest-frame meshes moved to [`crate::worldline::mesh`] (re-exported
 //! here as [`mesh`]).
 
+pub mod batch;
 pub mod emission;
 pub mod eye;
 pub mod history;

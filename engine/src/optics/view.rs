@@ -124,12 +124,7 @@ pub fn simultaneous(
 /// rest frame, relative to the eye. Doppler factors left at 1.
 pub fn aberrated(eye: &Eye, c: f64, emissions: &[Emission], out: &mut Vec<Seen>) {
     out.clear();
-    let frame = eye.frame();
-    out.extend(
-        emissions
-            .iter()
-            .map(|e| eye.place_in_own_frame(&frame, e.event, c)),
-    );
+    eye.place_all_in_own_frame(&eye.frame(), emissions, c, out);
 }
 
 /// Without aberration (kernel): board-frame offsets of `emissions` from

@@ -241,6 +241,13 @@ impl Segment {
         LorentzMap::from_parts(self.direction, self.inverse_gamma)
     }
 
+    /// `(sin, cos)` of [`Self::orientation`] (cached): what [`Self::rotate`]
+    /// multiplies by, for kernels that turn many offsets at once.
+    #[inline]
+    pub fn turn(&self) -> (f64, f64) {
+        self.turn
+    }
+
     /// A rest-frame offset (axes of the body's mesh) turned by this
     /// segment's [`Self::orientation`] about `+z`: the same offset in the
     /// axes of the pure boost from the board.
