@@ -397,3 +397,34 @@ fn friction_set_after_loading_a_scene_that_rests_before_start_is_the_scenes_own(
         }
     }
 }
+
+#[test]
+fn slower_light_on_a_cloth_keeps_every_puck_inside_the_rindler_horizon() {
+    // The paper's scene on its cloth (μg ≈ 1.96 m/s², pucks 30.5 mm): the
+    // horizon c²/(μg) passes the radius at c = √(R μ g) ≈ 0.245 m/s. Slower
+    // light is refused, saying how slow it may go; the scene is unchanged.
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml");
+    let scene = lightcone_engine::scene::load(&path).expect("the shipped scene");
+    let floor = (0.0305 * scene.table.deceleration()).sqrt();
+    let ok = scene.with_c(floor * 1.01).expect("just above the floor");
+    let r = ok.pucks[0].radius;
+    assert!(r < ok.c * ok.c / ok.table.deceleration());
+    let err = scene.with_c(0.2).expect_err("below the floor");
+    assert!(
+        err.contains("cannot brake rigidly") && err.contains("c must be above 0.24"),
+        "{err}"
+    );
+    // Frictionless, any c.
+    let mut bare = scene.clone();
+    bare.table.friction = 0.0;
+    assert!(bare.with_c(0.01).is_ok());
+    // A puck added in code is held to the same horizon.
+    let mut slow = scene.with_c(0.3).unwrap();
+    let mut big = slow.pucks[0].clone();
+    big.name = "big".into();
+    big.position = glam::DVec2::new(1.5, 0.3);
+    big.radius = 0.06;
+    let err = slow.add_puck(big).expect_err("beyond the horizon");
+    assert!(err.contains("\"big\"") && err.contains("c²/(μg)"), "{err}");
+}

@@ -1001,7 +1001,14 @@ mod tests {
         for (p, b) in g.scene.pucks.iter().zip(&before) {
             assert!((p.u.0 * 1e6 - *b).length() < 1e-12 * (1.0 + b.length()));
         }
-        // Slow light: the same momentum, never c.
+        // Slow light on the cloth: below √(R μ g) ≈ 0.245 m/s a puck would
+        // not fit inside the braking's Rindler horizon; refused, with the
+        // reason shown, and the game keeps its scene.
+        g.restart_with_c(0.01);
+        assert_eq!(g.scene.c, 1e6);
+        assert!(g.message.contains("c must be above"), "{}", g.message);
+        // Frictionless, slow light: the same momentum, never c.
+        g.scene.table.friction = 0.0;
         g.restart_with_c(0.01);
         assert!(g.scene.pucks[0].u.speed_deficit() > 0.0);
         assert!((g.scene.pucks[0].u.0 * 0.01 - before[0]).length() < 1e-12);

@@ -544,6 +544,38 @@ pub fn first_overlaps(pucks: &[PuckSpec]) -> Vec<(usize, usize)> {
     pairs
 }
 
+/// Why a puck of `pucks` cannot brake rigidly on a table of sliding
+/// friction `friction` under `gravity` m/s² with light at `c` m/s: a
+/// Born-rigid body must be shorter than the braking's Rindler horizon
+/// `c²/(μg)` (see [`crate::worldline::sliding`]). The index of the first
+/// such puck and the reason; `None` when every puck can (or μ = 0).
+pub fn braking_horizon_error(
+    c: f64,
+    friction: f64,
+    gravity: f64,
+    pucks: &[PuckSpec],
+) -> Option<(usize, String)> {
+    if friction <= 0.0 {
+        return None;
+    }
+    let horizon = c * c / (friction * gravity);
+    let k = pucks.iter().position(|p| p.radius >= horizon)?;
+    let p = &pucks[k];
+    Some((
+        k,
+        format!(
+            "puck \"{}\" (radius {} m) cannot brake rigidly: with friction {}, gravity {} m/s² \
+             and c = {} m/s a puck must be smaller than c²/(μg) = {} m",
+            p.name,
+            number(p.radius),
+            number(friction),
+            number(gravity),
+            number(c),
+            number(horizon)
+        ),
+    ))
+}
+
 impl Scene {
     /// An empty scene on a table of `size` metres, with `c` (default: light
     /// crosses the long side in 2 s), default effects and no pucks; one
@@ -641,6 +673,14 @@ impl Scene {
         if let Some(other) = self.pucks.iter().find(|o| overlap(o, &puck)) {
             return Err(format!("puck \"{name}\" overlaps puck \"{}\"", other.name));
         }
+        if let Some((_, why)) = braking_horizon_error(
+            self.c,
+            self.table.friction,
+            self.table.gravity,
+            std::slice::from_ref(&puck),
+        ) {
+            return Err(why);
+        }
         self.pucks.push(puck);
         Ok(())
     }
@@ -666,19 +706,8 @@ impl Scene {
                 number(*GRAVITY_RANGE.end())
             ));
         }
-        if friction > 0.0 {
-            let horizon = self.c * self.c / (friction * gravity);
-            if let Some(p) = self.pucks.iter().find(|p| p.radius >= horizon) {
-                return Err(format!(
-                    "puck \"{}\" (radius {} m) cannot brake rigidly: with friction {} and \
-                     gravity {} m/s² a puck must be smaller than c²/(μg) = {} m",
-                    p.name,
-                    number(p.radius),
-                    number(friction),
-                    number(gravity),
-                    number(horizon)
-                ));
-            }
+        if let Some((_, why)) = braking_horizon_error(self.c, friction, gravity, &self.pucks) {
+            return Err(why);
         }
         self.table.friction = friction;
         self.table.gravity = gravity;
@@ -787,6 +816,21 @@ impl Scene {
     pub fn with_c(&self, c: f64) -> Result<Self, String> {
         if !(c.is_finite() && c > 0.0) {
             return Err(format!("c = {c} must be a positive finite number of m/s"));
+        }
+        // On a cloth, slower light brings the braking's Rindler horizon
+        // closer: refused (the scene kept) once a puck would not fit.
+        if let Some((_, why)) =
+            braking_horizon_error(c, self.table.friction, self.table.gravity, &self.pucks)
+        {
+            let slowest = self
+                .pucks
+                .iter()
+                .map(|p| (p.radius * self.table.deceleration()).sqrt())
+                .fold(0.0, f64::max);
+            return Err(format!(
+                "{why}: on this cloth c must be above {} m/s (or the table frictionless)",
+                number(slowest)
+            ));
         }
         let k = self.c / c;
         let mut scene = self.clone();

@@ -397,34 +397,22 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
     // braking's Rindler horizon; see worldline::sliding). Located at the
     // table's `friction` when the file gives it, else at the puck's radius
     // (or position), naming the default.
-    if table.deceleration() > 0.0 {
-        let horizon = c * c / table.deceleration();
-        if let Some(k) = pucks.iter().position(|p| p.radius >= horizon) {
-            let p = &pucks[k];
-            let why = format!(
-                "puck \"{}\" (radius {} m) cannot brake rigidly: with friction {} and \
-                 gravity {} m/s² a puck must be smaller than c²/(μg) = {} m",
-                p.name,
-                number(p.radius),
-                number(table.friction),
-                number(table.gravity),
-                number(horizon)
-            );
-            match table_raw.and_then(|t| t.friction.as_ref()) {
-                Some(v) => ck.error(v, "table.friction", why),
-                None => {
-                    let (i, at) = puck_spans[k];
-                    let puck = at.get_ref();
-                    let field = format!("puck[{i}].radius");
-                    let why = format!(
-                        "{why} (friction {} is the default, a carom cloth: write \
-                         [table] friction = 0 for a frictionless table)",
-                        number(table.friction)
-                    );
-                    match &puck.radius {
-                        Some(r) => ck.error(r, &field, why),
-                        None => ck.error(&puck.position, &format!("puck[{i}].position"), why),
-                    }
+    if let Some((k, why)) =
+        super::model::braking_horizon_error(c, table.friction, table.gravity, &pucks)
+    {
+        match table_raw.and_then(|t| t.friction.as_ref()) {
+            Some(v) => ck.error(v, "table.friction", why),
+            None => {
+                let (i, at) = puck_spans[k];
+                let puck = at.get_ref();
+                let why = format!(
+                    "{why} (friction {} is the default, a carom cloth: write \
+                     [table] friction = 0 for a frictionless table)",
+                    number(table.friction)
+                );
+                match &puck.radius {
+                    Some(r) => ck.error(r, &format!("puck[{i}].radius"), why),
+                    None => ck.error(&puck.position, &format!("puck[{i}].position"), why),
                 }
             }
         }
