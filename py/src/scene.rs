@@ -218,8 +218,10 @@ impl Scene {
         self.inner.c
     }
 
-    /// Sets the speed of light, m/s: from 1e-6 to 1e9, as in a scene file
-    /// (`SceneError` otherwise, naming `Scene.c`).
+    /// Sets the speed of light, m/s: from 1e-6 to 1e9, as in a scene file,
+    /// and, on a table with friction, fast enough that every puck fits
+    /// inside the braking's Rindler horizon c²/(μg) (`SceneError`
+    /// otherwise, naming `Scene.c`).
     #[setter]
     fn set_c(&mut self, c: f64) -> PyResult<()> {
         let range = scene::C_RANGE;
@@ -230,6 +232,12 @@ impl Scene {
                 scene::number(*range.start()),
                 scene::number(*range.end())
             )));
+        }
+        let t = &self.inner.table;
+        if let Some((_, why)) =
+            scene::braking_horizon_error(c, t.friction, t.gravity, &self.inner.pucks)
+        {
+            return Err(SceneError::new_err(format!("Scene.c: {why}")));
         }
         self.inner.c = c;
         Ok(())

@@ -390,3 +390,13 @@ def test_friction_in_code_stops_a_puck_where_relativity_says():
     with pytest.raises(lightcone.SceneError, match="gravity"):
         lightcone.Scene(gravity=0.0)
     assert s.friction == mu  # unchanged by the refused value
+
+
+def test_slow_light_on_a_cloth_is_refused_with_the_reason():
+    s = scene("paper_carom.toml")
+    with pytest.raises(lightcone.SceneError, match="Scene.c: .*cannot brake rigidly"):
+        s.c = 0.01
+    assert s.c == pytest.approx(1.42)
+    s.friction = 0.0
+    s.c = 0.01
+    assert s.c == 0.01

@@ -15,8 +15,8 @@ pub use error::{SceneError, SceneErrors, number};
 pub use model::{
     BeforeStart, C_RANGE, Color, Effect, Effects, GRAVITY_RANGE, LENGTH_RANGE, MASS_RANGE,
     MAX_DICHOTOMY_STEPS, MAX_FRICTION, MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS,
-    MAX_PUCKS, MAX_U, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec, first_overlaps,
-    overlap,
+    MAX_PUCKS, MAX_U, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec, braking_horizon_error,
+    first_overlaps, overlap,
 };
 pub use validate::MAX_ERRORS_PER_KIND;
 
