@@ -621,7 +621,9 @@ fn play_cave_opens_one_window_per_output() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(img.is_none() && !out.status.success());
     assert!(
-        err.contains("CAVE output \"front\": no monitor is named \"NO-SUCH-1\" (monitors: "),
+        err.contains(
+            "CAVE config: output[0] (\"front\").monitor: no monitor is named \"NO-SUCH-1\" (monitors: "
+        ),
         "{err}"
     );
     let _ = std::fs::remove_dir_all(&dir);

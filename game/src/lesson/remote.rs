@@ -237,6 +237,22 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
 }
 
 /// Runs the call in `line` on the lesson; what to tell the game.
+/// What the game keeps of a hook's printing: its last
+/// [`super::PRINTED_LINES`] lines, each cut to 4 096 characters, so a lesson
+/// that prints megabytes sends the game a short message (the protocol's
+/// 16 MiB line cap is for messages, not for what the lesson prints).
+fn printed_tail(mut lines: Vec<String>) -> Vec<String> {
+    const LONGEST: usize = 4096;
+    let keep = lines.len().saturating_sub(super::PRINTED_LINES);
+    lines.drain(..keep);
+    for line in &mut lines {
+        if line.chars().count() > LONGEST {
+            *line = line.chars().take(LONGEST).chain("…".chars()).collect();
+        }
+    }
+    lines
+}
+
 fn run_call(
     py: Python<'_>,
     line: &str,
@@ -248,7 +264,7 @@ fn run_call(
     let done = |error: Option<String>, timed_out: bool, hooks: Vec<String>| Up::Done {
         error,
         timed_out,
-        printed: drain_printed(py),
+        printed: printed_tail(drain_printed(py)),
         hooks,
     };
     let begun = module(py)
@@ -833,6 +849,18 @@ impl LessonHost {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_hook_that_prints_megabytes_sends_only_what_the_panel_keeps() {
+        let many: Vec<String> = (0..400_000)
+            .map(|i| format!("line {i} {}", "x".repeat(30)))
+            .collect();
+        let tail = printed_tail(many);
+        assert_eq!(tail.len(), super::super::PRINTED_LINES);
+        assert!(tail.last().is_some_and(|l| l.starts_with("line 399999 ")));
+        let long = printed_tail(vec!["y".repeat(40 << 20)]);
+        assert_eq!(long[0].chars().count(), 4097);
+    }
 
     #[test]
     fn the_reader_refuses_overlong_lines_and_reads_the_rest() {

@@ -77,7 +77,8 @@ pub fn open(
     let monitors: Vec<_> = event_loop.available_monitors().collect();
     cave.outputs
         .iter()
-        .map(|o| {
+        .enumerate()
+        .map(|(i, o)| {
             let mut attributes = Window::default_attributes()
                 .with_title(format!("Lightcone CAVE: {}", o.name))
                 .with_decorations(false);
@@ -97,7 +98,8 @@ pub fn open(
                                 .map(|m| m.name().unwrap_or_else(|| "(unnamed)".into()))
                                 .collect();
                             format!(
-                                "CAVE output {:?}: no monitor is named {name:?} (monitors: {})",
+                                "CAVE config: output[{i}] ({:?}).monitor: no monitor is named \
+                                 {name:?} (monitors: {})",
                                 o.name,
                                 if names.is_empty() {
                                     "none".to_owned()
