@@ -264,6 +264,21 @@ impl LessonHost {
         Ok((host, game))
     }
 
+    /// The window's frame, as the lesson in its own process sees it. The
+    /// hooks of a frame are sent by [`Self::after_step`], which does not
+    /// wait; they run in the lesson's process while the game draws, and
+    /// the next frame calls this, before board time moves, to take their
+    /// ends (and their requests' answers) within `budget`
+    /// ([`remote::FRAME_BUDGET`] at the start of a frame, zero right
+    /// after drawing to answer what arrived meanwhile). A hook that is not
+    /// done by then goes on over the next frames, board time waiting. A
+    /// lesson run in this process needs none of it (a no-op).
+    pub fn serve(&mut self, game: &mut GameState, budget: std::time::Duration) {
+        if self.isolation.is_some() {
+            self.poll(game, budget);
+        }
+    }
+
     /// Serves the lesson's process until no hook is out or waiting (each
     /// ends by its limit): for tests and the first load.
     pub fn settle(&mut self, game: &mut GameState) {
@@ -387,7 +402,7 @@ impl LessonHost {
         if let Some(isolation) = self.isolation.clone() {
             // The new process's setup replaces the game when it ends.
             self.start_remote(&isolation);
-            self.poll(game, remote::FRAME_BUDGET);
+            self.poll(game, std::time::Duration::ZERO);
             return;
         }
         if let Some(new) = self.start() {
@@ -484,6 +499,8 @@ impl LessonHost {
 
     /// Runs the hooks due after a frame: `on_collision` for each new
     /// collision, then `on_frame` if board time advanced since `before`.
+    /// A lesson in its own process is sent the first of them, and this
+    /// returns without waiting ([`Self::serve`] takes their ends).
     pub fn after_step(&mut self, game: &mut GameState, before: f64) {
         // `seen_collisions` is a global record index (the billiard may have
         // dropped records older than its replay window).
@@ -527,7 +544,7 @@ impl LessonHost {
             if game.live_time > before {
                 self.queue_remote("on_frame", serde_json::json!([game.live_time]));
             }
-            self.poll(game, remote::FRAME_BUDGET);
+            self.poll(game, std::time::Duration::ZERO);
             return;
         }
         if game.live_time > before {
@@ -561,7 +578,7 @@ impl LessonHost {
         }
         if self.isolation.is_some() {
             self.queue_remote("on_answer", serde_json::json!([question, chosen]));
-            self.poll(game, remote::FRAME_BUDGET);
+            self.poll(game, std::time::Duration::ZERO);
             return;
         }
         self.call(game, "on_answer", move |py, world| {

@@ -204,6 +204,12 @@ class World:
         else:
             object.__setattr__(self, name, value)
 
+    @property
+    def __class__(self):
+        # isinstance(world, lightcone.World) holds, as in the game's
+        # process (isinstance falls back on __class__).
+        return lightcone.World
+
     def load(self, path):
         """Loads a scene file; a relative path is taken from the lesson's
         directory. Raises SceneError naming the file, line and field."""

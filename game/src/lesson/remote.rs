@@ -17,9 +17,11 @@
 //! - lesson → game: `Up`, a request or the end of the hook.
 //!
 //! The game reads the lesson's lines on a thread into a channel and writes
-//! its own on another, so the frame loop never blocks on the lesson: each
-//! frame it serves what arrived for at most [`FRAME_BUDGET`]; while a hook
-//! is out, board time waits (the window keeps drawing). Nothing the lesson
+//! its own on another, so the frame loop never blocks on the lesson. The
+//! frame is pipelined: a frame's hooks are sent after its step and run
+//! while it is drawn; the next frame takes their ends, waiting at most
+//! [`FRAME_BUDGET`] (`LessonHost::serve`); while a hook is out, board time
+//! waits (the window keeps drawing). Nothing the lesson
 //! sends is trusted: a line over [`MAX_LINE`] bytes, a message that is not
 //! an `Up`, a request for something the game does not serve, or a
 //! message when no call is out ends the lesson's process, with the reason.
@@ -56,6 +58,10 @@ pub const MAX_LINE: usize = 16 << 20;
 /// How long a frame waits for the lesson before it draws: a hook that
 /// takes longer goes on over the next frames while board time waits.
 pub const FRAME_BUDGET: Duration = Duration::from_millis(10);
+
+/// How many messages a poll handles past its budget (those already
+/// arrived): a hook's requests and its end, without waiting.
+const READY_AT_ONCE: usize = 16;
 
 /// Whether the game serves request `op`: `remote.py`'s `SERVED` (its
 /// `METHODS`, `GETTERS`, and `=name` for its `SETTABLE`), read once.
@@ -331,8 +337,30 @@ fn run_call(
 // ---- The game's side.
 
 /// What `remote.py`'s `snapshot(world)` gives for `game` (the same keys
-/// and values as the `World` getters), built without Python.
-fn snapshot(game: &GameState) -> Value {
+/// and values as the `World` getters), built without Python and written
+/// straight to JSON (it goes with every call: no intermediate `Value`).
+#[derive(Serialize)]
+struct Snapshot<'a> {
+    t: f64,
+    c: f64,
+    paused: bool,
+    time_scale: f64,
+    view: &'static str,
+    observer: Option<&'a str>,
+    effects: Effects<'a>,
+}
+
+/// The effects as a map from their keys to whether each is on.
+struct Effects<'a>(&'a lightcone_engine::scene::Effects);
+
+impl Serialize for Effects<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use lightcone_engine::scene::Effect;
+        s.collect_map(Effect::ALL.iter().map(|e| (e.key(), self.0.is_on(*e))))
+    }
+}
+
+fn snapshot(game: &GameState) -> Snapshot<'_> {
     use lightcone_python::{LessonGame, Pictures};
     let view = match game.pictures() {
         Pictures::Seen => "seen",
@@ -341,20 +369,24 @@ fn snapshot(game: &GameState) -> Value {
     };
     let observer = LessonGame::observer(game)
         .and_then(|i| game.scene.observers.get(i))
-        .map(|o| o.name.clone());
-    let effects: serde_json::Map<String, Value> = lightcone_engine::scene::Effect::ALL
-        .iter()
-        .map(|e| (e.key().to_owned(), Value::Bool(game.effects.is_on(*e))))
-        .collect();
-    serde_json::json!({
-        "t": game.live_time,
-        "c": game.scene.c,
-        "paused": game.paused,
-        "time_scale": game.time_scale,
-        "view": view,
-        "observer": observer,
-        "effects": effects,
-    })
+        .map(|o| o.name.as_str());
+    Snapshot {
+        t: game.live_time,
+        c: game.scene.c,
+        paused: game.paused,
+        time_scale: game.time_scale,
+        view,
+        observer,
+        effects: Effects(&game.effects),
+    }
+}
+
+/// A call line: `{"call": hook, "args": [...], "snapshot": {...}}`.
+#[derive(Serialize)]
+struct Call<'a> {
+    call: &'a str,
+    args: &'a Value,
+    snapshot: Snapshot<'a>,
 }
 
 /// What the reader thread passes on.
@@ -628,9 +660,12 @@ impl LessonHost {
 
     /// Serves the lesson's process for at most `budget`: sends the next
     /// queued call, answers its requests on `game`, takes the end of its
-    /// hook, and stops it at its limit or when it misbehaves.
+    /// hook, and stops it at its limit or when it misbehaves. With a zero
+    /// budget it never waits: it handles what has already arrived (at
+    /// most [`READY_AT_ONCE`] messages) and sends the next call.
     pub(super) fn poll(&mut self, game: &mut GameState, budget: Duration) {
         let deadline = Instant::now() + budget;
+        let mut handled = 0;
         loop {
             let Some(remote) = self.remote.as_mut() else {
                 return;
@@ -667,12 +702,12 @@ impl LessonHost {
                         })
                     } else {
                         // Built here, without Python: the common case.
-                        let call = serde_json::json!({
-                            "call": hook,
-                            "args": args,
-                            "snapshot": snapshot(game),
-                        });
-                        Ok(call.to_string())
+                        serde_json::to_string(&Call {
+                            call: hook,
+                            args: &args,
+                            snapshot: snapshot(game),
+                        })
+                        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
                     };
                     let Some(remote) = self.remote.as_mut() else {
                         return;
@@ -698,7 +733,11 @@ impl LessonHost {
             let Some(remote) = self.remote.as_mut() else {
                 return;
             };
-            match remote.up.recv_timeout(wait) {
+            let received = remote.up.recv_timeout(wait);
+            if received.is_ok() {
+                handled += 1;
+            }
+            match received {
                 Ok(FromChild::Line(Up::Request { op, args, kwargs })) => {
                     if !served(&op) {
                         return self.stop(
@@ -747,9 +786,16 @@ impl LessonHost {
                     if Instant::now() >= kill_at {
                         return self.stop(game, None, true);
                     }
+                    if Instant::now() >= deadline {
+                        return; // nothing more has arrived
+                    }
+                    continue;
                 }
             }
-            if Instant::now() >= deadline {
+            // Past the budget, what has already arrived is still handled
+            // (a bounded number of messages: a flood waits for the next
+            // frame).
+            if Instant::now() >= deadline && handled >= READY_AT_ONCE {
                 return;
             }
         }
@@ -896,7 +942,7 @@ mod tests {
         game.step(0.25);
         game.time_scale = 0.5;
         game.observer = Some(0);
-        let ours = snapshot(&game);
+        let ours = serde_json::to_value(snapshot(&game)).unwrap();
         let world =
             Python::attach(|py| Py::new(py, World::new(".".into(), lend::new_game))).unwrap();
         let theirs = Python::attach(|py| -> PyResult<String> {

@@ -97,6 +97,15 @@ pub(crate) fn child_process(memory_mb: u64) -> Result<std::fs::File, String> {
     if std::os::unix::process::parent_id() == 1 {
         return Err("the parent is already gone".to_owned());
     }
+    // A batch task: woken by the game's call, it does not preempt the
+    // game's frame on the same core (the wake-up would otherwise cost the
+    // game the hook's whole run); it runs beside it or when it waits.
+    // SAFETY: a plain system call on this process (a policy any user may
+    // choose; failing leaves the default policy).
+    unsafe {
+        let param = libc::sched_param { sched_priority: 0 };
+        libc::sched_setscheduler(0, libc::SCHED_BATCH, &param);
+    }
     let bytes = memory_mb.saturating_mul(1 << 20);
     // SAFETY: plain system calls on this process's own descriptors and
     // limits; `dup` returns a fresh descriptor we own.

@@ -488,6 +488,11 @@ impl App {
         let dt = (now - self.last).as_secs_f64().min(0.1);
         self.last = now;
         self.fly(dt);
+        // The hooks sent last frame ran in the lesson's process while that
+        // frame was drawn: take their ends (waiting at most a budget).
+        if let Some(lesson) = &mut self.lesson {
+            lesson.serve(&mut self.state, crate::lesson::remote::FRAME_BUDGET);
+        }
         let before = self.state.live_time;
         // Board time waits while a lesson hook is out in its process.
         if !self.lesson.as_ref().is_some_and(LessonHost::busy) {
@@ -521,6 +526,11 @@ impl App {
             self.result = Err(e);
             event_loop.exit();
             return;
+        }
+        // Answer what the lesson asked while the frame was drawn, so its
+        // hook can end before the next frame.
+        if let Some(lesson) = &mut self.lesson {
+            lesson.serve(&mut self.state, std::time::Duration::ZERO);
         }
         if shot {
             event_loop.exit();
