@@ -550,8 +550,12 @@ fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
             // what the lesson asked meanwhile. Timed: the game's own
             // time in the three lesson calls.
             let mut times = Vec::new();
-            let mut steps = 0;
-            for _ in 0..calls {
+            // Until `calls` frames moved board time (each sent one hook);
+            // on a loaded machine a frame may find its hook not done yet
+            // within the budget, and board time waits that frame.
+            let (mut steps, mut frames) = (0, 0);
+            while steps < calls && frames < 20 * calls {
+                frames += 1;
                 let start = Instant::now();
                 host.serve(&mut game, FRAME_BUDGET);
                 let before = game.live_time;
@@ -579,7 +583,7 @@ fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
                 }
             }
             host.settle(&mut game);
-            assert_eq!(steps, calls, "board time never waited for a hook");
+            assert_eq!(steps, calls, "{frames} frames");
             assert!(host.error.is_none(), "{:?}", host.error);
             times.sort_by(f64::total_cmp);
             let at = |q: f64| times[((times.len() - 1) as f64 * q) as usize];
@@ -589,11 +593,11 @@ fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
                 "back to back"
             };
             println!(
-                "hook call in its own process ({name}, {pace}): p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs ({} calls)",
+                "hook call in its own process ({name}, {pace}): p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs ({calls} calls, {} frames waited)",
                 at(0.5),
                 at(0.99),
                 at(1.0),
-                times.len()
+                frames - calls
             );
             // Loose, for a shared machine: the goal (BENCHMARKS.md) is 100 µs.
             assert!(at(0.5) < 5000.0, "p50 {} µs", at(0.5));

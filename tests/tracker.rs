@@ -687,3 +687,51 @@ fn a_malformed_track_is_refused_with_its_line_and_field() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--rate"));
 }
+
+/// An output on a named monitor covers that monitor even with no window
+/// manager to honour full screen (Xvfb has none: its one monitor is
+/// `screen`); a region on no monitor is warned about; an unknown monitor is
+/// an error that names the CAVE file and lists the monitors.
+#[test]
+fn play_cave_puts_a_monitor_output_on_its_whole_monitor() {
+    let dir = std::env::temp_dir().join(format!("lightcone-cave-mon-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string(repo().join("assets/cave.toml")).unwrap();
+    let cave = dir.join("cave.toml");
+    let run = |outputs: &str| {
+        std::fs::write(&cave, format!("{base}{outputs}")).unwrap();
+        let cave_arg = cave.to_string_lossy().into_owned();
+        play_on_screen(
+            &[
+                "play",
+                "assets/scenes/paper_carom.toml",
+                "--cave",
+                &cave_arg,
+            ],
+            &dir.join("main.png"),
+            3,
+            &[],
+            "1920x1080x24",
+        )
+    };
+    let (out, img) = run("\n[[output]]\nwall = \"front\"\nmonitor = \"screen\"\n\
+                          [[output]]\nwall = \"left\"\nregion = [5000, 5000, 320, 240]\n");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(img.is_some(), "{stderr}");
+    let front = lightcone_render::headless::Image::load_png(&dir.join("main.front.png")).unwrap();
+    assert_eq!((front.width, front.height), (1920, 1080), "{stderr}");
+    assert!(
+        stderr.contains("output[1] (\"left\").region [5000, 5000, 320, 240] lies on no monitor"),
+        "{stderr}"
+    );
+    let (out, img) = run("\n[[output]]\nwall = \"front\"\nmonitor = \"HDMI-9\"\n");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(img.is_none() && !out.status.success());
+    assert!(
+        stderr.contains(&format!(
+            "{}: output[0] (\"front\").monitor: no monitor is named \"HDMI-9\" (monitors: screen)",
+            cave.display()
+        )),
+        "{stderr}"
+    );
+}

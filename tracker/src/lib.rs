@@ -7,7 +7,8 @@
 //! ([`filter`], One-Euro) and always yields a usable head pose plus a status.
 //! [`cave`] turns the head pose into per-wall, per-eye off-axis projections.
 //! [`motion`] simulates or replays head motion with injectable faults, and
-//! [`latency`] summarises the IPC delay.
+//! [`latency`] summarises the IPC delay. [`dtrack`] and [`vrpn`] read a
+//! real tracking system's stream (ART DTrack's UDP output, a VRPN server).
 //!
 //! ```no_run
 //! use lightcone_tracker::{Follower, Subscriber, DEFAULT_SERVICE_NAME};
@@ -36,6 +37,7 @@ pub mod motion;
 pub mod publish;
 pub mod sample;
 pub mod transport;
+pub mod vrpn;
 
 pub use cave::{
     CaveConfig, CaveConfigError, Frustum, Wall, WallProjection, off_axis_projection, stereo_eyes,

@@ -8,6 +8,7 @@
 //!     [--duration S] [--count N] [--nan-every N] [--reorder-every N]
 //!     [--stall START,DURATION] [--dropout START,DURATION]... [--quiet]
 //!     [--dtrack-udp PORT [--dtrack-bind ADDR] [--dtrack-body ID]]
+//!     [--vrpn NAME@HOST[:PORT] [--vrpn-sensor N]]
 //! ```
 //!
 //! With `--dtrack-udp` the samples come from a real tracking system instead:
@@ -16,12 +17,19 @@
 //! holding the last pose). A malformed packet is reported on stderr with
 //! its content and dropped; the publisher keeps listening.
 //!
+//! With `--vrpn` they come from a VRPN server over TCP ([`crate::vrpn`]):
+//! one sample per `Pos_Quat` report of the named device's sensor. A report
+//! that is not finite is reported with its content and dropped; a
+//! connection that fails, closes or loses its framing is reported and made
+//! again (every second), the game's follower meanwhile seeing the tracker
+//! go stale.
+//!
 //! Stop it with Ctrl-C or kill: a killed publisher's shared-memory resources
 //! are reclaimed by the next iceoryx2 node created on the machine.
 
 use crate::motion::{CsvTrack, Faults, MotionConfig, MotionGenerator, Path, PoseSource};
 use crate::transport::quiet_iceoryx_logs;
-use crate::{DEFAULT_SERVICE_NAME, Publisher, TrackerSample, dtrack, unix_now_ns};
+use crate::{DEFAULT_SERVICE_NAME, Publisher, TrackerSample, dtrack, unix_now_ns, vrpn};
 use std::time::{Duration, Instant};
 
 /// What to publish, and for how long.
@@ -38,6 +46,17 @@ pub struct Args {
     pub quiet: bool,
     /// Read poses from DTrack's UDP output instead of the motion source.
     pub dtrack: Option<DTrackSource>,
+    /// Read poses from a VRPN server instead of the motion source.
+    pub vrpn: Option<VrpnSource>,
+}
+
+/// Which VRPN device and sensor is the head.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VrpnSource {
+    /// The tracker device and its server.
+    pub device: vrpn::Device,
+    /// The device's sensor that is the head (from 0).
+    pub sensor: i32,
 }
 
 /// Where DTrack's packets arrive and which body is the head.
@@ -54,7 +73,8 @@ pub const USAGE: &str = "options: [--service NAME] \
 [--path still|circle|walk|figure8] [--csv FILE] [--rate HZ] [--noise METRES] [--seed N] \
 [--first-seq N] [--duration S] [--count N] [--nan-every N] [--reorder-every N] \
 [--stall START,DURATION] [--dropout START,DURATION]... [--quiet] \
-[--dtrack-udp PORT [--dtrack-bind ADDR] [--dtrack-body ID]]";
+[--dtrack-udp PORT [--dtrack-bind ADDR] [--dtrack-body ID]] \
+[--vrpn NAME@HOST[:PORT] [--vrpn-sensor N]]";
 
 fn parse_num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
     v.parse()
@@ -88,7 +108,10 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
         count: None,
         quiet: false,
         dtrack: None,
+        vrpn: None,
     };
+    let mut vrpn_device: Option<vrpn::Device> = None;
+    let mut vrpn_sensor: i32 = 0;
     let mut faults = Faults::default();
     let mut dtrack_port: Option<u16> = None;
     let mut dtrack_bind = std::net::IpAddr::from([0, 0, 0, 0]);
@@ -160,6 +183,15 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
                     .map_err(|_| format!("--dtrack-bind: `{v}` is not an IP address"))?
             }
             "--dtrack-body" => dtrack_body = parse_num(&flag, &v)?,
+            "--vrpn" => {
+                vrpn_device = Some(vrpn::Device::parse(&v).map_err(|e| format!("--vrpn: {e}"))?)
+            }
+            "--vrpn-sensor" => {
+                vrpn_sensor = parse_num(&flag, &v)?;
+                if vrpn_sensor < 0 {
+                    return Err(format!("--vrpn-sensor: {v} must be >= 0"));
+                }
+            }
             _ => return Err(format!("unknown option `{flag}`\n{USAGE}")),
         }
     }
@@ -168,6 +200,15 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
         args.dtrack = Some(DTrackSource {
             bind: std::net::SocketAddr::new(dtrack_bind, port),
             body: dtrack_body,
+        });
+    }
+    if let Some(device) = vrpn_device {
+        if args.dtrack.is_some() {
+            return Err("--vrpn and --dtrack-udp: choose one source".to_owned());
+        }
+        args.vrpn = Some(VrpnSource {
+            device,
+            sensor: vrpn_sensor,
         });
     }
     Ok(args)
@@ -188,6 +229,9 @@ pub fn run_until(args: Args, stop: &dyn Fn() -> bool) -> Result<u64, String> {
     let publisher = Publisher::open(&args.service).map_err(|e| e.to_string())?;
     if let Some(source) = args.dtrack.clone() {
         return run_dtrack(&args, &source, &publisher, stop);
+    }
+    if let Some(source) = args.vrpn.clone() {
+        return run_vrpn(&args, &source, &publisher, stop);
     }
     let mut generator = MotionGenerator::new(args.config);
     let period = Duration::from_secs_f64(generator.period_s());
@@ -349,4 +393,205 @@ fn run_dtrack(
         eprintln!("lightcone tracker: sent {sent} samples, dropped {dropped} malformed packets");
     }
     Ok(sent)
+}
+
+/// How long to wait between attempts to reach a VRPN server.
+const VRPN_RETRY: Duration = Duration::from_secs(1);
+
+/// Whether the run is over: stopped, or its duration or count reached.
+fn over(args: &Args, start: Instant, sent: u64, stop: &dyn Fn() -> bool) -> bool {
+    stop()
+        || args
+            .duration
+            .is_some_and(|d| start.elapsed().as_secs_f64() >= d)
+        || args.count.is_some_and(|c| sent >= c)
+}
+
+/// Publishes one sample per `Pos_Quat` report of the chosen device and
+/// sensor until the duration or count is reached or `stop()` (checked every
+/// 50 ms), connecting again whenever the connection is lost.
+fn run_vrpn(
+    args: &Args,
+    source: &VrpnSource,
+    publisher: &Publisher,
+    stop: &dyn Fn() -> bool,
+) -> Result<u64, String> {
+    if !args.quiet {
+        eprintln!(
+            "lightcone tracker: publishing VRPN {} sensor {} on {:?}",
+            source.device, source.sensor, args.service
+        );
+    }
+    let start = Instant::now();
+    let mut counts = VrpnCounts::default();
+    while !over(args, start, counts.sent, stop) {
+        counts.connections += 1;
+        let why = match vrpn_connection(args, source, publisher, stop, start, &mut counts) {
+            Ok(()) => continue, // over
+            Err(why) => why,
+        };
+        eprintln!(
+            "lightcone tracker: VRPN {}: {why}; connecting again in {} s",
+            source.device,
+            VRPN_RETRY.as_secs()
+        );
+        let until = Instant::now() + VRPN_RETRY;
+        while Instant::now() < until && !over(args, start, counts.sent, stop) {
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+    if !args.quiet {
+        eprintln!(
+            "lightcone tracker: sent {} samples, refused {} reports, {} connections",
+            counts.sent, counts.refused, counts.connections
+        );
+    }
+    Ok(counts.sent)
+}
+
+/// What a VRPN run did, over all its connections.
+#[derive(Default)]
+struct VrpnCounts {
+    sent: u64,
+    refused: u64,
+    connections: u64,
+    /// The samples' sequence: one per report taken, never restarting (the
+    /// follower drops samples whose sequence goes back).
+    sequence: u64,
+}
+
+/// One connection to the VRPN server: `Ok` when the run is over, else why
+/// the connection ended.
+fn vrpn_connection(
+    args: &Args,
+    source: &VrpnSource,
+    publisher: &Publisher,
+    stop: &dyn Fn() -> bool,
+    start: Instant,
+    counts: &mut VrpnCounts,
+) -> Result<(), String> {
+    use std::io::{Read, Write};
+    use std::net::ToSocketAddrs;
+    let device = &source.device;
+    let addr = (device.host.as_str(), device.port)
+        .to_socket_addrs()
+        .map_err(|e| format!("cannot resolve {}: {e}", device.host))?
+        .next()
+        .ok_or_else(|| format!("{} has no address", device.host))?;
+    let mut tcp = std::net::TcpStream::connect_timeout(&addr, Duration::from_secs(2))
+        .map_err(|e| format!("cannot connect to {addr}: {e}"))?;
+    let _ = tcp.set_nodelay(true);
+    tcp.set_read_timeout(Some(Duration::from_millis(50)))
+        .map_err(|e| e.to_string())?;
+    tcp.write_all(&vrpn::cookie())
+        .map_err(|e| format!("cannot send the cookie: {e}"))?;
+    let mut stream = vrpn::Stream::default();
+    let mut cookie: Vec<u8> = Vec::with_capacity(vrpn::COOKIE_LEN);
+    let mut buf = vec![0u8; 64 * 1024];
+    let shaken = Instant::now();
+    loop {
+        if over(args, start, counts.sent, stop) {
+            return Ok(());
+        }
+        let n = match tcp.read(&mut buf) {
+            Ok(0) => return Err("the server closed the connection".to_owned()),
+            Ok(n) => n,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::WouldBlock
+                        | std::io::ErrorKind::TimedOut
+                        | std::io::ErrorKind::Interrupted
+                ) =>
+            {
+                if cookie.len() < vrpn::COOKIE_LEN && shaken.elapsed() > Duration::from_secs(5) {
+                    return Err("no cookie from the server within 5 s".to_owned());
+                }
+                continue;
+            }
+            Err(e) => return Err(format!("cannot read: {e}")),
+        };
+        let mut bytes = &buf[..n];
+        if cookie.len() < vrpn::COOKIE_LEN {
+            let take = (vrpn::COOKIE_LEN - cookie.len()).min(bytes.len());
+            cookie.extend_from_slice(&bytes[..take]);
+            bytes = &bytes[take..];
+            if cookie.len() == vrpn::COOKIE_LEN {
+                let (major, minor) = vrpn::check_cookie(&cookie).map_err(|e| e.to_string())?;
+                if !args.quiet {
+                    eprintln!(
+                        "lightcone tracker: connected to VRPN {major:02}.{minor:02} at {addr}"
+                    );
+                }
+            }
+        }
+        stream.push(bytes);
+        while let Some(event) = stream
+            .next_event()
+            .map_err(|e| format!("lost the framing: {e}"))?
+        {
+            match event {
+                vrpn::Event::Pose { sender, pose }
+                    if sender == device.name && pose.sensor == source.sensor =>
+                {
+                    counts.sequence += 1;
+                    let sample = TrackerSample::new(
+                        unix_now_ns(),
+                        counts.sequence,
+                        pose.position,
+                        pose.orientation,
+                        true,
+                    );
+                    match publisher.send(&sample) {
+                        Ok(_) => counts.sent += 1,
+                        Err(e) => eprintln!("lightcone tracker: {e}"),
+                    }
+                }
+                vrpn::Event::Pose { .. } => {} // another device or sensor
+                vrpn::Event::Refused(e) => {
+                    counts.refused += 1;
+                    if counts.refused <= REPORTED_PACKETS {
+                        eprintln!("lightcone tracker: dropped a malformed VRPN report: {e}");
+                    } else if counts.refused.is_multiple_of(1000) {
+                        eprintln!(
+                            "lightcone tracker: {} malformed VRPN reports dropped",
+                            counts.refused
+                        );
+                    }
+                }
+                vrpn::Event::Disconnect => return Err("the server disconnected".to_owned()),
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(list: &[&str]) -> Result<Args, String> {
+        parse_args(list.iter().map(|s| (*s).to_owned()))
+    }
+
+    #[test]
+    fn a_vrpn_source_is_named_and_checked() {
+        let a = args(&["--vrpn", "Head@tracking-pc:3900", "--vrpn-sensor", "2"]).unwrap();
+        let v = a.vrpn.expect("a VRPN source");
+        assert_eq!(v.device.to_string(), "Head@tracking-pc:3900");
+        assert_eq!(v.sensor, 2);
+        for (bad, says) in [
+            (&["--vrpn", "Head"][..], "--vrpn: `Head` is not NAME@HOST"),
+            (
+                &["--vrpn", "Head@h", "--vrpn-sensor", "-1"][..],
+                "must be >= 0",
+            ),
+            (
+                &["--vrpn", "Head@h", "--dtrack-udp", "5000"][..],
+                "choose one source",
+            ),
+        ] {
+            let e = args(bad).map(|_| ()).unwrap_err();
+            assert!(e.contains(says), "{bad:?}: {e}");
+        }
+    }
 }

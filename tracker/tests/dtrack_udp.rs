@@ -7,21 +7,11 @@
 //! with its content on stderr and dropped, and the stream goes on.
 
 use lightcone_tracker::follow::{Follower, TrackerStatus};
-use lightcone_tracker::{Subscriber, TrackerSample, dtrack, unix_now_ns};
-use std::io::{BufRead, BufReader};
+use lightcone_tracker::{Subscriber, TrackerSample, dtrack};
 use std::net::UdpSocket;
-use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-struct Guard(Child);
-
-impl Drop for Guard {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+mod common;
 
 fn recorded_packets() -> Vec<String> {
     let path = concat!(
@@ -54,16 +44,9 @@ fn dtrack_packets_reach_the_tracked_head_and_bad_ones_are_reported() {
         .and_then(|s| s.local_addr())
         .expect("free port")
         .port();
-    let service = format!(
-        "lightcone/test/dtrack/{}/{}",
-        std::process::id(),
-        unix_now_ns()
-    );
-    let sub = Subscriber::open(&service).expect("open subscriber");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lightcone-tracker-publisher"))
-        .args([
-            "--service",
-            &service,
+    let (publisher, rx) = common::Publisher::spawn(
+        "dtrack",
+        &[
             "--dtrack-udp",
             &port.to_string(),
             "--dtrack-bind",
@@ -72,19 +55,9 @@ fn dtrack_packets_reach_the_tracked_head_and_bad_ones_are_reported() {
             "0",
             "--duration",
             "30",
-        ])
-        .stdin(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn publisher");
-    let stderr = child.stderr.take().expect("stderr");
-    let guard = Guard(child);
-    let (tx, rx) = mpsc::channel::<String>();
-    std::thread::spawn(move || {
-        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-            let _ = tx.send(line);
-        }
-    });
+        ],
+    );
+    let sub = Subscriber::open(&publisher.service).expect("open subscriber");
     let mut lines = Vec::new();
     let deadline = Instant::now() + Duration::from_secs(10);
     while !lines
@@ -159,7 +132,7 @@ fn dtrack_packets_reach_the_tracked_head_and_bad_ones_are_reported() {
         "{pose:?}"
     );
 
-    drop(guard);
+    drop(publisher);
     while let Ok(l) = rx.recv_timeout(Duration::from_millis(500)) {
         lines.push(l);
     }

@@ -84,6 +84,20 @@ pub fn open(
                 .with_decorations(false);
             match &o.placement {
                 Placement::Region(at, size) => {
+                    let on_a_monitor = monitors.iter().any(|m| {
+                        let (p, s) = (m.position(), m.size());
+                        i64::from(at[0]) < i64::from(p.x) + i64::from(s.width)
+                            && i64::from(p.x) < i64::from(at[0]) + i64::from(size[0])
+                            && i64::from(at[1]) < i64::from(p.y) + i64::from(s.height)
+                            && i64::from(p.y) < i64::from(at[1]) + i64::from(size[1])
+                    });
+                    if !monitors.is_empty() && !on_a_monitor {
+                        eprintln!(
+                            "lightcone play: CAVE config: output[{i}] ({:?}).region \
+                             [{}, {}, {}, {}] lies on no monitor: its window will not be seen",
+                            o.name, at[0], at[1], size[0], size[1]
+                        );
+                    }
                     attributes = attributes
                         .with_position(winit::dpi::PhysicalPosition::new(at[0], at[1]))
                         .with_inner_size(winit::dpi::PhysicalSize::new(size[0], size[1]));
@@ -108,7 +122,12 @@ pub fn open(
                                 }
                             )
                         })?;
+                    // The monitor's place and size too: without a window
+                    // manager to honour full screen, the window still covers
+                    // its monitor (not winit's default 800 × 600).
                     attributes = attributes
+                        .with_position(monitor.position())
+                        .with_inner_size(monitor.size())
                         .with_fullscreen(Some(Fullscreen::Borderless(Some(monitor.clone()))));
                 }
             }

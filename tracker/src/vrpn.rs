@@ -1,0 +1,531 @@
+//! VRPN's tracker stream, read over TCP: the head poses a VRPN server
+//! (`vrpn_server`, OptiTrack Motive, Vicon Tracker, ART's VRPN output, …)
+//! sends for one tracker device, as VRPN's own `tcp://` clients read them.
+//!
+//! The wire format (VRPN 07.xx, `vrpn_Connection.C` and `vrpn_Tracker.C`;
+//! every number big-endian, "network order"):
+//!
+//! - **Cookie.** Right after the TCP connection each side sends 24 bytes:
+//!   `vrpn: ver. 07.35  0` (the version, two spaces, the log mode as a
+//!   digit), padded with NULs. The major version (07) must match.
+//! - **Messages.** A 24-byte header: five `i32` — the message's length
+//!   *including* the header and *without* padding, the time (seconds,
+//!   microseconds), the sender id, the message type id — then 4 bytes of
+//!   padding (a sequence number in recent servers, ignored). The payload
+//!   follows, padded with NULs to a multiple of 8 bytes.
+//! - **Names.** Sender and type ids are the server's own: it describes each
+//!   one once, in a message of type −1 (a sender: `Head`, `Tracker0`) or −2
+//!   (a type: `vrpn_Tracker Pos_Quat`) whose *sender* field holds the id
+//!   described and whose payload is an `i32` length and the name with its
+//!   terminating NUL. Type −5 is a disconnect; −3 (UDP description) and −4
+//!   (log description) are skipped, as is every message of another type.
+//! - **Poses.** A `vrpn_Tracker Pos_Quat` payload (64 bytes): the sensor
+//!   (`i32`), 4 bytes of padding, the position (3 × `f64`, metres, the
+//!   tracker's room frame) and the orientation as a quaternion
+//!   (4 × `f64`, `x y z w`).
+//!
+//! A client that announces no UDP port gets every message over TCP, so
+//! this client announces none. Everything read is untrusted: a header whose
+//! length is impossible ends the connection (its framing is lost), a pose
+//! that is not finite or whose quaternion has no length is refused alone;
+//! each error names the field and shows what was there.
+
+use glam::{DQuat, DVec3};
+
+/// The port a VRPN server listens on unless told otherwise.
+pub const DEFAULT_PORT: u16 = 3883;
+/// Length of the cookie each side sends first, bytes.
+pub const COOKIE_LEN: usize = 24;
+/// The protocol's major version (07): the server's must be the same.
+pub const MAJOR_VERSION: u32 = 7;
+/// Length of a message header, bytes (20 bytes padded to 8).
+pub const HEADER_LEN: usize = 24;
+/// Longest payload accepted, bytes (a tracker's are 64; a name is short).
+pub const MAX_PAYLOAD: usize = 1 << 16;
+/// The type name of a tracker's position-and-orientation report.
+pub const POS_QUAT: &str = "vrpn_Tracker Pos_Quat";
+
+/// Message type: a sender's name (its id in the sender field).
+pub const SENDER_DESCRIPTION: i32 = -1;
+/// Message type: a type's name (its id in the sender field).
+pub const TYPE_DESCRIPTION: i32 = -2;
+/// Message type: the server closes the connection.
+pub const DISCONNECT: i32 = -5;
+
+const ALIGN: usize = 8;
+const MAGIC: &[u8] = b"vrpn: ver. 07.35";
+
+/// Which device to follow: `NAME@HOST[:PORT]`, as VRPN names it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Device {
+    /// The tracker's name on the server (`Head`, `Tracker0`, a rigid body).
+    pub name: String,
+    /// Host name or address of the server.
+    pub host: String,
+    /// Its TCP port.
+    pub port: u16,
+}
+
+impl Device {
+    /// Reads `NAME@HOST[:PORT]` (the port defaults to [`DEFAULT_PORT`]; an
+    /// IPv6 host is written in brackets, `Head@[::1]:3883`).
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let (name, server) = text
+            .split_once('@')
+            .ok_or_else(|| format!("`{text}` is not NAME@HOST[:PORT] (no `@`)"))?;
+        if name.is_empty() || name.len() > 255 || name.contains('\0') {
+            return Err(format!(
+                "`{text}`: the device name must be 1 to 255 characters"
+            ));
+        }
+        let (host, port) = if let Some(rest) = server.strip_prefix('[') {
+            let (host, after) = rest
+                .split_once(']')
+                .ok_or_else(|| format!("`{text}`: `[` without `]` around the host"))?;
+            match after.strip_prefix(':') {
+                Some(p) => (host, Some(p)),
+                None if after.is_empty() => (host, None),
+                None => return Err(format!("`{text}`: `{after}` after the host")),
+            }
+        } else {
+            match server.rsplit_once(':') {
+                Some((h, p)) => (h, Some(p)),
+                None => (server, None),
+            }
+        };
+        if host.is_empty() {
+            return Err(format!("`{text}`: no host after `@`"));
+        }
+        let port = match port {
+            Some(p) => p
+                .parse::<u16>()
+                .ok()
+                .filter(|p| *p > 0)
+                .ok_or_else(|| format!("`{text}`: `{p}` is not a port (1 to 65535)"))?,
+            None => DEFAULT_PORT,
+        };
+        Ok(Self {
+            name: name.to_owned(),
+            host: host.to_owned(),
+            port,
+        })
+    }
+}
+
+impl std::fmt::Display for Device {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.host.contains(':') {
+            write!(f, "{}@[{}]:{}", self.name, self.host, self.port)
+        } else {
+            write!(f, "{}@{}:{}", self.name, self.host, self.port)
+        }
+    }
+}
+
+/// Why something read from a VRPN server was refused.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{field}: {message}; content: \"{content}\"")]
+pub struct ProtocolError {
+    /// What was being read (`cookie`, `header.length`, `Pos_Quat.position`, …).
+    pub field: String,
+    /// What is wrong.
+    pub message: String,
+    /// The bytes concerned, shown safely (at most 120 characters).
+    pub content: String,
+}
+
+fn error(field: &str, message: impl Into<String>, bytes: &[u8]) -> ProtocolError {
+    ProtocolError {
+        field: field.to_owned(),
+        message: message.into(),
+        content: crate::dtrack::show_content(bytes, 120),
+    }
+}
+
+/// The cookie this client sends: [`MAGIC`], two spaces, log mode 0, NULs.
+pub fn cookie() -> [u8; COOKIE_LEN] {
+    let mut c = [0u8; COOKIE_LEN];
+    c[..MAGIC.len()].copy_from_slice(MAGIC);
+    c[MAGIC.len()..MAGIC.len() + 3].copy_from_slice(b"  0");
+    c
+}
+
+/// Checks the server's cookie; its `(major, minor)` version.
+pub fn check_cookie(bytes: &[u8]) -> Result<(u32, u32), ProtocolError> {
+    let prefix = b"vrpn: ver. ";
+    if bytes.len() < COOKIE_LEN || !bytes.starts_with(prefix) {
+        return Err(error("cookie", "not a VRPN server", bytes));
+    }
+    let version = std::str::from_utf8(&bytes[prefix.len()..prefix.len() + 5])
+        .ok()
+        .and_then(|v| v.split_once('.'))
+        .and_then(|(a, b)| Some((a.parse::<u32>().ok()?, b.parse::<u32>().ok()?)));
+    match version {
+        Some((major, minor)) if major == MAJOR_VERSION => Ok((major, minor)),
+        Some((major, _)) => Err(error(
+            "cookie",
+            format!("protocol version {major:02}, this client speaks {MAJOR_VERSION:02}"),
+            bytes,
+        )),
+        None => Err(error("cookie", "no version number", bytes)),
+    }
+}
+
+/// A message header.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Header {
+    /// Payload length, bytes, without padding.
+    pub payload_len: usize,
+    /// Time the server stamped, seconds and microseconds.
+    pub time: (i32, i32),
+    /// Sender id (for a description: the id described).
+    pub sender: i32,
+    /// Message type id.
+    pub kind: i32,
+}
+
+impl Header {
+    /// Bytes the payload takes on the wire, with its padding.
+    pub fn padded_len(&self) -> usize {
+        self.payload_len.div_ceil(ALIGN) * ALIGN
+    }
+}
+
+fn be_i32(bytes: &[u8], at: usize) -> i32 {
+    let mut b = [0u8; 4];
+    b.copy_from_slice(&bytes[at..at + 4]);
+    i32::from_be_bytes(b)
+}
+
+fn be_f64(bytes: &[u8], at: usize) -> f64 {
+    let mut b = [0u8; 8];
+    b.copy_from_slice(&bytes[at..at + 8]);
+    f64::from_be_bytes(b)
+}
+
+/// Reads a header (the first [`HEADER_LEN`] bytes of `bytes`).
+pub fn parse_header(bytes: &[u8]) -> Result<Header, ProtocolError> {
+    if bytes.len() < HEADER_LEN {
+        return Err(error("header", "shorter than 24 bytes", bytes));
+    }
+    let total = be_i32(bytes, 0);
+    let payload_len = usize::try_from(total)
+        .ok()
+        .and_then(|t| t.checked_sub(HEADER_LEN))
+        .filter(|n| *n <= MAX_PAYLOAD)
+        .ok_or_else(|| {
+            error(
+                "header.length",
+                format!("{total} is not 24 to {} bytes", HEADER_LEN + MAX_PAYLOAD),
+                &bytes[..HEADER_LEN],
+            )
+        })?;
+    Ok(Header {
+        payload_len,
+        time: (be_i32(bytes, 4), be_i32(bytes, 8)),
+        sender: be_i32(bytes, 12),
+        kind: be_i32(bytes, 16),
+    })
+}
+
+/// A sender's or type's name from a description's payload.
+pub fn parse_name(payload: &[u8]) -> Result<String, ProtocolError> {
+    if payload.len() < 4 {
+        return Err(error("description", "no name length", payload));
+    }
+    let n = be_i32(payload, 0);
+    let name = usize::try_from(n)
+        .ok()
+        .filter(|n| (1..=payload.len() - 4).contains(n))
+        .map(|n| &payload[4..4 + n])
+        .ok_or_else(|| error("description.length", format!("{n} does not fit"), payload))?;
+    let name = name.strip_suffix(b"\0").unwrap_or(name);
+    std::str::from_utf8(name)
+        .map(str::to_owned)
+        .map_err(|_| error("description.name", "not UTF-8", payload))
+}
+
+/// One tracker report.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PosQuat {
+    /// The sensor of the device (a device may track several).
+    pub sensor: i32,
+    /// Position, metres, the tracker's room frame.
+    pub position: DVec3,
+    /// Orientation, room from sensor, normalised.
+    pub orientation: DQuat,
+}
+
+/// Reads a `vrpn_Tracker Pos_Quat` payload.
+pub fn parse_pos_quat(payload: &[u8]) -> Result<PosQuat, ProtocolError> {
+    if payload.len() < 64 {
+        return Err(error(
+            "Pos_Quat",
+            format!("{} bytes, a report has 64", payload.len()),
+            payload,
+        ));
+    }
+    let v: Vec<f64> = (0..7).map(|i| be_f64(payload, 8 + 8 * i)).collect();
+    let position = DVec3::new(v[0], v[1], v[2]);
+    if !position.is_finite() {
+        return Err(error(
+            "Pos_Quat.position",
+            format!("{position} is not finite"),
+            &payload[..64],
+        ));
+    }
+    let q = DQuat::from_xyzw(v[3], v[4], v[5], v[6]);
+    if !q.is_finite() || q.length() < 1e-6 {
+        return Err(error(
+            "Pos_Quat.quaternion",
+            format!("({}, {}, {}, {}) is not a rotation", v[3], v[4], v[5], v[6]),
+            &payload[..64],
+        ));
+    }
+    Ok(PosQuat {
+        sensor: be_i32(payload, 0),
+        position,
+        orientation: q.normalize(),
+    })
+}
+
+/// What the stream gave.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Event {
+    /// A report from sender `sender` (its name, as described).
+    Pose {
+        /// The sender's name (`?id` if it was never described).
+        sender: String,
+        /// The report.
+        pose: PosQuat,
+    },
+    /// A report refused alone (the stream goes on).
+    Refused(ProtocolError),
+    /// The server said it disconnects.
+    Disconnect,
+}
+
+/// Splits the bytes a server sent into messages, keeping the names it
+/// described. Feed it what arrives ([`Stream::push`]), take the events
+/// ([`Stream::next_event`]).
+#[derive(Debug, Default)]
+pub struct Stream {
+    buffer: Vec<u8>,
+    senders: std::collections::HashMap<i32, String>,
+    types: std::collections::HashMap<i32, String>,
+}
+
+impl Stream {
+    /// Appends bytes read from the connection (after the cookie).
+    pub fn push(&mut self, bytes: &[u8]) {
+        self.buffer.extend_from_slice(bytes);
+    }
+
+    /// The next event in what was pushed; `Ok(None)` until a whole message
+    /// is there. An error means the framing is lost: drop the connection.
+    pub fn next_event(&mut self) -> Result<Option<Event>, ProtocolError> {
+        loop {
+            if self.buffer.len() < HEADER_LEN {
+                return Ok(None);
+            }
+            let header = parse_header(&self.buffer)?;
+            let end = HEADER_LEN + header.padded_len();
+            if self.buffer.len() < end {
+                return Ok(None);
+            }
+            let payload = self.buffer[HEADER_LEN..HEADER_LEN + header.payload_len].to_vec();
+            self.buffer.drain(..end);
+            match header.kind {
+                SENDER_DESCRIPTION => {
+                    let name = parse_name(&payload)?;
+                    self.senders.insert(header.sender, name);
+                }
+                TYPE_DESCRIPTION => {
+                    let name = parse_name(&payload)?;
+                    self.types.insert(header.sender, name);
+                }
+                DISCONNECT => return Ok(Some(Event::Disconnect)),
+                kind if self.types.get(&kind).is_some_and(|t| t == POS_QUAT) => {
+                    let sender = self
+                        .senders
+                        .get(&header.sender)
+                        .cloned()
+                        .unwrap_or_else(|| format!("?{}", header.sender));
+                    return Ok(Some(match parse_pos_quat(&payload) {
+                        Ok(pose) => Event::Pose { sender, pose },
+                        Err(e) => Event::Refused(e),
+                    }));
+                }
+                _ => {} // another device's or the connection's own
+            }
+        }
+    }
+}
+
+/// One message as a server writes it (for tests and recorded streams).
+pub fn encode(sender: i32, kind: i32, time: (i32, i32), payload: &[u8]) -> Vec<u8> {
+    let total = i32::try_from(HEADER_LEN + payload.len()).unwrap_or(i32::MAX);
+    let mut out = Vec::with_capacity(HEADER_LEN + payload.len() + ALIGN);
+    for v in [total, time.0, time.1, sender, kind, 0] {
+        out.extend_from_slice(&v.to_be_bytes());
+    }
+    out.extend_from_slice(payload);
+    out.resize(out.len().div_ceil(ALIGN) * ALIGN, 0);
+    out
+}
+
+/// A sender (`kind` [`SENDER_DESCRIPTION`]) or type
+/// ([`TYPE_DESCRIPTION`]) description of `id` as `name`.
+pub fn encode_description(kind: i32, id: i32, name: &str) -> Vec<u8> {
+    let mut payload = Vec::with_capacity(name.len() + 5);
+    let n = i32::try_from(name.len() + 1).unwrap_or(i32::MAX);
+    payload.extend_from_slice(&n.to_be_bytes());
+    payload.extend_from_slice(name.as_bytes());
+    payload.push(0);
+    encode(id, kind, (0, 0), &payload)
+}
+
+/// A `Pos_Quat` payload.
+pub fn encode_pos_quat(sensor: i32, position: DVec3, orientation: DQuat) -> Vec<u8> {
+    let mut p = Vec::with_capacity(64);
+    p.extend_from_slice(&sensor.to_be_bytes());
+    p.extend_from_slice(&[0; 4]);
+    for v in position
+        .to_array()
+        .into_iter()
+        .chain(orientation.to_array())
+    {
+        p.extend_from_slice(&v.to_be_bytes());
+    }
+    p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cookie_is_vrpns_and_is_checked() {
+        let c = cookie();
+        assert_eq!(&c[..19], b"vrpn: ver. 07.35  0");
+        assert!(c[19..].iter().all(|b| *b == 0));
+        assert_eq!(check_cookie(&c), Ok((7, 35)));
+        let mut old = c;
+        old[11..16].copy_from_slice(b"04.11");
+        let e = check_cookie(&old).unwrap_err();
+        assert!(e.to_string().contains("version 04"), "{e}");
+        let e = check_cookie(b"HTTP/1.1 400 Bad Request\r\n").unwrap_err();
+        assert!(e.to_string().contains("not a VRPN server"), "{e}");
+        assert!(e.to_string().contains("HTTP/1.1"), "{e}");
+    }
+
+    #[test]
+    fn device_names_parse_and_bad_ones_say_why() {
+        assert_eq!(
+            Device::parse("Head@tracking-pc").unwrap(),
+            Device {
+                name: "Head".into(),
+                host: "tracking-pc".into(),
+                port: 3883
+            }
+        );
+        let d = Device::parse("Tracker0@127.0.0.1:3999").unwrap();
+        assert_eq!((d.host.as_str(), d.port), ("127.0.0.1", 3999));
+        let d = Device::parse("Head@[::1]:4000").unwrap();
+        assert_eq!((d.host.as_str(), d.port), ("::1", 4000));
+        assert_eq!(d.to_string(), "Head@[::1]:4000");
+        for (bad, says) in [
+            ("Head", "no `@`"),
+            ("@host", "device name"),
+            ("Head@", "no host"),
+            ("Head@host:0", "not a port"),
+            ("Head@host:http", "not a port"),
+            ("Head@[::1", "without `]`"),
+        ] {
+            let e = Device::parse(bad).unwrap_err();
+            assert!(e.contains(says), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_stream_of_messages_gives_the_named_poses_in_order() {
+        let q = DQuat::from_rotation_y(0.3);
+        let mut bytes = Vec::new();
+        bytes.extend(encode_description(SENDER_DESCRIPTION, 0, "Head"));
+        bytes.extend(encode_description(TYPE_DESCRIPTION, 4, POS_QUAT));
+        bytes.extend(encode_description(
+            TYPE_DESCRIPTION,
+            5,
+            "vrpn_Tracker Velocity",
+        ));
+        bytes.extend(encode(
+            0,
+            4,
+            (10, 5),
+            &encode_pos_quat(0, DVec3::new(1.0, 1.7, -0.5), q),
+        ));
+        bytes.extend(encode(0, 5, (10, 6), &[0; 48])); // a velocity: skipped
+        bytes.extend(encode(7, 4, (10, 7), &encode_pos_quat(2, DVec3::ZERO, q)));
+        let mut s = Stream::default();
+        // Byte by byte: a message is taken only once it is whole.
+        let mut events = Vec::new();
+        for b in &bytes {
+            s.push(std::slice::from_ref(b));
+            while let Some(e) = s.next_event().unwrap() {
+                events.push(e);
+            }
+        }
+        assert_eq!(events.len(), 2, "{events:?}");
+        match &events[0] {
+            Event::Pose { sender, pose } => {
+                assert_eq!(sender, "Head");
+                assert_eq!(pose.sensor, 0);
+                assert_eq!(pose.position, DVec3::new(1.0, 1.7, -0.5));
+                assert!(pose.orientation.dot(q).abs() > 1.0 - 1e-15);
+            }
+            e => panic!("{e:?}"),
+        }
+        assert!(
+            matches!(&events[1], Event::Pose { sender, pose } if sender == "?7" && pose.sensor == 2)
+        );
+    }
+
+    #[test]
+    fn bad_reports_are_refused_alone_and_bad_frames_end_the_stream() {
+        let mut s = Stream::default();
+        s.push(&encode_description(TYPE_DESCRIPTION, 1, POS_QUAT));
+        let nan = encode_pos_quat(0, DVec3::new(f64::NAN, 0.0, 0.0), DQuat::IDENTITY);
+        s.push(&encode(0, 1, (0, 0), &nan));
+        let zero = encode_pos_quat(0, DVec3::ZERO, DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0));
+        s.push(&encode(0, 1, (0, 0), &zero));
+        s.push(&encode(0, 1, (0, 0), &[1, 2, 3]));
+        s.push(&encode(
+            0,
+            1,
+            (0, 0),
+            &encode_pos_quat(0, DVec3::X, DQuat::IDENTITY),
+        ));
+        let mut fields = Vec::new();
+        while let Some(e) = s.next_event().unwrap() {
+            match e {
+                Event::Refused(e) => fields.push(e.field),
+                Event::Pose { pose, .. } => assert_eq!(pose.position, DVec3::X),
+                Event::Disconnect => panic!(),
+            }
+        }
+        assert_eq!(
+            fields,
+            ["Pos_Quat.position", "Pos_Quat.quaternion", "Pos_Quat"]
+        );
+        // A length no header can have: the framing is lost.
+        let mut bad = encode(0, 1, (0, 0), &[]);
+        bad[..4].copy_from_slice(&(-3i32).to_be_bytes());
+        s.push(&bad);
+        let e = s.next_event().unwrap_err();
+        assert_eq!(e.field, "header.length");
+        assert!(e.to_string().contains("-3 is not 24"), "{e}");
+        let mut s = Stream::default();
+        s.push(&encode(0, DISCONNECT, (0, 0), &[]));
+        assert_eq!(s.next_event().unwrap(), Some(Event::Disconnect));
+    }
+}
