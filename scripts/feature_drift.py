@@ -12,18 +12,22 @@ import sys
 
 
 def features(*args):
-    out = subprocess.run(
+    run = subprocess.run(
         ["cargo", "tree", *args, "--prefix", "none", "-f", "{p}|{f}"],
-        check=True,
         capture_output=True,
         text=True,
-    ).stdout
+    )
+    if run.returncode != 0:
+        sys.exit(f"feature_drift: cargo tree {' '.join(args)} failed:\n{run.stderr}")
+    out = run.stdout
     found = {}
     for line in out.splitlines():
         line = line.strip().replace(" (*)", "")
         if "|" in line:
             package, names = line.split("|", 1)
             found.setdefault(package, set()).update(n for n in names.split(",") if n)
+    if not found:
+        sys.exit(f"feature_drift: cargo tree {' '.join(args)} listed no crates")
     return found
 
 

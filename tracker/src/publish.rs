@@ -112,6 +112,7 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
     };
     let mut vrpn_device: Option<vrpn::Device> = None;
     let mut vrpn_sensor: i32 = 0;
+    let mut vrpn_sensor_given = false;
     let mut faults = Faults::default();
     let mut dtrack_port: Option<u16> = None;
     let mut dtrack_bind = std::net::IpAddr::from([0, 0, 0, 0]);
@@ -187,6 +188,7 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
                 vrpn_device = Some(vrpn::Device::parse(&v).map_err(|e| format!("--vrpn: {e}"))?)
             }
             "--vrpn-sensor" => {
+                vrpn_sensor_given = true;
                 vrpn_sensor = parse_num(&flag, &v)?;
                 if vrpn_sensor < 0 {
                     return Err(format!("--vrpn-sensor: {v} must be >= 0"));
@@ -201,6 +203,9 @@ pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String
             bind: std::net::SocketAddr::new(dtrack_bind, port),
             body: dtrack_body,
         });
+    }
+    if vrpn_device.is_none() && vrpn_sensor_given {
+        return Err("--vrpn-sensor: give the device with --vrpn NAME@HOST[:PORT]".to_owned());
     }
     if let Some(device) = vrpn_device {
         if args.dtrack.is_some() {
@@ -442,7 +447,7 @@ fn run_vrpn(
     }
     if !args.quiet {
         eprintln!(
-            "lightcone tracker: sent {} samples, refused {} reports, {} connections",
+            "lightcone tracker: sent {} samples, refused {} reports, {} connection attempts",
             counts.sent, counts.refused, counts.connections
         );
     }
@@ -454,6 +459,7 @@ fn run_vrpn(
 struct VrpnCounts {
     sent: u64,
     refused: u64,
+    /// Connection attempts, made or failed.
     connections: u64,
     /// The samples' sequence: one per report taken, never restarting (the
     /// follower drops samples whose sequence goes back).
@@ -473,13 +479,34 @@ fn vrpn_connection(
     use std::io::{Read, Write};
     use std::net::ToSocketAddrs;
     let device = &source.device;
-    let addr = (device.host.as_str(), device.port)
+    // Every address the name has, IPv4 first (VRPN's servers listen on
+    // IPv4; `localhost` may resolve to ::1 first).
+    let mut addrs: Vec<std::net::SocketAddr> = (device.host.as_str(), device.port)
         .to_socket_addrs()
         .map_err(|e| format!("cannot resolve {}: {e}", device.host))?
-        .next()
-        .ok_or_else(|| format!("{} has no address", device.host))?;
-    let mut tcp = std::net::TcpStream::connect_timeout(&addr, Duration::from_secs(2))
-        .map_err(|e| format!("cannot connect to {addr}: {e}"))?;
+        .collect();
+    addrs.sort_by_key(|a| a.is_ipv6());
+    let mut failed = Vec::new();
+    let mut connected = None;
+    for a in &addrs {
+        match std::net::TcpStream::connect_timeout(a, Duration::from_secs(2)) {
+            Ok(tcp) => {
+                connected = Some((tcp, *a));
+                break;
+            }
+            Err(e) => failed.push(format!("{a}: {e}")),
+        }
+    }
+    let Some((mut tcp, addr)) = connected else {
+        return Err(format!(
+            "cannot connect ({})",
+            if failed.is_empty() {
+                format!("{} has no address", device.host)
+            } else {
+                failed.join("; ")
+            }
+        ));
+    };
     let _ = tcp.set_nodelay(true);
     tcp.set_read_timeout(Some(Duration::from_millis(50)))
         .map_err(|e| e.to_string())?;
@@ -489,13 +516,21 @@ fn vrpn_connection(
     let mut cookie: Vec<u8> = Vec::with_capacity(vrpn::COOKIE_LEN);
     let mut buf = vec![0u8; 64 * 1024];
     let shaken = Instant::now();
+    // A tracker reports many times a second: a connection silent for
+    // longer than this is taken as lost (a server whose machine stopped
+    // sends no reset).
+    const SILENT: Duration = Duration::from_secs(5);
+    let mut heard = Instant::now();
     loop {
         if over(args, start, counts.sent, stop) {
             return Ok(());
         }
         let n = match tcp.read(&mut buf) {
             Ok(0) => return Err("the server closed the connection".to_owned()),
-            Ok(n) => n,
+            Ok(n) => {
+                heard = Instant::now();
+                n
+            }
             Err(e)
                 if matches!(
                     e.kind(),
@@ -504,8 +539,11 @@ fn vrpn_connection(
                         | std::io::ErrorKind::Interrupted
                 ) =>
             {
-                if cookie.len() < vrpn::COOKIE_LEN && shaken.elapsed() > Duration::from_secs(5) {
+                if cookie.len() < vrpn::COOKIE_LEN && shaken.elapsed() > SILENT {
                     return Err("no cookie from the server within 5 s".to_owned());
+                }
+                if heard.elapsed() > SILENT {
+                    return Err("nothing from the server for 5 s".to_owned());
                 }
                 continue;
             }
@@ -589,6 +627,7 @@ mod tests {
                 &["--vrpn", "Head@h", "--dtrack-udp", "5000"][..],
                 "choose one source",
             ),
+            (&["--vrpn-sensor", "1"][..], "give the device with --vrpn"),
         ] {
             let e = args(bad).map(|_| ()).unwrap_err();
             assert!(e.contains(says), "{bad:?}: {e}");

@@ -17,8 +17,10 @@
 //!   one once, in a message of type −1 (a sender: `Head`, `Tracker0`) or −2
 //!   (a type: `vrpn_Tracker Pos_Quat`) whose *sender* field holds the id
 //!   described and whose payload is an `i32` length and the name with its
-//!   terminating NUL. Type −5 is a disconnect; −3 (UDP description) and −4
-//!   (log description) are skipped, as is every message of another type.
+//!   terminating NUL. Type −5 (disconnect, written to VRPN's log files) is
+//!   taken as the end of the stream should a server send it; −3 (UDP
+//!   description) and −4 (log description) are skipped, as is every
+//!   message of another type.
 //! - **Poses.** A `vrpn_Tracker Pos_Quat` payload (64 bytes): the sensor
 //!   (`i32`), 4 bytes of padding, the position (3 × `f64`, metres, the
 //!   tracker's room frame) and the orientation as a quaternion
@@ -89,6 +91,11 @@ impl Device {
             }
         } else {
             match server.rsplit_once(':') {
+                Some((h, _)) if h.contains(':') => {
+                    return Err(format!(
+                        "`{text}`: write an IPv6 host in brackets, NAME@[HOST]:PORT"
+                    ));
+                }
                 Some((h, p)) => (h, Some(p)),
                 None => (server, None),
             }
@@ -311,6 +318,9 @@ pub enum Event {
 #[derive(Debug, Default)]
 pub struct Stream {
     buffer: Vec<u8>,
+    /// Where the next message starts in `buffer` (what is before it is
+    /// read; dropped at the next push).
+    start: usize,
     senders: std::collections::HashMap<i32, String>,
     types: std::collections::HashMap<i32, String>,
 }
@@ -318,6 +328,8 @@ pub struct Stream {
 impl Stream {
     /// Appends bytes read from the connection (after the cookie).
     pub fn push(&mut self, bytes: &[u8]) {
+        self.buffer.drain(..self.start);
+        self.start = 0;
         self.buffer.extend_from_slice(bytes);
     }
 
@@ -325,16 +337,17 @@ impl Stream {
     /// is there. An error means the framing is lost: drop the connection.
     pub fn next_event(&mut self) -> Result<Option<Event>, ProtocolError> {
         loop {
-            if self.buffer.len() < HEADER_LEN {
+            let rest = &self.buffer[self.start..];
+            if rest.len() < HEADER_LEN {
                 return Ok(None);
             }
-            let header = parse_header(&self.buffer)?;
+            let header = parse_header(rest)?;
             let end = HEADER_LEN + header.padded_len();
-            if self.buffer.len() < end {
+            if rest.len() < end {
                 return Ok(None);
             }
-            let payload = self.buffer[HEADER_LEN..HEADER_LEN + header.payload_len].to_vec();
-            self.buffer.drain(..end);
+            let payload = rest[HEADER_LEN..HEADER_LEN + header.payload_len].to_vec();
+            self.start += end;
             match header.kind {
                 SENDER_DESCRIPTION => {
                     let name = parse_name(&payload)?;
@@ -441,6 +454,7 @@ mod tests {
             ("Head@host:0", "not a port"),
             ("Head@host:http", "not a port"),
             ("Head@[::1", "without `]`"),
+            ("Head@fe80::1", "in brackets"),
         ] {
             let e = Device::parse(bad).unwrap_err();
             assert!(e.contains(says), "{bad}: {e}");
@@ -488,6 +502,56 @@ mod tests {
         assert!(
             matches!(&events[1], Event::Pose { sender, pose } if sender == "?7" && pose.sensor == 2)
         );
+    }
+
+    /// Bytes written by hand from VRPN's source, not by [`encode`]: the
+    /// `VRPN Control` sender a server describes first (id 0), a type
+    /// description (id 2), and one report (sender 0, type 2, at
+    /// 1.5 s, sensor 3, position (1, 2, 3), quaternion (0, 0, 0, 1)).
+    #[test]
+    fn hand_written_vrpn_bytes_read_as_vrpn_means_them() {
+        let mut b: Vec<u8> = Vec::new();
+        // Header: length 24 + 17 ("VRPN Control" is 12 + NUL = 13, after its
+        // 4-byte length), time 0, sender 0 (described), type -1; padding.
+        b.extend([0, 0, 0, 41, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]);
+        b.extend([0xff, 0xff, 0xff, 0xff, 0, 0, 0, 0]);
+        b.extend([0, 0, 0, 13]);
+        b.extend(b"VRPN Control\0");
+        b.extend([0; 7]); // 17 padded to 24
+        // Type 2 is "vrpn_Tracker Pos_Quat" (21 + NUL = 22; 26 → 32).
+        b.extend([0, 0, 0, 50, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2]);
+        b.extend([0xff, 0xff, 0xff, 0xfe, 0, 0, 0, 0]);
+        b.extend([0, 0, 0, 22]);
+        b.extend(b"vrpn_Tracker Pos_Quat\0");
+        b.extend([0; 6]);
+        // The report: length 24 + 64, 1 s 500 000 µs, sender 0, type 2.
+        b.extend([0, 0, 0, 88, 0, 0, 0, 1, 0, 0x07, 0xa1, 0x20, 0, 0, 0, 0]);
+        b.extend([0, 0, 0, 2, 0, 0, 0, 0]);
+        b.extend([0, 0, 0, 3, 0, 0, 0, 3]); // sensor, then padding
+        for v in [1.0f64, 2.0, 3.0, 0.0, 0.0, 0.0, 1.0] {
+            b.extend(v.to_be_bytes());
+        }
+        assert_eq!(parse_header(&b[..24]).map(|h| h.time), Ok((0, 0)));
+        let mut s = Stream::default();
+        s.push(&b);
+        let Some(Event::Pose { sender, pose }) = s.next_event().unwrap() else {
+            panic!("no report");
+        };
+        assert_eq!(sender, "VRPN Control");
+        assert_eq!(pose.sensor, 3);
+        assert_eq!(pose.position, DVec3::new(1.0, 2.0, 3.0));
+        assert_eq!(pose.orientation, DQuat::IDENTITY);
+        assert_eq!(s.next_event().unwrap(), None);
+        // The same report as `encode` writes it.
+        let ours = encode(
+            0,
+            2,
+            (1, 500_000),
+            &encode_pos_quat(3, DVec3::new(1.0, 2.0, 3.0), DQuat::IDENTITY),
+        );
+        assert_eq!(ours[..20], b[b.len() - 88..b.len() - 68]);
+        assert_eq!(ours[24..32], [0, 0, 0, 3, 0, 0, 0, 0]);
+        assert_eq!(ours[32..], b[b.len() - 56..]);
     }
 
     #[test]

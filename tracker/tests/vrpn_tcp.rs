@@ -43,7 +43,21 @@ fn recorded_head() -> Vec<(DVec3, DQuat)> {
 /// Accepts one connection and does VRPN's handshake; `Head` is sender
 /// `head`, the reports type `pos_quat`.
 fn accept(listener: &TcpListener, head: i32, pos_quat: i32) -> TcpStream {
-    let (mut tcp, _) = listener.accept().expect("the publisher connects");
+    // Within 10 s (a publisher that never connects fails the test, not
+    // hangs it).
+    listener.set_nonblocking(true).expect("non-blocking");
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut tcp = loop {
+        match listener.accept() {
+            Ok((tcp, _)) => break tcp,
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                assert!(Instant::now() < deadline, "the publisher never connected");
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            Err(e) => panic!("accept: {e}"),
+        }
+    };
+    tcp.set_nonblocking(false).expect("blocking");
     tcp.write_all(&vrpn::cookie()).expect("cookie");
     let mut theirs = [0u8; vrpn::COOKIE_LEN];
     tcp.read_exact(&mut theirs).expect("the client's cookie");
@@ -171,4 +185,41 @@ fn vrpn_reports_reach_the_tracked_head_and_a_broken_stream_reconnects() {
         "{lines:#?}"
     );
     assert_eq!(has("connecting again in 1 s"), 1, "{lines:#?}");
+}
+
+/// A server that goes silent (its machine stopped: no reset reaches the
+/// client) is taken as lost after 5 s, and connected to again.
+#[test]
+fn a_silent_vrpn_server_is_connected_to_again() {
+    lightcone_tracker::transport::quiet_iceoryx_logs();
+    let listener = TcpListener::bind("127.0.0.1:0").expect("listen");
+    let port = listener.local_addr().expect("port").port();
+    let (publisher, rx) = common::Publisher::spawn(
+        "vrpn-silent",
+        &[
+            "--vrpn",
+            &format!("Head@127.0.0.1:{port}"),
+            "--duration",
+            "20",
+        ],
+    );
+    let _first = accept(&listener, 0, 3); // then nothing, socket open
+    let started = Instant::now();
+    let _second = accept(&listener, 0, 3);
+    let waited = started.elapsed();
+    assert!(
+        waited >= Duration::from_secs(5) && waited < Duration::from_secs(9),
+        "{waited:?}"
+    );
+    drop(publisher);
+    let mut lines = Vec::new();
+    while let Ok(l) = rx.recv_timeout(Duration::from_millis(500)) {
+        lines.push(l);
+    }
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("nothing from the server for 5 s; connecting again in 1 s")),
+        "{lines:#?}"
+    );
 }
