@@ -698,6 +698,18 @@ fn play_cave_puts_a_monitor_output_on_its_whole_monitor() {
         stderr.contains("output[1] (\"left\").region [5000, 5000, 320, 240] lies on no monitor"),
         "{stderr}"
     );
+    // Beside the main window's screenshot: the walls it tiles (those no
+    // output shows) and the outputs.
+    let layout: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("main.json")).unwrap()).unwrap();
+    let tiled: Vec<&str> = layout["walls"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["wall"].as_str().unwrap())
+        .collect();
+    assert_eq!(tiled, ["right", "floor"], "{layout}");
+    assert_eq!(layout["outputs"], serde_json::json!(["front", "left"]));
     let (out, img) = run("\n[[output]]\nwall = \"front\"\nmonitor = \"HDMI-9\"\n");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(img.is_none() && !out.status.success());

@@ -1097,6 +1097,9 @@ impl App {
     /// "pucks": [{"name", "view", "centre": [x, y], "ring_px", "ring_colour":
     /// [r, g, b], "clock_s"}]}`, physical px from the top left.
     fn save_layout(&self, path: &std::path::Path, w: f32, h: f32) -> Result<(), String> {
+        if let Some(c) = &self.cave {
+            return self.save_cave_layout(c, path, w, h);
+        }
         let rects = self.rects_in(w, h);
         let views: Vec<serde_json::Value> = rects
             .iter()
@@ -1125,6 +1128,52 @@ impl App {
         let text = serde_json::json!({
             "views": views,
             "pucks": pucks,
+            "scene_pucks": self.state.physics().len(),
+        })
+        .to_string();
+        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+impl App {
+    /// In a CAVE, beside the main window's screenshot: the walls tiled
+    /// there (`{"walls": [{"rect": [x, y, w, h], "wall": name}], "outputs":
+    /// [name], "scene_pucks": n}`, physical px from the top left; the
+    /// walls no output shows, or all of them when every wall has one), and
+    /// the outputs saved beside it as `<shot>.<name>.png`.
+    fn save_cave_layout(
+        &self,
+        cave: &CaveConfig,
+        path: &std::path::Path,
+        w: f32,
+        h: f32,
+    ) -> Result<(), String> {
+        let right = if self.scene_right > self.scene_left {
+            self.scene_right.min(w)
+        } else {
+            w
+        };
+        let unmapped = cave.unmapped_walls();
+        let walls = if unmapped.is_empty() {
+            (0..cave.walls.len()).collect()
+        } else {
+            unmapped
+        };
+        let tiles: Vec<serde_json::Value> =
+            wall_tiles(cave, &walls, self.scene_left, right - self.scene_left, h)
+                .iter()
+                .filter_map(|(r, plan)| match plan {
+                    Plan::Wall(i) => Some(serde_json::json!({
+                        "rect": r,
+                        "wall": cave.walls[*i].name,
+                    })),
+                    Plan::Desktop(_) => None,
+                })
+                .collect();
+        let outputs: Vec<&str> = cave.outputs.iter().map(|o| o.name.as_str()).collect();
+        let text = serde_json::json!({
+            "walls": tiles,
+            "outputs": outputs,
             "scene_pucks": self.state.physics().len(),
         })
         .to_string();
