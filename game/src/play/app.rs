@@ -408,17 +408,19 @@ impl App {
     /// The pictures' rectangles in a `w × h` window, between the edges the
     /// last frame's panels left.
     fn rects_in(&self, w: f32, h: f32) -> Vec<([f32; 4], Pane)> {
+        let (left, width) = self.scene_span(w);
+        layout(&self.state.pane_list(), left, width, h)
+    }
+
+    /// The left edge and width of the area the last frame's panels left
+    /// for the pictures in a window `w` wide.
+    fn scene_span(&self, w: f32) -> (f32, f32) {
         let right = if self.scene_right > self.scene_left {
             self.scene_right.min(w)
         } else {
             w
         };
-        layout(
-            &self.state.pane_list(),
-            self.scene_left,
-            right - self.scene_left,
-            h,
-        )
+        (self.scene_left, right - self.scene_left)
     }
 
     /// The rectangle and picture in which the cue picks pucks: the one
@@ -1148,28 +1150,23 @@ impl App {
         w: f32,
         h: f32,
     ) -> Result<(), String> {
-        let right = if self.scene_right > self.scene_left {
-            self.scene_right.min(w)
-        } else {
-            w
-        };
+        let (left, width) = self.scene_span(w);
         let unmapped = cave.unmapped_walls();
         let walls = if unmapped.is_empty() {
             (0..cave.walls.len()).collect()
         } else {
             unmapped
         };
-        let tiles: Vec<serde_json::Value> =
-            wall_tiles(cave, &walls, self.scene_left, right - self.scene_left, h)
-                .iter()
-                .filter_map(|(r, plan)| match plan {
-                    Plan::Wall(i) => Some(serde_json::json!({
-                        "rect": r,
-                        "wall": cave.walls[*i].name,
-                    })),
-                    Plan::Desktop(_) => None,
-                })
-                .collect();
+        let tiles: Vec<serde_json::Value> = wall_tiles(cave, &walls, left, width, h)
+            .iter()
+            .filter_map(|(r, plan)| match plan {
+                Plan::Wall(i) => Some(serde_json::json!({
+                    "rect": r,
+                    "wall": cave.walls[*i].name,
+                })),
+                Plan::Desktop(_) => None,
+            })
+            .collect();
         let outputs: Vec<&str> = cave.outputs.iter().map(|o| o.name.as_str()).collect();
         let text = serde_json::json!({
             "walls": tiles,
