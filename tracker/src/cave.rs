@@ -409,6 +409,9 @@ pub struct CaveConfig {
     /// Video outputs, each showing one wall in a window of its own, in file
     /// order (none: every wall tiled in the main window).
     pub outputs: Vec<Output>,
+    /// The file it was read from ([`Self::from_path`]), for messages; `None`
+    /// for a description given as text.
+    pub source: Option<std::path::PathBuf>,
 }
 
 /// Which eye (or eyes) an output shows.
@@ -716,7 +719,15 @@ impl CaveConfig {
             tracker,
             walls,
             outputs,
+            source: None,
         })
+    }
+
+    /// How messages name this description: its file, or "CAVE config".
+    pub fn label(&self) -> String {
+        self.source
+            .as_ref()
+            .map_or_else(|| "CAVE config".to_owned(), |p| p.display().to_string())
     }
 
     /// Indices of the walls no output shows (tiled in the main window).
@@ -733,7 +744,9 @@ impl CaveConfig {
             path: path.display().to_string(),
             message: e.to_string(),
         })?;
-        Self::from_toml_str(&text)
+        let mut cave = Self::from_toml_str(&text)?;
+        cave.source = Some(path.to_path_buf());
+        Ok(cave)
     }
 
     /// Looks a wall up by name.

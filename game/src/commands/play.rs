@@ -55,7 +55,6 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         eprintln!("--at {t}: give a board time of 0 s or more");
         return ExitCode::FAILURE;
     }
-    let cave_path = cave.clone();
     let cave = match cave.as_deref().map(crate::cave::load).transpose() {
         Ok(c) => c,
         Err(e) => {
@@ -159,11 +158,6 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     }) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            // An output's error (a monitor not there) names the CAVE file.
-            let e = match (&cave_path, e.strip_prefix("CAVE config: ")) {
-                (Some(path), Some(rest)) => format!("{}: {rest}", path.display()),
-                _ => e,
-            };
             crate::errln!("{e}");
             ExitCode::FAILURE
         }

@@ -93,9 +93,14 @@ pub fn open(
                     });
                     if !monitors.is_empty() && !on_a_monitor {
                         eprintln!(
-                            "lightcone play: CAVE config: output[{i}] ({:?}).region \
+                            "lightcone play: {}: output[{i}] ({:?}).region \
                              [{}, {}, {}, {}] lies on no monitor: its window will not be seen",
-                            o.name, at[0], at[1], size[0], size[1]
+                            cave.label(),
+                            o.name,
+                            at[0],
+                            at[1],
+                            size[0],
+                            size[1]
                         );
                     }
                     attributes = attributes
@@ -112,8 +117,9 @@ pub fn open(
                                 .map(|m| m.name().unwrap_or_else(|| "(unnamed)".into()))
                                 .collect();
                             format!(
-                                "CAVE config: output[{i}] ({:?}).monitor: no monitor is named \
+                                "{}: output[{i}] ({:?}).monitor: no monitor is named \
                                  {name:?} (monitors: {})",
+                                cave.label(),
                                 o.name,
                                 if names.is_empty() {
                                     "none".to_owned()
