@@ -20,9 +20,10 @@
 //! With `--vrpn` they come from a VRPN server over TCP ([`crate::vrpn`]):
 //! one sample per `Pos_Quat` report of the named device's sensor. A report
 //! that is not finite is reported with its content and dropped; a
-//! connection that fails, closes or loses its framing is reported and made
-//! again (every second), the game's follower meanwhile seeing the tracker
-//! go stale.
+//! connection that fails, closes, stays silent for 5 s or loses its
+//! framing is reported and made again (every second, every address of the
+//! host, IPv4 first), the game's follower meanwhile seeing the tracker go
+//! stale.
 //!
 //! Stop it with Ctrl-C or kill: a killed publisher's shared-memory resources
 //! are reclaimed by the next iceoryx2 node created on the machine.
