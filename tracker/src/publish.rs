@@ -330,12 +330,7 @@ fn run_dtrack(
     let (mut sent, mut dropped, mut own_sequence) = (0u64, 0u64, 0u64);
     let mut last = TrackerSample::default();
     loop {
-        if stop()
-            || args
-                .duration
-                .is_some_and(|d| start.elapsed().as_secs_f64() >= d)
-            || args.count.is_some_and(|c| sent >= c)
-        {
+        if over(args, start, sent, stop) {
             break;
         }
         let (n, from) = match socket.recv_from(&mut buf) {

@@ -72,11 +72,9 @@ fn init_python() -> Result<(), String> {
         {
             return Ok(());
         }
-        let code = CString::new(BOOTSTRAP)
-            .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
-        let bootstrap = PyModule::from_code(
+        let bootstrap = embedded_module(
             py,
-            &code,
+            BOOTSTRAP,
             c"<lightcone game>/lesson/bootstrap.py",
             c"lightcone_bootstrap",
         )?;
@@ -87,6 +85,20 @@ fn init_python() -> Result<(), String> {
         Ok(())
     })
     .map_err(|e| format!("cannot start the embedded Python: {e}"))
+}
+
+/// A module of the game's own Python (`source`, a `.py` file beside this
+/// one, included in the binary), named `name` and shown as `file` in
+/// tracebacks.
+fn embedded_module<'py>(
+    py: Python<'py>,
+    source: &str,
+    file: &std::ffi::CStr,
+    name: &std::ffi::CStr,
+) -> PyResult<Bound<'py, PyModule>> {
+    let code =
+        CString::new(source).map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    PyModule::from_code(py, &code, file, name)
 }
 
 /// What lessons printed since the last call, as lines (the embedded

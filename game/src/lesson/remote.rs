@@ -113,11 +113,9 @@ pub(crate) enum Up {
 fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
     static MODULE: pyo3::sync::PyOnceLock<Py<PyModule>> = pyo3::sync::PyOnceLock::new();
     let m = MODULE.get_or_try_init(py, || -> PyResult<Py<PyModule>> {
-        let code = std::ffi::CString::new(REMOTE_PY)
-            .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
-        let m = PyModule::from_code(
+        let m = super::embedded_module(
             py,
-            &code,
+            REMOTE_PY,
             c"<lightcone game>/lesson/remote.py",
             c"lightcone_remote",
         )?;

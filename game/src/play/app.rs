@@ -170,6 +170,17 @@ fn clamp_rect(rect: [f32; 4], w: f32, h: f32) -> Option<[f32; 4]> {
     (x1 - x0 >= 1.0 && y1 - y0 >= 1.0).then_some([x0, y0, x1 - x0, y1 - y0])
 }
 
+/// The walls the main window tiles in a CAVE: those no output shows; all
+/// of them (a preview) when every wall has an output.
+fn tiled_walls(cave: &CaveConfig) -> Vec<usize> {
+    let unmapped = cave.unmapped_walls();
+    if unmapped.is_empty() {
+        (0..cave.walls.len()).collect()
+    } else {
+        unmapped
+    }
+}
+
 /// The CAVE walls tiled in a grid over `[x0, x0 + w] × [0, h]`, each tile
 /// keeping its wall's aspect ratio.
 fn wall_tiles(
@@ -940,17 +951,13 @@ impl App {
         };
         let mut cleared = false;
         let plans: Vec<([f32; 4], Plan)> = match &self.cave {
-            Some(c) => {
-                // The walls no output shows; all of them (a preview) when
-                // every wall has an output.
-                let unmapped = c.unmapped_walls();
-                let walls = if unmapped.is_empty() {
-                    (0..c.walls.len()).collect()
-                } else {
-                    unmapped
-                };
-                wall_tiles(c, &walls, self.scene_left, right - self.scene_left, h)
-            }
+            Some(c) => wall_tiles(
+                c,
+                &tiled_walls(c),
+                self.scene_left,
+                right - self.scene_left,
+                h,
+            ),
             None => layout(
                 &self.state.pane_list(),
                 self.scene_left,
@@ -1135,9 +1142,7 @@ impl App {
         .to_string();
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
     }
-}
 
-impl App {
     /// In a CAVE, beside the main window's screenshot: the walls tiled
     /// there (`{"walls": [{"rect": [x, y, w, h], "wall": name}], "outputs":
     /// [name], "scene_pucks": n}`, physical px from the top left; the
@@ -1151,13 +1156,7 @@ impl App {
         h: f32,
     ) -> Result<(), String> {
         let (left, width) = self.scene_span(w);
-        let unmapped = cave.unmapped_walls();
-        let walls = if unmapped.is_empty() {
-            (0..cave.walls.len()).collect()
-        } else {
-            unmapped
-        };
-        let tiles: Vec<serde_json::Value> = wall_tiles(cave, &walls, left, width, h)
+        let tiles: Vec<serde_json::Value> = wall_tiles(cave, &tiled_walls(cave), left, width, h)
             .iter()
             .filter_map(|(r, plan)| match plan {
                 Plan::Wall(i) => Some(serde_json::json!({
