@@ -73,6 +73,8 @@ pub struct TrackedHead {
     capped: bool,
     /// Publication times of the samples accepted since the last update.
     pending: Vec<u64>,
+    /// Publication time of the newest sample accepted.
+    newest: Option<u64>,
     received: u64,
     batch: Vec<TrackerSample>,
 }
@@ -101,6 +103,7 @@ impl TrackedHead {
             latencies: Vec::new(),
             capped: false,
             pending: Vec::new(),
+            newest: None,
             received: 0,
             batch: Vec::new(),
         }
@@ -115,6 +118,10 @@ impl TrackedHead {
         for s in &self.batch {
             if self.follower.push(s, now) == Verdict::Accepted {
                 self.pending.push(s.timestamp_ns);
+                self.newest = Some(
+                    self.newest
+                        .map_or(s.timestamp_ns, |t| t.max(s.timestamp_ns)),
+                );
             }
         }
         let out = self.follower.output(now);
@@ -155,6 +162,11 @@ impl TrackedHead {
         }
         self.latencies
             .extend(self.pending.drain(..).map(|t| now.saturating_sub(t)));
+    }
+
+    /// Publication time (Unix ns) of the newest sample accepted, if any.
+    pub fn newest_sample_ns(&self) -> Option<u64> {
+        self.newest
     }
 
     /// The head in tracker space (the default head before any sample).

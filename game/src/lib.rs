@@ -5,6 +5,7 @@
 
 pub mod assets;
 pub mod cave;
+pub mod cluster;
 pub mod commands;
 pub mod interrupt;
 pub mod lesson;

@@ -64,6 +64,45 @@ enum Command {
         /// Open with the live space-time diagram shown.
         #[arg(long)]
         diagram: bool,
+        /// With --cave: be the master of a render cluster, listening for
+        /// render nodes (`lightcone wall --join`) on this Zenoh endpoint
+        /// (default tcp/0.0.0.0:7447).
+        #[arg(long, requires = "cave", num_args = 0..=1, default_missing_value = lightcone::cluster::DEFAULT_ENDPOINT)]
+        serve: Option<String>,
+        /// With --cave: write each frame's CAVE eyes (board times and every
+        /// apparent vertex) to this file, one JSON line a frame.
+        #[arg(long, requires = "cave")]
+        frame_log: Option<PathBuf>,
+    },
+    /// A render node of a CAVE cluster: joins the master (`play --cave
+    /// FILE --serve`) and draws the named walls of its CAVE, frame by frame
+    /// with it.
+    Wall {
+        /// The master's Zenoh endpoint, e.g. tcp/192.168.1.10:7447.
+        #[arg(long)]
+        join: String,
+        /// A wall of the master's CAVE file to draw (repeatable).
+        #[arg(long = "wall", required = true)]
+        walls: Vec<String>,
+        /// Draw nothing: compute the walls' eyes, keep the swap lock and log
+        /// (tests, benchmarks, a node without a display).
+        #[arg(long)]
+        headless: bool,
+        /// Stop after this many frames (0: until the master is silent).
+        #[arg(long, default_value_t = 0)]
+        frames: u64,
+        /// Write each frame shown, one JSON line a frame (as `play
+        /// --frame-log`).
+        #[arg(long)]
+        frame_log: Option<PathBuf>,
+        /// Wait this many seconds for the master to be there, and stop after
+        /// this many without a frame from it.
+        #[arg(long, default_value_t = 10.0)]
+        silence: f64,
+        /// Save a screenshot of the node's windows (the main one, and one
+        /// per output as FILE.<output>.png) after --frames frames, then stop.
+        #[arg(long)]
+        screenshot: Option<PathBuf>,
     },
     /// The simulated head tracker: publish head motion (a path, or a
     /// recorded CSV track) with noise and faults on an iceoryx2 service.
@@ -419,6 +458,8 @@ fn main() -> ExitCode {
             top,
             effects,
             diagram,
+            serve,
+            frame_log,
         }) => commands::play::run(
             scene.as_deref(),
             commands::play::Extras {
@@ -436,8 +477,27 @@ fn main() -> ExitCode {
                 top,
                 effects,
                 diagram,
+                serve,
+                frame_log,
             },
         ),
+        Some(Command::Wall {
+            join,
+            walls,
+            headless,
+            frames,
+            frame_log,
+            silence,
+            screenshot,
+        }) => commands::wall::run(&commands::wall::WallArgs {
+            join,
+            walls,
+            headless,
+            frames,
+            frame_log,
+            silence,
+            screenshot,
+        }),
         Some(Command::Tracker { args }) => commands::tracker::run(args),
         Some(Command::TrackerBridge { args }) => lightcone::tracker_bridge::child_main(&args),
         Some(Command::Cave {

@@ -293,6 +293,16 @@ pub struct GameState {
     pub intro: bool,
     /// The scene menu (key M).
     pub scene_menu: SceneMenu,
+    /// Which simulation this is: a number no other game or restart in this
+    /// process had (a CAVE cluster's master sends a new snapshot when it
+    /// changes).
+    pub generation: u64,
+}
+
+/// A number no earlier call in this process returned.
+fn next_generation() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 /// Largest cue stroke, as a proper-velocity change (γβ): β ≈ 0.995.
@@ -353,6 +363,7 @@ impl GameState {
             intro: false,
             show: Overlays::default(),
             scene_menu: Default::default(),
+            generation: next_generation(),
         }
     }
 
@@ -903,6 +914,7 @@ impl GameState {
         }
         let (sim, you, observers) = simulation(&self.scene, &self.eye, 0.0);
         self.sim = sim;
+        self.generation = next_generation();
         self.you = you;
         self.observers = observers;
         self.stereo.clear();

@@ -41,7 +41,10 @@ pub enum WorldlineError {
 /// methods give any board time. Before its start a segment extends back
 /// uniformly with its start velocity (what the first segment does before
 /// `t = 0`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// Serialised whole, cached fields included, so that a copy (a CAVE render
+/// node's) holds the same bits as the original.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Segment {
     /// Where and when this segment begins (board frame).
     pub start: Event,
@@ -325,7 +328,7 @@ pub struct BodyState {
 ///   instead has the body rest at its start until then (struck at the
 ///   start).
 /// * **At a kink** the later segment applies (right-continuous velocity).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Worldline {
     segments: Vec<Segment>,
     c: f64,
@@ -558,6 +561,23 @@ impl Worldline {
         if keep_from > 0 {
             self.segments.drain(..keep_from);
         }
+    }
+
+    /// Appends `segment`, a copy of a segment of another worldline of the
+    /// same body (a CAVE render node copies the master's pucks' new
+    /// segments this way, bit for bit). Fails on a non-finite start, or
+    /// one before the last segment's.
+    pub fn append(&mut self, segment: Segment) -> Result<(), WorldlineError> {
+        let t = segment.start.t;
+        if !(t.is_finite() && segment.start.position.is_finite() && segment.u.is_finite()) {
+            return Err(WorldlineError::NotFinite);
+        }
+        let last = self.last().start.t;
+        if t <= last {
+            return Err(WorldlineError::BeforeLastSegment { at: t, last });
+        }
+        self.segments.push(segment);
+        Ok(())
     }
 
     /// Forgets every kink after board time `t` (for "what if" replays from a

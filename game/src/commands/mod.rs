@@ -15,3 +15,4 @@ pub mod record;
 pub mod render;
 pub mod simulate;
 pub mod tracker;
+pub mod wall;

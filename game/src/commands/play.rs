@@ -32,6 +32,10 @@ pub struct Extras {
     pub effects: Option<String>,
     /// Show the live space-time diagram.
     pub diagram: bool,
+    /// Serve a render cluster on this Zenoh endpoint (with `cave`).
+    pub serve: Option<String>,
+    /// Log each frame's CAVE eyes here (with `cave`).
+    pub frame_log: Option<PathBuf>,
 }
 
 /// Loads the scene (the built-in default when `None`) or the lesson
@@ -48,6 +52,8 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         top,
         effects,
         diagram,
+        serve,
+        frame_log,
     } = extras;
     if let Some(t) = at
         && !(t.is_finite() && t >= 0.0)
@@ -55,12 +61,33 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         eprintln!("--at {t}: give a board time of 0 s or more");
         return ExitCode::FAILURE;
     }
-    let cave = match cave.as_deref().map(crate::cave::load).transpose() {
+    let cave_file = cave;
+    let cave = match cave_file.as_deref().map(crate::cave::load).transpose() {
         Ok(c) => c,
         Err(e) => {
             crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
+    };
+    // The render nodes get the CAVE file's text from the master.
+    let cluster = match (serve, &cave_file) {
+        (Some(endpoint), Some(file)) => {
+            let master = std::fs::read_to_string(file)
+                .map_err(|e| format!("{}: {e}", file.display()))
+                .and_then(|text| crate::cluster::master::ClusterMaster::serve(&endpoint, text));
+            match master {
+                Ok(m) => Some(m),
+                Err(e) => {
+                    crate::errln!("{e}");
+                    return ExitCode::FAILURE;
+                }
+            }
+        }
+        (Some(_), None) => {
+            eprintln!("--serve needs --cave: the render nodes draw the CAVE's walls");
+            return ExitCode::FAILURE;
+        }
+        (None, _) => None,
     };
     let (mut game, lesson) = if let Some(path) = path
         && path.extension().is_some_and(|e| e == "py")
@@ -155,6 +182,8 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         frames: frames.max(1),
         tracker,
         cave,
+        cluster,
+        frame_log,
     }) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -18,6 +18,8 @@ use super::lesson_panel::{self, LessonAction};
 use super::outputs::{self, OutputWindow};
 use super::overlay::{aspect, markers, overlays, project, ring_colour};
 use crate::cave::{self, Side, TrackedHead};
+use crate::cluster::master::ClusterMaster;
+use crate::cluster::node::{ClusterNode, Headless};
 use crate::lesson::LessonHost;
 use crate::model::{GameState, Pane, ViewMode};
 use lightcone_render::frame::{self, FrameVertex, ViewKind};
@@ -42,53 +44,130 @@ pub struct Options {
     pub screenshot: Option<PathBuf>,
     /// Frames to run before the screenshot.
     pub frames: u32,
+    /// The render cluster this game is the master of (`--serve`).
+    pub cluster: Option<ClusterMaster>,
+    /// Log each frame's CAVE eyes to this file (`--frame-log`).
+    pub frame_log: Option<PathBuf>,
 }
 
 /// Opens the window and runs the game until it is closed.
 pub fn run(options: Options) -> Result<(), String> {
-    let event_loop = EventLoop::new().map_err(|e| {
-        format!("cannot open a window ({e}); on a machine without a display, use `lightcone render`, or run under Xvfb")
-    })?;
-    let Options {
-        game,
-        lesson,
-        screenshot,
-        frames,
-        tracker,
-        cave,
-    } = options;
-    let map = cave
-        .as_ref()
-        .map_or_else(|| cave::desktop_map(game.scene.table.size), |c| c.tracker);
-    let mut app = App {
-        head: tracker.map(|service| TrackedHead::new(&service, map)),
-        cave,
-        flight: DVec3::ZERO,
-        flight_v: DVec3::ZERO,
-        cave_eye: Side::Mono,
-        stereo: Vec::new(),
-        outputs: Vec::new(),
-        state: game,
-        lesson,
-        screenshot,
-        frames,
-        reload_checked: Instant::now(),
-        gfx: None,
-        last: Instant::now(),
-        frame: 0,
-        keys: HashSet::new(),
-        cursor: DVec2::ZERO,
-        looking: false,
-        orbiting: false,
-        aiming: None,
-        scene_left: 0.0,
-        scene_right: 0.0,
-        result: Ok(()),
-    };
+    let event_loop = open_event_loop()?;
+    let mut app = App::new(options)?;
     event_loop
         .run_app(&mut app)
         .map_err(|e| format!("the window's event loop failed: {e}"))?;
     app.result
+}
+
+/// Opens the window of a render node (`lightcone wall`) on its walls, once
+/// the master's first frame is in; runs until the master is silent for
+/// `options.silence`, `options.frames` frames were shown, or the window is
+/// closed. Returns the frames shown.
+pub fn run_node(mut node: ClusterNode, options: &Headless) -> Result<u64, String> {
+    let event_loop = open_event_loop()?;
+    let mut game = crate::cluster::node::placeholder()?;
+    let Some(first) = node.next_frame(&mut game, options.silence)? else {
+        return Err(format!("no frame from the master in {:?}", options.silence));
+    };
+    let cave = node
+        .cave
+        .clone()
+        .ok_or("the master's snapshot had no CAVE")?;
+    let mut app = App::new(Options {
+        game,
+        lesson: None,
+        tracker: None,
+        cave: Some(cave),
+        screenshot: options.screenshot.clone(),
+        frames: u32::try_from(options.frames).unwrap_or(u32::MAX).max(1),
+        cluster: None,
+        frame_log: options.log.clone(),
+    })?;
+    app.node = Some(NodeRole {
+        node,
+        pending: Some(first),
+        frames: options.frames,
+        silence: options.silence,
+        shown: 0,
+    });
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| format!("the window's event loop failed: {e}"))?;
+    let shown = app.node.as_ref().map_or(0, |r| r.shown);
+    app.result.map(|()| shown)
+}
+
+fn open_event_loop() -> Result<EventLoop<()>, String> {
+    EventLoop::new().map_err(|e| {
+        format!("cannot open a window ({e}); on a machine without a display, use `lightcone render`, or run under Xvfb")
+    })
+}
+
+/// A render node's part of the window: frames come from the master.
+struct NodeRole {
+    node: ClusterNode,
+    /// The first frame, taken before the window opened.
+    pending: Option<crate::cluster::message::Frame>,
+    /// Frames to show (0: no limit).
+    frames: u64,
+    /// How long without a frame before the node stops.
+    silence: std::time::Duration,
+    shown: u64,
+}
+
+impl App {
+    fn new(options: Options) -> Result<Self, String> {
+        let Options {
+            game,
+            lesson,
+            screenshot,
+            frames,
+            tracker,
+            cave,
+            cluster,
+            frame_log,
+        } = options;
+        let frame_log = match frame_log {
+            Some(p) => Some(std::io::BufWriter::new(
+                std::fs::File::create(&p).map_err(|e| format!("{}: {e}", p.display()))?,
+            )),
+            None => None,
+        };
+        let map = cave
+            .as_ref()
+            .map_or_else(|| cave::desktop_map(game.scene.table.size), |c| c.tracker);
+        Ok(Self {
+            head: tracker.map(|service| TrackedHead::new(&service, map)),
+            cave,
+            flight: DVec3::ZERO,
+            flight_v: DVec3::ZERO,
+            cave_eye: Side::Mono,
+            stereo: Vec::new(),
+            outputs: Vec::new(),
+            state: game,
+            lesson,
+            screenshot,
+            frames,
+            reload_checked: Instant::now(),
+            gfx: None,
+            last: Instant::now(),
+            frame: 0,
+            keys: HashSet::new(),
+            cursor: DVec2::ZERO,
+            looking: false,
+            orbiting: false,
+            aiming: None,
+            scene_left: 0.0,
+            scene_right: 0.0,
+            result: Ok(()),
+            cluster,
+            frame_log,
+            node: None,
+            node_head: None,
+            views_done: false,
+        })
+    }
 }
 
 struct Gfx {
@@ -141,6 +220,17 @@ struct App {
     scene_left: f32,
     scene_right: f32,
     result: Result<(), String>,
+    /// The render cluster this game is the master of.
+    cluster: Option<ClusterMaster>,
+    /// Where each frame's CAVE eyes are logged.
+    frame_log: Option<std::io::BufWriter<std::fs::File>>,
+    /// The render node this window is (`lightcone wall`).
+    node: Option<NodeRole>,
+    /// The master's head for this frame (a render node).
+    node_head: Option<(DVec3, glam::DQuat)>,
+    /// This frame's views were run before drawing (a render node runs them
+    /// before the swap lock).
+    views_done: bool,
 }
 
 /// What the panels show besides the game state.
@@ -497,6 +587,10 @@ impl App {
     }
 
     fn frame(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(role) = self.node.take() {
+            self.node_frame(role, event_loop);
+            return;
+        }
         let now = Instant::now();
         let dt = (now - self.last).as_secs_f64().min(0.1);
         self.last = now;
@@ -535,10 +629,30 @@ impl App {
         }
         self.frame += 1;
         let shot = self.screenshot.is_some() && self.frame >= self.frames;
+        // The render nodes compute this frame while the window draws it.
+        if let Some(master) = &mut self.cluster {
+            let head = self.head.as_ref().map_or(
+                (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
+                TrackedHead::head,
+            );
+            let sample = self.head.as_ref().and_then(TrackedHead::newest_sample_ns);
+            master.publish(&self.state, head, self.flight, sample);
+        }
         if let Err(e) = self.draw(shot) {
             self.result = Err(e);
             event_loop.exit();
             return;
+        }
+        if let Some(master) = &mut self.cluster {
+            master.swap();
+            for line in master.take_news() {
+                eprintln!("{line}");
+                self.state.message = line;
+            }
+        }
+        if let Err(e) = self.log_frame() {
+            eprintln!("--frame-log: {e}; no longer logging");
+            self.frame_log = None;
         }
         // Answer what the lesson asked while the frame was drawn, so its
         // hook can end before the next frame.
@@ -826,6 +940,123 @@ fn intro(state: &mut GameState, ctx: &egui::Context, x: f32, y: f32) {
 }
 
 impl App {
+    /// A render node's frame: the master's next one applied to the copy of
+    /// its game, the walls' eyes computed, the swap lock, then drawn.
+    fn node_frame(&mut self, mut role: NodeRole, event_loop: &ActiveEventLoop) {
+        let frame = match role.pending.take() {
+            Some(f) => f,
+            None => match role.node.next_frame(&mut self.state, role.silence) {
+                Ok(Some(f)) => f,
+                Ok(None) => {
+                    if role.node.master_gone {
+                        eprintln!("lightcone wall: the master is gone; stopping");
+                    } else {
+                        eprintln!(
+                            "lightcone wall: no frame from the master in {:?}; stopping",
+                            role.silence
+                        );
+                    }
+                    self.node = Some(role);
+                    event_loop.exit();
+                    return;
+                }
+                Err(e) => {
+                    self.result = Err(e);
+                    self.node = Some(role);
+                    event_loop.exit();
+                    return;
+                }
+            },
+        };
+        if let Some(c) = &role.node.cave
+            && self.cave.as_ref() != Some(c)
+        {
+            self.cave = Some(c.clone());
+        }
+        self.flight = frame.view.flight;
+        self.node_head = Some(frame.view.head());
+        self.state.message = role.node.status_line();
+        self.frame += 1;
+        if let Some(gfx) = &self.gfx {
+            let (w, h) = (gfx.config.width as f32, gfx.config.height as f32);
+            self.run_views(w, h);
+            self.views_done = true;
+        }
+        role.node.ready(frame.seq);
+        role.node.wait_swap(frame.seq, crate::cluster::BARRIER * 4);
+        let shown_ns = crate::cluster::now_ns();
+        let shot = self.screenshot.is_some() && self.frame >= self.frames;
+        if let Err(e) = self.draw(shot) {
+            self.result = Err(e);
+            self.node = Some(role);
+            event_loop.exit();
+            return;
+        }
+        role.shown += 1;
+        if let Some(log) = &mut self.frame_log {
+            use std::io::Write;
+            let views: Vec<(Side, lightcone_engine::ecs::Entity)> =
+                self.stereo.iter().map(|&(s, v, _)| (s, v)).collect();
+            let line = crate::cluster::node::frame_record(
+                frame.seq,
+                &frame.view,
+                frame.sample_ns,
+                frame.sent_ns,
+                &self.state,
+                &views,
+                shown_ns,
+            );
+            if writeln!(log, "{line}").and_then(|()| log.flush()).is_err() {
+                eprintln!("--frame-log: cannot write; no longer logging");
+                self.frame_log = None;
+            }
+        }
+        let done = shot || (role.frames > 0 && role.shown >= role.frames);
+        self.node = Some(role);
+        if done {
+            event_loop.exit();
+        }
+    }
+
+    /// Writes this frame's CAVE eyes to the frame log (`--frame-log`), as a
+    /// render node logs them.
+    fn log_frame(&mut self) -> Result<(), String> {
+        use std::io::Write;
+        let Some(log) = &mut self.frame_log else {
+            return Ok(());
+        };
+        // What the frame was computed from (the panels drawn since may
+        // have changed the game for the next one).
+        let view = match self.cluster.as_ref().and_then(ClusterMaster::last_view) {
+            Some(v) => v.clone(),
+            None => crate::cluster::message::ViewState::of(
+                &self.state,
+                self.head.as_ref().map_or(
+                    (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
+                    TrackedHead::head,
+                ),
+                self.flight,
+            ),
+        };
+        let seq = self
+            .cluster
+            .as_ref()
+            .map_or(u64::from(self.frame), ClusterMaster::seq);
+        let views: Vec<(Side, lightcone_engine::ecs::Entity)> =
+            self.stereo.iter().map(|&(s, v, _)| (s, v)).collect();
+        let line = crate::cluster::node::frame_record(
+            seq,
+            &view,
+            None,
+            0,
+            &self.state,
+            &views,
+            crate::cluster::now_ns(),
+        );
+        writeln!(log, "{line}").map_err(|e| e.to_string())?;
+        log.flush().map_err(|e| e.to_string())
+    }
+
     fn draw(&mut self, screenshot: bool) -> Result<(), String> {
         let Some(mut gfx) = self.gfx.take() else {
             return Ok(());
@@ -842,10 +1073,12 @@ impl App {
     fn run_views(&mut self, w: f32, h: f32) {
         match &self.cave {
             Some(c) => {
-                let head = self.head.as_ref().map_or(
-                    (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
-                    TrackedHead::head,
-                );
+                let head = self.node_head.unwrap_or_else(|| {
+                    self.head.as_ref().map_or(
+                        (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
+                        TrackedHead::head,
+                    )
+                });
                 let sides = outputs::sides_needed(c, self.cave_eye);
                 let views = cave::stereo_views(&mut self.state, c, head, &sides, self.flight);
                 self.stereo = sides
@@ -866,7 +1099,9 @@ impl App {
     }
 
     fn draw_with(&mut self, gfx: &mut Gfx, screenshot: bool) -> Result<(), String> {
-        self.run_views(gfx.config.width as f32, gfx.config.height as f32);
+        if !std::mem::take(&mut self.views_done) {
+            self.run_views(gfx.config.width as f32, gfx.config.height as f32);
+        }
         let raw = gfx.egui_state.take_egui_input(&gfx.window);
         let ctx = gfx.egui.clone();
         let size = (gfx.config.width, gfx.config.height);
@@ -880,8 +1115,12 @@ impl App {
             }
             .map(|line| match &self.cave {
                 Some(_) => format!(
-                    "{line}\nCAVE walls, {} eye (E switches)",
-                    self.cave_eye.name()
+                    "{line}\nCAVE walls, {} eye (E switches){}",
+                    self.cave_eye.name(),
+                    self.cluster
+                        .as_ref()
+                        .map(|m| format!("\n{}", m.status_line()))
+                        .unwrap_or_default()
                 ),
                 None => line,
             }),
@@ -1291,7 +1530,23 @@ impl ApplicationHandler for App {
                     }
                 }
                 WindowEvent::CloseRequested => event_loop.exit(),
-                WindowEvent::KeyboardInput { event, .. } => self.keyboard(&event),
+                WindowEvent::KeyboardInput { event, .. } if self.node.is_none() => {
+                    self.keyboard(&event);
+                }
+                _ => {}
+            }
+            return;
+        }
+        if self.node.is_some() {
+            // A render node shows the master's game: it takes no input.
+            match event {
+                WindowEvent::CloseRequested => event_loop.exit(),
+                WindowEvent::Resized(size) => {
+                    gfx.config.width = size.width.max(1);
+                    gfx.config.height = size.height.max(1);
+                    gfx.surface.configure(&gfx.gpu.device, &gfx.config);
+                }
+                WindowEvent::RedrawRequested => self.frame(event_loop),
                 _ => {}
             }
             return;

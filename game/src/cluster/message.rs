@@ -1,0 +1,292 @@
+//! What the master and the render nodes of a CAVE cluster say to each
+//! other, and how the master's game is copied into a node's.
+//!
+//! Every message is [postcard]-encoded (binary, each `f64` exact). A
+//! [`Frame`] carries what a node needs to draw one frame exactly as the
+//! master would: the game's view state (board times, the free eye, the
+//! effects, the tracked head and the flight) and every change to the pucks'
+//! worldlines since the previous frame, as copied segments ([`Change`]). A
+//! node's billiard is driven from outside
+//! ([`Billiard::drive_from_outside`]): it predicts nothing, so its
+//! worldlines are the master's bit for bit, and its own frame schedule (the
+//! same code as the master's) computes the same apparent vertices. A
+//! [`Snapshot`] starts a node (when it joins, after a gap, and when the
+//! master's game is restarted or replaced).
+//!
+//! [`Billiard::drive_from_outside`]: lightcone_engine::physics::Billiard::drive_from_outside
+
+use glam::{DQuat, DVec3};
+use lightcone_engine::scene::{Effects, Scene};
+use lightcone_engine::spacetime::ProperVelocity;
+use lightcone_engine::worldline::{Segment, Worldline};
+use serde::{Deserialize, Serialize};
+
+use crate::model::{FlyingEye, Framing, GameState};
+
+/// The game's state that the pictures of the CAVE walls depend on, besides
+/// the worldlines.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ViewState {
+    /// Board time the physics has reached, s.
+    pub live_time: f64,
+    /// Board time shown, s.
+    pub view_time: f64,
+    /// Time stands still.
+    pub paused: bool,
+    /// The free eye watches the past from where it is now.
+    pub replay_and_move: bool,
+    /// The free eye: position (board frame, m), proper velocity (m/s as
+    /// `γβ`, dimensionless), yaw and pitch (radians).
+    pub eye_position: DVec3,
+    pub eye_u: DVec3,
+    pub eye_yaw: f64,
+    pub eye_pitch: f64,
+    /// Effects shown.
+    pub effects: Effects,
+    /// Camera aim: `true` where the free eye looks, `false` fitted.
+    pub look: bool,
+    /// Zoom factor.
+    pub zoom: f64,
+    /// The puck the camera keeps in the middle, if any.
+    pub follow: Option<usize>,
+    /// The tracked head: position (tracker space, m) and orientation.
+    pub head_position: DVec3,
+    pub head_orientation: DQuat,
+    /// The player's own flight added to the head (board metres).
+    pub flight: DVec3,
+}
+
+impl ViewState {
+    /// The state of `game` with the head `head` and flight `flight`.
+    pub fn of(game: &GameState, head: (DVec3, DQuat), flight: DVec3) -> Self {
+        Self {
+            live_time: game.live_time,
+            view_time: game.view_time,
+            paused: game.paused,
+            replay_and_move: game.replay_and_move,
+            eye_position: game.eye.position,
+            eye_u: game.eye.u.0,
+            eye_yaw: game.eye.yaw,
+            eye_pitch: game.eye.pitch,
+            effects: game.effects,
+            look: game.framing == Framing::Look,
+            zoom: game.zoom,
+            follow: game.follow,
+            head_position: head.0,
+            head_orientation: head.1,
+            flight,
+        }
+    }
+
+    /// Sets it on `game` (a node's copy).
+    pub fn apply(&self, game: &mut GameState) {
+        game.live_time = self.live_time;
+        game.view_time = self.view_time;
+        game.paused = self.paused;
+        game.replay_and_move = self.replay_and_move;
+        game.eye = FlyingEye {
+            position: self.eye_position,
+            u: ProperVelocity(self.eye_u),
+            yaw: self.eye_yaw,
+            pitch: self.eye_pitch,
+        };
+        game.effects = self.effects;
+        game.framing = if self.look {
+            Framing::Look
+        } else {
+            Framing::Fit
+        };
+        game.zoom = self.zoom;
+        game.follow = self.follow;
+    }
+
+    /// The head, as [`crate::cave::stereo_views`] takes it.
+    pub fn head(&self) -> (DVec3, DQuat) {
+        (self.head_position, self.head_orientation)
+    }
+}
+
+/// A change to one puck's worldline since the last frame.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Change {
+    /// New segments after the last one sent.
+    Append {
+        /// The puck's index.
+        puck: usize,
+        /// Its new segments, in time order.
+        segments: Vec<Segment>,
+    },
+    /// The whole worldline (rewritten otherwise than by new segments).
+    Replace {
+        /// The puck's index.
+        puck: usize,
+        /// Its worldline.
+        worldline: Worldline,
+    },
+}
+
+/// One frame from the master.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Frame {
+    /// Frame number, from 1, one more each frame the master draws.
+    pub seq: u64,
+    /// The master's game ([`GameState::generation`]): a frame of another
+    /// generation than the node's snapshot needs a new snapshot.
+    pub generation: u64,
+    /// What the pictures depend on.
+    pub view: ViewState,
+    /// The worldlines' changes since frame `seq − 1`.
+    pub changes: Vec<Change>,
+    /// Publication time (Unix ns) of the newest tracker sample the head
+    /// came from, if any: the start of the tracker-to-picture latency.
+    pub sample_ns: Option<u64>,
+    /// When the master sent it (Unix ns).
+    pub sent_ns: u64,
+}
+
+/// Everything a node needs to start: the scene, the CAVE, the worldlines,
+/// and the frame they are at.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Snapshot {
+    /// The frame it is the state after.
+    pub seq: u64,
+    /// The master's game generation.
+    pub generation: u64,
+    /// The scene as JSON (its serde form; exact floats).
+    pub scene_json: String,
+    /// The CAVE file's text.
+    pub cave_toml: String,
+    /// Every puck's worldline, in index order.
+    pub worldlines: Vec<Worldline>,
+    /// The view state of frame `seq`.
+    pub view: ViewState,
+}
+
+/// A node's answer: it has computed (`ready`) or shown (`shown`) frame
+/// `seq`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Ready {
+    /// The node's name (`wall-pid`).
+    pub node: String,
+    /// The frame.
+    pub seq: u64,
+}
+
+/// Encodes a message.
+pub fn encode<T: Serialize>(message: &T) -> Vec<u8> {
+    // Encoding into a Vec fails only on a type serde cannot write, which
+    // these are not.
+    postcard::to_stdvec(message).unwrap_or_default()
+}
+
+/// Decodes a message; the error names what was expected.
+pub fn decode<'a, T: Deserialize<'a>>(bytes: &'a [u8], what: &str) -> Result<T, String> {
+    postcard::from_bytes(bytes)
+        .map_err(|e| format!("a malformed {what} ({} bytes): {e}", bytes.len()))
+}
+
+/// What the master last sent of each puck's worldline, to send only what
+/// changed.
+#[derive(Default)]
+pub struct Sent {
+    generation: u64,
+    last: Vec<Option<Segment>>,
+}
+
+impl Sent {
+    /// The changes of `game`'s worldlines since the last call (everything
+    /// after a new generation).
+    pub fn changes(&mut self, game: &GameState) -> Vec<Change> {
+        let physics = game.physics();
+        if self.generation != game.generation || self.last.len() != physics.len() {
+            self.generation = game.generation;
+            self.last = vec![None; physics.len()];
+        }
+        let mut out = Vec::new();
+        for (puck, last) in self.last.iter_mut().enumerate() {
+            let w = physics.worldline(puck);
+            let segments = w.segments();
+            let known = last.and_then(|s| {
+                let k = w.segment_index_at(s.start.t);
+                (segments[k] == s).then_some(k)
+            });
+            match known {
+                Some(k) if k + 1 == segments.len() => {}
+                Some(k) => out.push(Change::Append {
+                    puck,
+                    segments: segments[k + 1..].to_vec(),
+                }),
+                None => out.push(Change::Replace {
+                    puck,
+                    worldline: w.clone(),
+                }),
+            }
+            *last = segments.last().copied();
+        }
+        out
+    }
+}
+
+/// The snapshot of `game` after frame `seq`.
+pub fn snapshot(game: &GameState, seq: u64, cave_toml: &str, view: ViewState) -> Snapshot {
+    let physics = game.physics();
+    Snapshot {
+        seq,
+        generation: game.generation,
+        scene_json: serde_json::to_string(&game.scene).unwrap_or_default(),
+        cave_toml: cave_toml.to_owned(),
+        worldlines: (0..physics.len())
+            .map(|i| physics.worldline(i).clone())
+            .collect(),
+        view,
+    }
+}
+
+/// A node's copy of the master's game, built from `snapshot`: the scene's
+/// game with its billiard driven from outside and the master's worldlines.
+pub fn game_of(snapshot: &Snapshot) -> Result<GameState, String> {
+    let scene: Scene = serde_json::from_str(&snapshot.scene_json)
+        .map_err(|e| format!("the master's scene does not read: {e}"))?;
+    if scene.pucks.len() != snapshot.worldlines.len() {
+        return Err(format!(
+            "the master's scene has {} pucks but {} worldlines",
+            scene.pucks.len(),
+            snapshot.worldlines.len()
+        ));
+    }
+    let mut game = GameState::new(scene);
+    game.physics_mut().drive_from_outside();
+    for (i, w) in snapshot.worldlines.iter().enumerate() {
+        game.physics_mut().replace_worldline(i, w.clone());
+    }
+    game.generation = snapshot.generation;
+    snapshot.view.apply(&mut game);
+    Ok(game)
+}
+
+/// Applies `frame`'s changes and view state to a node's `game`. Fails on a
+/// change that does not fit (a puck that is not there, a segment before
+/// the last): the node then needs a new snapshot.
+pub fn apply(frame: &Frame, game: &mut GameState) -> Result<(), String> {
+    let n = game.physics().len();
+    for change in &frame.changes {
+        match change {
+            Change::Append { puck, segments } if *puck < n => game
+                .physics_mut()
+                .extend_worldline(*puck, segments)
+                .map_err(|e| format!("frame {}: puck {puck}: {e}", frame.seq))?,
+            Change::Replace { puck, worldline } if *puck < n => {
+                game.physics_mut()
+                    .replace_worldline(*puck, worldline.clone());
+            }
+            Change::Append { puck, .. } | Change::Replace { puck, .. } => {
+                return Err(format!(
+                    "frame {}: puck {puck} is not in the scene ({n} pucks)",
+                    frame.seq
+                ));
+            }
+        }
+    }
+    frame.view.apply(game);
+    Ok(())
+}

@@ -1,0 +1,297 @@
+//! The CAVE render cluster over Zenoh, on loopback: a master (`play --cave
+//! --serve`, under Xvfb, a lesson striking a puck and a simulated tracker
+//! moving the head) and 4 render nodes (`lightcone wall --headless`), each
+//! its own process. Frame by frame, every node must show the same board
+//! time and the same apparent vertices (to 1e-12) as the master's own
+//! single-process render of the walls; a node killed midway must not stop
+//! the others, and a node that joins late must catch up from a snapshot.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{play_under_xvfb, repo};
+
+/// A child process killed on drop.
+struct Proc(Option<Child>);
+
+impl Proc {
+    fn kill(&mut self) {
+        if let Some(mut c) = self.0.take() {
+            let _ = c.kill();
+            let _ = c.wait();
+        }
+    }
+
+    /// Waits at most `limit` for it to end by itself; kills it otherwise.
+    fn finish(&mut self, limit: Duration) -> bool {
+        let start = Instant::now();
+        while start.elapsed() < limit {
+            match self.0.as_mut().map(Child::try_wait) {
+                Some(Ok(Some(status))) => {
+                    self.0 = None;
+                    return status.success();
+                }
+                Some(Ok(None)) => std::thread::sleep(Duration::from_millis(50)),
+                _ => return false,
+            }
+        }
+        self.kill();
+        false
+    }
+}
+
+impl Drop for Proc {
+    fn drop(&mut self) {
+        self.kill();
+    }
+}
+
+/// A port nothing listens on now.
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .expect("a free loopback port")
+}
+
+/// `lightcone wall --join ENDPOINT --wall WALL --headless`, logging to `log`.
+fn node(endpoint: &str, wall: &str, log: &Path) -> Proc {
+    let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["wall", "--join", endpoint, "--wall", wall, "--headless"])
+        .args(["--silence", "15", "--frame-log"])
+        .arg(log)
+        .current_dir(repo())
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .spawn()
+        .expect("lightcone wall starts");
+    Proc(Some(child))
+}
+
+/// A frame log, by frame number.
+fn read_log(path: &Path) -> BTreeMap<u64, serde_json::Value> {
+    std::fs::read_to_string(path)
+        .unwrap_or_default()
+        .lines()
+        .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+        .map(|v| (v["seq"].as_u64().expect("seq"), v))
+        .collect()
+}
+
+/// Lines in a file so far.
+fn lines(path: &Path) -> usize {
+    std::fs::read_to_string(path).map_or(0, |t| t.lines().count())
+}
+
+/// Waits (at most 60 s) until the master has logged `n` frames.
+fn until_master_frame(log: &Path, n: usize) {
+    let start = Instant::now();
+    while lines(log) < n && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// The largest difference between two frames' vertices (of eye `eye`),
+/// relative to the vertices' size; `None` if they have other counts.
+fn vertex_difference(a: &serde_json::Value, b: &serde_json::Value, eye: &str) -> Option<f64> {
+    let a = a["views"][eye].as_array()?;
+    let b = b["views"][eye].as_array()?;
+    if a.len() != b.len() || a.is_empty() {
+        return None;
+    }
+    let mut worst = 0.0f64;
+    for (p, q) in a.iter().zip(b) {
+        for k in 0..3 {
+            let (x, y) = (p[k].as_f64()?, q[k].as_f64()?);
+            worst = worst.max((x - y).abs() / (1.0 + x.abs()));
+        }
+    }
+    Some(worst)
+}
+
+fn percentile(v: &mut [f64], p: f64) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * p).round() as usize]
+}
+
+#[test]
+fn four_render_nodes_draw_the_masters_frames_exactly() {
+    let dir = std::env::temp_dir().join(format!("lightcone-cluster-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let service = format!("lightcone/test/cluster/{}", std::process::id());
+    let master_log = dir.join("master.jsonl");
+    let log = |name: &str| -> PathBuf { dir.join(format!("{name}.jsonl")) };
+    let walls = ["front", "left", "right", "floor"];
+
+    let mut tracker = Proc(Some(
+        Command::new(env!("CARGO_BIN_EXE_lightcone"))
+            .args(["tracker", "--service", &service, "--path", "circle"])
+            .args(["--rate", "200", "--duration", "60", "--quiet"])
+            .current_dir(repo())
+            .stdin(Stdio::null())
+            .spawn()
+            .expect("lightcone tracker starts"),
+    ));
+    // Three nodes from the start; the floor's joins late.
+    let mut nodes: Vec<Proc> = walls[..3]
+        .iter()
+        .map(|w| node(&endpoint, w, &log(w)))
+        .collect();
+    let late = {
+        let (endpoint, master_log, floor_log) =
+            (endpoint.clone(), master_log.clone(), log("floor"));
+        std::thread::spawn(move || {
+            until_master_frame(&master_log, 25);
+            node(&endpoint, "floor", &floor_log)
+        })
+    };
+    // The left wall's node dies midway.
+    let killer = {
+        let master_log = master_log.clone();
+        let mut left = nodes.remove(1);
+        std::thread::spawn(move || {
+            until_master_frame(&master_log, 45);
+            left.kill();
+        })
+    };
+    let shot = dir.join("master.png");
+    let master_log_arg = master_log.to_string_lossy().into_owned();
+    let (out, img) = play_under_xvfb(
+        &[
+            "play",
+            "tests/lessons/cluster_stroke.py",
+            "--cave",
+            "assets/cave.toml",
+            "--tracker",
+            &service,
+            "--serve",
+            &endpoint,
+            "--frame-log",
+            &master_log_arg,
+        ],
+        &shot,
+        90,
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(img.is_some(), "the master failed: {stderr}");
+    killer.join().unwrap();
+    let mut floor = late.join().unwrap();
+    for n in &mut nodes {
+        assert!(
+            n.finish(Duration::from_secs(20)),
+            "a node did not end cleanly"
+        );
+    }
+    assert!(
+        floor.finish(Duration::from_secs(20)),
+        "the late node did not end cleanly"
+    );
+    tracker.kill();
+
+    let master = read_log(&master_log);
+    assert_eq!(master.len(), 90, "the master logged every frame");
+    assert_eq!(
+        master.keys().copied().collect::<Vec<_>>(),
+        (1..=90).collect::<Vec<_>>()
+    );
+    // The stroke and the tracker really changed the picture: board time
+    // ran past the stroke, and the head moved.
+    let last = &master[&90];
+    assert!(last["live_time"].as_f64().unwrap() > 0.5, "{last}");
+    let heads: Vec<f64> = master
+        .values()
+        .map(|v| v["head"][0].as_f64().unwrap())
+        .collect();
+    let spread = heads.iter().copied().fold(f64::MIN, f64::max)
+        - heads.iter().copied().fold(f64::MAX, f64::min);
+    assert!(spread > 0.01, "the tracked head did not move: {spread} m");
+    // The master says who joined and who left.
+    for w in walls {
+        assert!(
+            stderr.contains(&format!("render node {w}-")),
+            "{w} never joined: {stderr}"
+        );
+    }
+    assert!(
+        stderr.contains(" left"),
+        "the killed node's leaving was not seen: {stderr}"
+    );
+
+    let mut latencies = Vec::new();
+    let mut shown: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
+    for w in walls {
+        let frames = read_log(&log(w));
+        assert!(!frames.is_empty(), "node {w} showed nothing");
+        for (seq, f) in &frames {
+            let m = master
+                .get(seq)
+                .unwrap_or_else(|| panic!("{w}: frame {seq} not the master's"));
+            assert_eq!(
+                f["view_time"], m["view_time"],
+                "{w}: frame {seq}: board time"
+            );
+            assert_eq!(f["head"], m["head"], "{w}: frame {seq}: head");
+            let d = vertex_difference(f, m, "mono")
+                .unwrap_or_else(|| panic!("{w}: frame {seq}: other vertices"));
+            assert!(d <= 1e-12, "{w}: frame {seq}: vertices differ by {d:e}");
+            if let (Some(s), Some(t)) = (f["sample_ns"].as_u64(), f["shown_ns"].as_u64()) {
+                latencies.push(t.saturating_sub(s) as f64 * 1e-6);
+            }
+            shown
+                .entry(*seq)
+                .or_default()
+                .push(f["shown_ns"].as_u64().unwrap() as f64 * 1e-6);
+        }
+        let first = *frames.keys().next().unwrap();
+        let last = *frames.keys().last().unwrap();
+        match w {
+            // Killed at the master's 45th frame.
+            "left" => assert!(last < 80, "left: showed frame {last} after it was killed"),
+            // Joined after the master's 25th frame, from a snapshot, and
+            // then showed every frame to the end.
+            "floor" => {
+                assert!(first > 20, "floor: joined at frame {first}");
+                assert_eq!(last, 90, "floor: stopped at {last}");
+                assert_eq!(
+                    frames.len() as u64,
+                    last - first + 1,
+                    "floor: a frame missed"
+                );
+            }
+            // The others showed every frame after their first, to the end,
+            // across the kill and the late join.
+            _ => {
+                assert!(first < 10, "{w}: started at frame {first}");
+                assert_eq!(last, 90, "{w}: stopped at {last}");
+                assert_eq!(frames.len() as u64, last - first + 1, "{w}: a frame missed");
+            }
+        }
+    }
+    // The figures (BENCHMARKS.md): tracker sample → shown on a wall, and
+    // the skew between walls showing the same frame.
+    let mut skews: Vec<f64> = shown
+        .values()
+        .filter(|t| t.len() >= 2)
+        .map(|t| {
+            t.iter().copied().fold(f64::MIN, f64::max) - t.iter().copied().fold(f64::MAX, f64::min)
+        })
+        .collect();
+    if !latencies.is_empty() && !skews.is_empty() {
+        let (l50, l99) = (
+            percentile(&mut latencies, 0.5),
+            percentile(&mut latencies, 0.99),
+        );
+        let (s50, s99) = (percentile(&mut skews, 0.5), percentile(&mut skews, 0.99));
+        eprintln!(
+            "cluster, 4 nodes on loopback: tracker sample -> shown p50 {l50:.2} ms, p99 {l99:.2} ms; \
+             skew between walls p50 {s50:.3} ms, p99 {s99:.3} ms ({} frames)",
+            skews.len()
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
