@@ -15,6 +15,10 @@ use std::time::{Duration, Instant};
 
 use common::{play_under_xvfb, repo};
 
+/// One cluster test at a time: each starts its nodes before its master,
+/// whose Xvfb waits for the other test's.
+static ONE_CLUSTER: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// A child process killed on drop.
 struct Proc(Option<Child>);
 
@@ -120,6 +124,7 @@ fn percentile(v: &mut [f64], p: f64) -> f64 {
 
 #[test]
 fn four_render_nodes_draw_the_masters_frames_exactly() {
+    let _one = ONE_CLUSTER.lock().unwrap_or_else(|e| e.into_inner());
     let dir = std::env::temp_dir().join(format!("lightcone-cluster-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let endpoint = format!("tcp/127.0.0.1:{}", free_port());
@@ -292,6 +297,85 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
              skew between walls p50 {s50:.3} ms, p99 {s99:.3} ms ({} frames)",
             skews.len()
         );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A render node with a window (`lightcone wall` without `--headless`),
+/// on an Xvfb screen of its own beside the master's: it draws its wall
+/// alone in the window, from the master's frames, which it also logs (the
+/// same vertices as the master's to 1e-12).
+#[test]
+fn a_render_node_window_draws_its_wall_under_xvfb() {
+    let _cluster = ONE_CLUSTER.lock().unwrap_or_else(|e| e.into_inner());
+    let _one = common::XVFB.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = std::env::temp_dir().join(format!("lightcone-cluster-win-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let master_log = dir.join("master.jsonl");
+    let node_log = dir.join("front.jsonl");
+    let shot = dir.join("front.png");
+    let mut master = Proc(Some(
+        Command::new("xvfb-run")
+            .args(["-a", "-s", "-screen 0 1280x720x24"])
+            .arg(env!("CARGO_BIN_EXE_lightcone"))
+            .args([
+                "play",
+                "tests/lessons/cluster_stroke.py",
+                "--cave",
+                "assets/cave.toml",
+            ])
+            .args(["--serve", &endpoint, "--frames", "150", "--frame-log"])
+            .arg(&master_log)
+            .arg("--screenshot")
+            .arg(dir.join("master.png"))
+            .current_dir(repo())
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("xvfb-run runs"),
+    ));
+    // Its Xvfb is up once it logs frames: the node's `-a` then takes
+    // another display.
+    until_master_frame(&master_log, 3);
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 960x540x24"])
+        .arg(env!("CARGO_BIN_EXE_lightcone"))
+        .args([
+            "wall", "--join", &endpoint, "--wall", "front", "--frames", "30",
+        ])
+        .arg("--screenshot")
+        .arg(&shot)
+        .arg("--frame-log")
+        .arg(&node_log)
+        .current_dir(repo())
+        .output()
+        .expect("xvfb-run runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        master.finish(Duration::from_secs(60)),
+        "the master did not end cleanly"
+    );
+    let img = lightcone_render::headless::Image::load_png(&shot).expect("the node's screenshot");
+    // The front wall fills the window: no panels.
+    assert!(
+        common::cloth_pixels(&img) > 960 * 540 / 10,
+        "{} cloth pixels",
+        common::cloth_pixels(&img)
+    );
+    let master = read_log(&master_log);
+    let frames = read_log(&node_log);
+    assert_eq!(frames.len(), 30, "the node logged each frame it showed");
+    for (seq, f) in &frames {
+        let m = &master[seq];
+        assert_eq!(f["view_time"], m["view_time"], "frame {seq}: board time");
+        let d = vertex_difference(f, m, "mono").expect("the same vertices");
+        assert!(d <= 1e-12, "frame {seq}: vertices differ by {d:e}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -23,7 +23,7 @@ pub fn lightcone(args: &[&str]) -> Output {
 
 /// One Xvfb at a time: `xvfb-run -a` can hand two concurrent runs the same
 /// display number.
-static XVFB: Mutex<()> = Mutex::new(());
+pub static XVFB: Mutex<()> = Mutex::new(());
 
 /// Runs `lightcone ARGS --screenshot SHOT --frames FRAMES` under Xvfb
 /// (1280×720) and loads the screenshot (`None` if the game failed).

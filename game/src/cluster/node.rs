@@ -198,7 +198,14 @@ impl ClusterNode {
             else {
                 continue;
             };
-            let frame: Frame = message::decode(&sample.payload().to_bytes(), "frame")?;
+            let frame: Frame = match message::decode(&sample.payload().to_bytes(), "frame") {
+                Ok(f) => f,
+                Err(e) => {
+                    // Dropped; the gap it leaves brings a new snapshot.
+                    eprintln!("lightcone wall: {e}; dropped");
+                    continue;
+                }
+            };
             let fresh = self.synced == Some(frame.generation);
             if fresh && frame.seq <= self.seq {
                 // Already in the snapshot.

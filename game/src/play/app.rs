@@ -327,9 +327,10 @@ pub fn layout(panes: &[Pane], x0: f32, w: f32, h: f32) -> Vec<([f32; 4], Pane)> 
 impl App {
     fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
         let attributes = Window::default_attributes()
-            .with_title(match &self.lesson {
-                Some(l) => format!("Lightcone lesson: {}", l.path().display()),
-                None => format!("Lightcone: {}", self.state.scene.title),
+            .with_title(match (&self.lesson, &self.node) {
+                (_, Some(role)) => format!("Lightcone render node: {}", role.node.name),
+                (Some(l), None) => format!("Lightcone lesson: {}", l.path().display()),
+                (None, None) => format!("Lightcone: {}", self.state.scene.title),
             })
             .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
         let window = Arc::new(
@@ -629,7 +630,9 @@ impl App {
         }
         self.frame += 1;
         let shot = self.screenshot.is_some() && self.frame >= self.frames;
-        // The render nodes compute this frame while the window draws it.
+        // The render nodes compute this frame and show it together (the
+        // swap lock); the window draws it after, so that its own drawing
+        // (the console's, not a wall's) adds nothing to the walls' latency.
         if let Some(master) = &mut self.cluster {
             let head = self.head.as_ref().map_or(
                 (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
@@ -637,6 +640,7 @@ impl App {
             );
             let sample = self.head.as_ref().and_then(TrackedHead::newest_sample_ns);
             master.publish(&self.state, head, self.flight, sample);
+            master.swap();
         }
         if let Err(e) = self.draw(shot) {
             self.result = Err(e);
@@ -644,7 +648,6 @@ impl App {
             return;
         }
         if let Some(master) = &mut self.cluster {
-            master.swap();
             for line in master.take_news() {
                 eprintln!("{line}");
                 self.state.message = line;
@@ -1135,8 +1138,23 @@ impl App {
         let mut edges = (self.scene_left, self.scene_right);
         let mut actions = Vec::new();
         let lesson = self.lesson.as_ref();
+        // A render node shows only its walls, and one line of status.
+        let node = self.node_head.is_some();
         let output = ctx.run_ui(raw, |ui| {
             let ctx = ui.ctx().clone();
+            if node {
+                egui::Area::new(egui::Id::unique("node status"))
+                    .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(8.0, -8.0))
+                    .show(&ctx, |ui| {
+                        ui.label(
+                            egui::RichText::new(&state.message)
+                                .small()
+                                .color(egui::Color32::GRAY),
+                        );
+                    });
+                edges = (0.0, size.0 as f32);
+                return;
+            }
             edges = panels(
                 state,
                 &hud,
