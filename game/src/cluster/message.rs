@@ -290,3 +290,119 @@ pub fn apply(frame: &Frame, game: &mut GameState) -> Result<(), String> {
     frame.view.apply(game);
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn game() -> GameState {
+        let mut scene = Scene::empty(glam::DVec2::new(2.84, 1.42), None).unwrap();
+        for (k, x) in [0.5, 1.5].into_iter().enumerate() {
+            scene
+                .add_puck(lightcone_engine::scene::PuckSpec {
+                    name: format!("p{k}"),
+                    position: glam::DVec2::new(x, 0.7),
+                    u: ProperVelocity::ZERO,
+                    radius: 0.0305,
+                    height: 0.02,
+                    mass: 0.21,
+                    color: lightcone_engine::scene::Color::default_for(k),
+                })
+                .unwrap();
+        }
+        GameState::new(scene)
+    }
+
+    fn frame(seq: u64, master: &GameState, sent: &mut Sent) -> Frame {
+        Frame {
+            seq,
+            generation: master.generation,
+            view: ViewState::of(master, (DVec3::ONE, DQuat::IDENTITY), DVec3::ZERO),
+            changes: sent.changes(master),
+            sample_ns: None,
+            sent_ns: 0,
+        }
+    }
+
+    #[test]
+    fn only_what_changed_is_sent_and_the_copy_is_exact() {
+        let mut master = game();
+        let mut sent = Sent::default();
+        // The first frame sends every worldline whole.
+        let first = frame(1, &master, &mut sent);
+        assert!(
+            first
+                .changes
+                .iter()
+                .all(|c| matches!(c, Change::Replace { .. }))
+        );
+        let snap = snapshot(&master, 1, "", first.view.clone());
+        let mut copy = game_of(&snap).unwrap();
+        // Nothing changed: nothing sent.
+        assert!(frame(2, &master, &mut sent).changes.is_empty());
+        // A stroke: one puck's new segment, appended.
+        master.step(0.2);
+        assert!(frame(3, &master, &mut sent).changes.is_empty());
+        master
+            .physics_mut()
+            .apply_impulse(0, 0.2, DVec3::X)
+            .unwrap();
+        master.step(0.3);
+        let f = frame(4, &master, &mut sent);
+        assert!(
+            matches!(&f.changes[..], [Change::Append { puck: 0, segments }] if segments.len() == 1),
+            "{:?}",
+            f.changes
+        );
+        // Through the wire and into the copy (frame 3 had no change): the
+        // same bits.
+        let f: Frame = decode(&encode(&f), "frame").unwrap();
+        apply(&f, &mut copy).unwrap();
+        for i in 0..2 {
+            assert_eq!(copy.physics().worldline(i), master.physics().worldline(i));
+        }
+        assert_eq!(copy.live_time.to_bits(), master.live_time.to_bits());
+        // A new game is sent whole again.
+        master.restart();
+        assert!(
+            frame(5, &master, &mut sent)
+                .changes
+                .iter()
+                .all(|c| matches!(c, Change::Replace { .. }))
+        );
+    }
+
+    #[test]
+    fn a_change_that_does_not_fit_is_refused_with_the_frame_and_puck() {
+        let master = game();
+        let mut sent = Sent::default();
+        let mut f = frame(7, &master, &mut sent);
+        let snap = snapshot(&master, 6, "", f.view.clone());
+        let mut copy = game_of(&snap).unwrap();
+        f.changes = vec![Change::Append {
+            puck: 5,
+            segments: Vec::new(),
+        }];
+        let e = apply(&f, &mut copy).unwrap_err();
+        assert!(e.contains("frame 7") && e.contains("puck 5"), "{e}");
+        // A segment before the last one.
+        let old = master.physics().worldline(0).segments()[0];
+        f.changes = vec![Change::Append {
+            puck: 0,
+            segments: vec![old],
+        }];
+        let e = apply(&f, &mut copy).unwrap_err();
+        assert!(e.contains("frame 7") && e.contains("puck 0"), "{e}");
+        // Garbage on the wire.
+        let e = decode::<Frame>(&[0xff; 9], "frame").unwrap_err();
+        assert!(e.contains("malformed frame (9 bytes)"), "{e}");
+        // A scene whose pucks do not match the worldlines.
+        let mut bad = snap.clone();
+        bad.worldlines.pop();
+        let Err(e) = game_of(&bad) else {
+            panic!("a snapshot missing a worldline was taken")
+        };
+        assert!(e.contains("2 pucks but 1 worldlines"), "{e}");
+    }
+}
