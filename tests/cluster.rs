@@ -287,14 +287,18 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
         })
         .collect();
     if !latencies.is_empty() && !skews.is_empty() {
-        let (l50, l99) = (
+        let slow = latencies.iter().filter(|&&l| l > 100.0).count();
+        let (l50, l90, l99) = (
             percentile(&mut latencies, 0.5),
+            percentile(&mut latencies, 0.9),
             percentile(&mut latencies, 0.99),
         );
         let (s50, s99) = (percentile(&mut skews, 0.5), percentile(&mut skews, 0.99));
         eprintln!(
-            "cluster, 4 nodes on loopback: tracker sample -> shown p50 {l50:.2} ms, p99 {l99:.2} ms; \
-             skew between walls p50 {s50:.3} ms, p99 {s99:.3} ms ({} frames)",
+            "cluster, 4 nodes on loopback: tracker sample -> shown p50 {l50:.2} ms, p90 {l90:.2} ms, \
+             p99 {l99:.2} ms, {slow} of {} over 100 ms; skew between walls p50 {s50:.3} ms, \
+             p99 {s99:.3} ms ({} frames)",
+            latencies.len(),
             skews.len()
         );
     }

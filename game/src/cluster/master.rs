@@ -29,6 +29,9 @@ pub struct ClusterMaster {
     snapshots: Queryable<FifoChannelHandler<Query>>,
     nodes: Subscriber<FifoChannelHandler<Sample>>,
     live: BTreeSet<String>,
+    /// The live nodes that have answered a frame: those the swap lock
+    /// waits for (a node that just joined is taking its snapshot).
+    locked: BTreeSet<String>,
     ready_now: BTreeSet<String>,
     sent: Sent,
     seq: u64,
@@ -88,6 +91,7 @@ impl ClusterMaster {
             snapshots,
             nodes,
             live: BTreeSet::new(),
+            locked: BTreeSet::new(),
             ready_now: BTreeSet::new(),
             sent: Sent::default(),
             seq: 0,
@@ -134,7 +138,8 @@ impl ClusterMaster {
         }
     }
 
-    /// The swap lock: waits until every live node is ready to show the
+    /// The swap lock: waits until every live node in the lock (every one
+    /// that has answered a frame since it joined) is ready to show the
     /// frame just published (at most [`BARRIER`]), then lets them show it.
     pub fn swap(&mut self) {
         if self.seq == 0 {
@@ -144,14 +149,9 @@ impl ClusterMaster {
         loop {
             self.watch_nodes();
             while let Ok(Some(sample)) = self.ready.try_recv() {
-                if let Ok(r) =
-                    message::decode::<Ready>(&sample.payload().to_bytes(), "ready answer")
-                    && r.seq == self.seq
-                {
-                    self.ready_now.insert(r.node);
-                }
+                self.take_ready(&sample);
             }
-            if self.live.is_subset(&self.ready_now) {
+            if self.locked.is_subset(&self.ready_now) {
                 break;
             }
             let left = BARRIER.saturating_sub(start.elapsed());
@@ -164,16 +164,27 @@ impl ClusterMaster {
             if let Ok(Some(sample)) = self
                 .ready
                 .recv_timeout(left.min(std::time::Duration::from_millis(1)))
-                && let Ok(r) =
-                    message::decode::<Ready>(&sample.payload().to_bytes(), "ready answer")
-                && r.seq == self.seq
             {
-                self.ready_now.insert(r.node);
+                self.take_ready(&sample);
             }
         }
         if let Err(e) = self.swaps.put(message::encode(&self.seq)).wait() {
             self.news
                 .push(format!("cluster: swap {} not sent: {e}", self.seq));
+        }
+    }
+
+    /// Takes one ready answer: the node is ready for this frame, and from
+    /// now on in the swap lock.
+    fn take_ready(&mut self, sample: &Sample) {
+        let Ok(r) = message::decode::<Ready>(&sample.payload().to_bytes(), "ready answer") else {
+            return;
+        };
+        if self.live.contains(&r.node) {
+            self.locked.insert(r.node.clone());
+        }
+        if r.seq == self.seq {
+            self.ready_now.insert(r.node);
         }
     }
 
@@ -195,6 +206,7 @@ impl ClusterMaster {
                     }
                 }
                 SampleKind::Delete => {
+                    self.locked.remove(&name);
                     if self.live.remove(&name) {
                         self.news.push(format!("cluster: render node {name} left"));
                     }
