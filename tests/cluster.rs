@@ -343,6 +343,25 @@ fn a_render_node_window_draws_its_wall_under_xvfb() {
     // Its Xvfb is up once it logs frames: the node's `-a` then takes
     // another display.
     until_master_frame(&master_log, 3);
+    // A wall the master's CAVE does not have is refused, naming those it has.
+    let out = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args([
+            "wall",
+            "--join",
+            &endpoint,
+            "--wall",
+            "ceiling",
+            "--headless",
+        ])
+        .args(["--silence", "10"])
+        .output()
+        .expect("lightcone wall runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("has no wall \"ceiling\" (its walls: front, left, right, floor)"),
+        "{stderr}"
+    );
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 960x540x24"])
         .arg(env!("CARGO_BIN_EXE_lightcone"))
@@ -382,4 +401,76 @@ fn a_render_node_window_draws_its_wall_under_xvfb() {
         assert!(d <= 1e-12, "frame {seq}: vertices differ by {d:e}");
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Bad cluster arguments: each refused with a message naming it, none
+/// waits for ever.
+#[test]
+fn bad_cluster_arguments_are_refused() {
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+            .args(args)
+            .current_dir(repo())
+            .output()
+            .expect("lightcone runs");
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    // Not a TCP endpoint.
+    let (code, err) = run(&["wall", "--join", "udp/127.0.0.1:7447", "--wall", "front"]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("\"udp/127.0.0.1:7447\": give a Zenoh TCP endpoint"),
+        "{err}"
+    );
+    // No master there: refused after --silence.
+    let port = free_port();
+    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let start = Instant::now();
+    let (code, err) = run(&[
+        "wall",
+        "--join",
+        &endpoint,
+        "--wall",
+        "front",
+        "--headless",
+        "--silence",
+        "1",
+    ]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains(&format!("no cluster master at {endpoint}")),
+        "{err}"
+    );
+    assert!(start.elapsed() < Duration::from_secs(20));
+    // --serve without a CAVE, --silence out of range: usage errors.
+    let (code, err) = run(&["play", "--serve", "tcp/127.0.0.1:7447"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("--cave"), "{err}");
+    let (code, err) = run(&[
+        "wall",
+        "--join",
+        &endpoint,
+        "--wall",
+        "front",
+        "--silence",
+        "nan",
+    ]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains("--silence NaN"), "{err}");
+    // A master whose endpoint cannot be listened on.
+    let (code, err) = run(&[
+        "play",
+        "--cave",
+        "assets/cave.toml",
+        "--serve",
+        "tcp/not-an-address:1",
+    ]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("cannot serve the cluster on tcp/not-an-address:1"),
+        "{err}"
+    );
 }
