@@ -127,7 +127,15 @@ pub(crate) fn child_process(memory_mb: u64) -> Result<std::fs::File, String> {
 /// own process group, standard input and output piped, standard error
 /// inherited.
 pub(crate) fn spawn(exe: &Path, args: &[std::ffi::OsString]) -> Result<Child, String> {
-    Command::new(exe)
+    let mut command = Command::new(exe);
+    // Under the address-space limit, glibc's malloc arenas (64 MiB of
+    // address space each, one per thread that allocates, up to 8 per core)
+    // would take it all: six of them fill 384 MiB, and the lesson could
+    // not start a thread. Two are enough for a lesson.
+    if std::env::var_os("MALLOC_ARENA_MAX").is_none() {
+        command.env("MALLOC_ARENA_MAX", "2");
+    }
+    command
         .args(args)
         // For the headless child, a pipe nobody writes to: `input()`
         // waits, as in a terminal. The window's child reads its calls
