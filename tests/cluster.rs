@@ -205,9 +205,27 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
         (1..=90).collect::<Vec<_>>()
     );
     // The stroke and the tracker really changed the picture: board time
-    // ran past the stroke, and the head moved.
+    // ran past the stroke, the white puck was seen to close on the red one
+    // (at least 20 cm nearer at some frame: they collide, and the red one
+    // runs off), and the head moved.
     let last = &master[&90];
     assert!(last["live_time"].as_f64().unwrap() > 0.5, "{last}");
+    let gap = |f: &serde_json::Value| {
+        let c = &f["centres"]["mono"];
+        let p = |k: usize| -> Vec<f64> { (0..3).map(|i| c[k][i].as_f64().unwrap()).collect() };
+        let (a, b) = (p(0), p(1));
+        a.iter()
+            .zip(&b)
+            .map(|(x, y)| (x - y) * (x - y))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let before = gap(&master[&1]);
+    let nearest = master.values().map(gap).fold(f64::MAX, f64::min);
+    assert!(
+        nearest < before - 0.2,
+        "seen gap {before} m at first, never under {nearest} m"
+    );
     let heads: Vec<f64> = master
         .values()
         .map(|v| v["head"][0].as_f64().unwrap())
@@ -241,6 +259,19 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
                 "{w}: frame {seq}: board time"
             );
             assert_eq!(f["head"], m["head"], "{w}: frame {seq}: head");
+            // The node's wall's matrix, from its own CAVE (the master's
+            // file, reduced to its wall): the master's for that wall.
+            assert_eq!(
+                f["walls"]
+                    .as_object()
+                    .map(|o| o.keys().cloned().collect::<Vec<_>>()),
+                Some(vec![w.to_owned()]),
+                "{w}: frame {seq}: the node's walls"
+            );
+            assert_eq!(
+                f["walls"][w], m["walls"][w],
+                "{w}: frame {seq}: wall matrix"
+            );
             let d = vertex_difference(f, m, "mono")
                 .unwrap_or_else(|| panic!("{w}: frame {seq}: other vertices"));
             assert!(d <= 1e-12, "{w}: frame {seq}: vertices differ by {d:e}");

@@ -22,6 +22,10 @@ pub enum WorldlineError {
     /// Time or velocity not finite.
     #[error("time or velocity is not a finite number")]
     NotFinite,
+    /// A worldline or segment received from elsewhere (a CAVE render
+    /// node's copy) that no worldline of this engine could be.
+    #[error("not a worldline: {0}")]
+    Malformed(&'static str),
 }
 
 /// One piece of a worldline, of one of three kinds, all along a straight
@@ -97,6 +101,30 @@ impl Segment {
             deceleration: 0.0,
             c,
         }
+    }
+
+    /// Whether this segment is one the engine could have made: finite, with
+    /// the cached values its defining ones give (a copy received from
+    /// elsewhere is checked so before use).
+    pub fn is_consistent(&self) -> bool {
+        let finite = self.start.t.is_finite()
+            && self.start.position.is_finite()
+            && self.u.is_finite()
+            && self.proper_time.is_finite()
+            && self.orientation.is_finite()
+            && self.c.is_finite()
+            && self.c > 0.0
+            && self.deceleration.is_finite()
+            && self.deceleration >= 0.0;
+        finite
+            && Self::braking(
+                self.start,
+                self.u,
+                self.proper_time,
+                self.orientation,
+                self.c,
+                self.deceleration,
+            ) == *self
     }
 
     /// A segment that brakes with proper deceleration `deceleration` (m/s²,
@@ -572,11 +600,48 @@ impl Worldline {
         if !(t.is_finite() && segment.start.position.is_finite() && segment.u.is_finite()) {
             return Err(WorldlineError::NotFinite);
         }
+        if !segment.is_consistent() || segment.c != self.c {
+            return Err(WorldlineError::Malformed(
+                "a segment whose values do not agree",
+            ));
+        }
         let last = self.last().start.t;
         if t <= last {
             return Err(WorldlineError::BeforeLastSegment { at: t, last });
         }
         self.segments.push(segment);
+        Ok(())
+    }
+
+    /// Checks a worldline received from elsewhere (a CAVE render node's
+    /// copy): at least one segment, each consistent
+    /// ([`Segment::is_consistent`]) and of the worldline's `c`, their
+    /// starts increasing.
+    pub fn check(&self) -> Result<(), WorldlineError> {
+        if self.segments.is_empty() {
+            return Err(WorldlineError::Malformed("no segment"));
+        }
+        if !(self.c.is_finite() && self.c > 0.0 && self.deceleration.is_finite()) {
+            return Err(WorldlineError::Malformed(
+                "a speed of light or deceleration out of range",
+            ));
+        }
+        if !self
+            .segments
+            .iter()
+            .all(|s| s.is_consistent() && s.c == self.c)
+        {
+            return Err(WorldlineError::Malformed(
+                "a segment whose values do not agree",
+            ));
+        }
+        if !self
+            .segments
+            .windows(2)
+            .all(|w| w[0].start.t < w[1].start.t)
+        {
+            return Err(WorldlineError::Malformed("segments out of order"));
+        }
         Ok(())
     }
 
@@ -591,6 +656,39 @@ impl Worldline {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_received_worldline_or_segment_that_could_not_be_is_refused() {
+        let mut w = Worldline::new(Event::new(0.0, DVec3::ZERO), ProperVelocity::ZERO, 1.0);
+        w.push(1.0, ProperVelocity(DVec3::new(0.5, 0.0, 0.0)))
+            .unwrap();
+        assert_eq!(w.check(), Ok(()));
+        let mut copy = w.clone();
+        copy.truncate_after(0.5);
+        // A segment with a cached value that its velocity does not give.
+        let mut json = serde_json::to_value(w.last()).unwrap();
+        json["gamma"] = serde_json::json!(3.0);
+        let forged: Segment = serde_json::from_value(json).unwrap();
+        assert!(!forged.is_consistent());
+        assert!(matches!(
+            copy.append(forged),
+            Err(WorldlineError::Malformed(_))
+        ));
+        assert_eq!(copy.append(*w.last()), Ok(()));
+        assert_eq!(copy, w);
+        // A worldline with no segment, or with segments out of order.
+        let mut json = serde_json::to_value(&w).unwrap();
+        let segments = json["segments"].clone();
+        json["segments"] = serde_json::json!([]);
+        let empty: Worldline = serde_json::from_value(json.clone()).unwrap();
+        assert_eq!(empty.check(), Err(WorldlineError::Malformed("no segment")));
+        json["segments"] = serde_json::json!([segments[1], segments[0]]);
+        let swapped: Worldline = serde_json::from_value(json).unwrap();
+        assert_eq!(
+            swapped.check(),
+            Err(WorldlineError::Malformed("segments out of order"))
+        );
+    }
 
     fn line() -> Worldline {
         // c = 2 m/s, β = 0.6 along x: v = 1.2 m/s, γ = 1.25.

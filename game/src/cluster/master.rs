@@ -53,12 +53,12 @@ impl ClusterMaster {
         let err = |what: &str, e: zenoh::Error| format!("cluster on {endpoint}: {what}: {e}");
         let frames = session
             .declare_publisher(FRAME_KEY)
-            .congestion_control(CongestionControl::Block)
+            .congestion_control(CongestionControl::Drop)
             .wait()
             .map_err(|e| err("frames", e))?;
         let swaps = session
             .declare_publisher(SWAP_KEY)
-            .congestion_control(CongestionControl::Block)
+            .congestion_control(CongestionControl::Drop)
             .wait()
             .map_err(|e| err("swaps", e))?;
         let ready = session
@@ -129,25 +129,42 @@ impl ClusterMaster {
             self.news
                 .push(format!("cluster: frame {} not sent: {e}", self.seq));
         }
-        self.view = Some(view.clone());
+        self.view = Some(view);
+        self.answer_snapshots(game);
+    }
+
+    /// Answers the snapshots asked for since the last call with the state
+    /// after the frame just published (built once for all of them).
+    fn answer_snapshots(&mut self, game: &GameState) {
+        let mut bytes = None;
         while let Ok(Some(query)) = self.snapshots.try_recv() {
-            let s = message::snapshot(game, self.seq, &self.cave_toml, view.clone());
-            if let Err(e) = query.reply(SNAPSHOT_KEY, message::encode(&s)).wait() {
+            let Some(view) = self.view.clone() else {
+                return;
+            };
+            let bytes = bytes.get_or_insert_with(|| {
+                message::encode(&message::snapshot(game, self.seq, &self.cave_toml, view))
+            });
+            if let Err(e) = query.reply(SNAPSHOT_KEY, bytes.clone()).wait() {
                 self.news.push(format!("cluster: a snapshot not sent: {e}"));
             }
         }
     }
 
     /// The swap lock: waits until every live node in the lock (every one
-    /// that has answered a frame since it joined) is ready to show the
-    /// frame just published (at most [`BARRIER`]), then lets them show it.
-    pub fn swap(&mut self) {
+    /// that keeps up: it answered this frame or the one before) is ready to show the frame
+    /// just published (at most [`BARRIER`]), then lets them show it. A node
+    /// that was not ready in time leaves the lock until it answers a frame
+    /// in time again: a stuck node costs one barrier, not one per frame.
+    /// Snapshots asked for meanwhile are answered (`game`: the game as
+    /// published), so a node taking one can still show this frame.
+    pub fn swap(&mut self, game: &GameState) {
         if self.seq == 0 {
             return;
         }
         let start = Instant::now();
         loop {
             self.watch_nodes();
+            self.answer_snapshots(game);
             while let Ok(Some(sample)) = self.ready.try_recv() {
                 self.take_ready(&sample);
             }
@@ -157,6 +174,14 @@ impl ClusterMaster {
             let left = BARRIER.saturating_sub(start.elapsed());
             if left.is_zero() {
                 self.late += 1;
+                let late: Vec<String> = self.locked.difference(&self.ready_now).cloned().collect();
+                for name in late {
+                    self.locked.remove(&name);
+                    self.news.push(format!(
+                        "cluster: render node {name} was not ready for frame {} in {BARRIER:?}; not waited for until it catches up",
+                        self.seq
+                    ));
+                }
                 break;
             }
             // Wake on the next answer (or a node leaving, checked above
@@ -174,15 +199,16 @@ impl ClusterMaster {
         }
     }
 
-    /// Takes one ready answer: the node is ready for this frame, and from
-    /// now on in the swap lock.
+    /// Takes one ready answer. A live node that answered this frame or the
+    /// one before keeps up: it is (again) in the swap lock.
     fn take_ready(&mut self, sample: &Sample) {
         let Ok(r) = message::decode::<Ready>(&sample.payload().to_bytes(), "ready answer") else {
             return;
         };
-        if self.live.contains(&r.node) {
-            self.locked.insert(r.node.clone());
+        if !self.live.contains(&r.node) || r.seq + 1 < self.seq || r.seq > self.seq {
+            return;
         }
+        self.locked.insert(r.node.clone());
         if r.seq == self.seq {
             self.ready_now.insert(r.node);
         }
@@ -215,7 +241,7 @@ impl ClusterMaster {
         }
     }
 
-    /// The live render nodes' names (`WALL-PID`), sorted.
+    /// The live render nodes' names (`WALLS-ID`), sorted.
     pub fn nodes(&self) -> Vec<String> {
         self.live.iter().cloned().collect()
     }

@@ -100,6 +100,25 @@ impl ViewState {
         game.follow = self.follow;
     }
 
+    /// Whether every number is finite (a state received from elsewhere is
+    /// checked before use).
+    pub fn is_finite(&self) -> bool {
+        [
+            self.live_time,
+            self.view_time,
+            self.eye_yaw,
+            self.eye_pitch,
+            self.zoom,
+        ]
+        .iter()
+        .all(|x| x.is_finite())
+            && self.eye_position.is_finite()
+            && self.eye_u.is_finite()
+            && self.head_position.is_finite()
+            && self.head_orientation.is_finite()
+            && self.flight.is_finite()
+    }
+
     /// The head, as [`crate::cave::stereo_views`] takes it.
     pub fn head(&self) -> (DVec3, DQuat) {
         (self.head_position, self.head_orientation)
@@ -166,7 +185,7 @@ pub struct Snapshot {
 /// `seq`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Ready {
-    /// The node's name (`wall-pid`).
+    /// The node's name (`WALLS-ID`).
     pub node: String,
     /// The frame.
     pub seq: u64,
@@ -247,6 +266,14 @@ pub fn snapshot(game: &GameState, seq: u64, cave_toml: &str, view: ViewState) ->
 pub fn game_of(snapshot: &Snapshot) -> Result<GameState, String> {
     let scene: Scene = serde_json::from_str(&snapshot.scene_json)
         .map_err(|e| format!("the master's scene does not read: {e}"))?;
+    check_scene(&scene)?;
+    if !snapshot.view.is_finite() {
+        return Err("the master's snapshot: a view state that is not finite".into());
+    }
+    for (i, w) in snapshot.worldlines.iter().enumerate() {
+        w.check()
+            .map_err(|e| format!("the master's snapshot: puck {i}: {e}"))?;
+    }
     if scene.pucks.len() != snapshot.worldlines.len() {
         return Err(format!(
             "the master's scene has {} pucks but {} worldlines",
@@ -264,10 +291,41 @@ pub fn game_of(snapshot: &Snapshot) -> Result<GameState, String> {
     Ok(game)
 }
 
+/// Checks the numbers of a scene received from the master that reach the
+/// engine (a scene file is checked field by field when read; this one comes
+/// as data): the error names the field.
+fn check_scene(scene: &Scene) -> Result<(), String> {
+    let bad = |what: String| Err(format!("the master's scene: {what} is out of range"));
+    if !(scene.c.is_finite() && scene.c > 0.0) {
+        return bad("c".into());
+    }
+    let size = scene.table.size;
+    if !(size.is_finite() && size.x > 0.0 && size.y > 0.0) {
+        return bad("the table's size".into());
+    }
+    for p in &scene.pucks {
+        let ok = p.position.is_finite()
+            && p.u.is_finite()
+            && [p.radius, p.height, p.mass]
+                .iter()
+                .all(|x| x.is_finite() && *x > 0.0);
+        if !ok {
+            return bad(format!("puck {:?}", p.name));
+        }
+    }
+    Ok(())
+}
+
 /// Applies `frame`'s changes and view state to a node's `game`. Fails on a
 /// change that does not fit (a puck that is not there, a segment before
 /// the last): the node then needs a new snapshot.
 pub fn apply(frame: &Frame, game: &mut GameState) -> Result<(), String> {
+    if !frame.view.is_finite() {
+        return Err(format!(
+            "frame {}: a view state that is not finite",
+            frame.seq
+        ));
+    }
     let n = game.physics().len();
     for change in &frame.changes {
         match change {
@@ -276,6 +334,9 @@ pub fn apply(frame: &Frame, game: &mut GameState) -> Result<(), String> {
                 .extend_worldline(*puck, segments)
                 .map_err(|e| format!("frame {}: puck {puck}: {e}", frame.seq))?,
             Change::Replace { puck, worldline } if *puck < n => {
+                worldline
+                    .check()
+                    .map_err(|e| format!("frame {}: puck {puck}: {e}", frame.seq))?;
                 game.physics_mut()
                     .replace_worldline(*puck, worldline.clone());
             }
@@ -404,5 +465,52 @@ mod tests {
             panic!("a snapshot missing a worldline was taken")
         };
         assert!(e.contains("2 pucks but 1 worldlines"), "{e}");
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
+
+        /// A node's copy, fed the frames (strokes on moving pucks that
+        /// collide, a restart that brings a snapshot), holds the master's
+        /// worldlines bit for bit at every frame.
+        #[test]
+        fn a_copy_follows_the_master_through_strokes_and_restarts(
+            strokes in proptest::collection::vec((0usize..2, -3.0f64..3.0, -3.0f64..3.0), 12),
+            stroke_every in 1usize..5,
+            restart_at in proptest::option::of(3usize..30),
+        ) {
+            let mut master = game();
+            master.physics_mut().apply_impulse(0, 0.0, DVec3::new(2.0, 0.05, 0.0)).unwrap();
+            let mut sent = Sent::default();
+            let mut copy: Option<GameState> = None;
+            for k in 1..=40usize {
+                master.step(0.05);
+                if k % stroke_every == 0 {
+                    let (i, x, y) = strokes[k % strokes.len()];
+                    let t = master.live_time;
+                    master.physics_mut().apply_impulse(i, t, DVec3::new(x, y, 0.0)).unwrap();
+                }
+                if restart_at == Some(k) {
+                    master.restart();
+                }
+                let f = frame(k as u64, &master, &mut sent);
+                let f: Frame = decode(&encode(&f), "frame").unwrap();
+                match &mut copy {
+                    Some(c) if c.generation == f.generation => apply(&f, c).unwrap(),
+                    // First frame, or a new game: the node takes a snapshot.
+                    _ => {
+                        let snap = snapshot(&master, f.seq, "", f.view.clone());
+                        let snap: Snapshot = decode(&encode(&snap), "snapshot").unwrap();
+                        copy = Some(game_of(&snap).unwrap());
+                    }
+                }
+                let c = copy.as_ref().unwrap();
+                for i in 0..2 {
+                    let (a, b) = (master.physics().worldline(i), c.physics().worldline(i));
+                    proptest::prop_assert_eq!(a, b, "frame {}, puck {}", k, i);
+                }
+                proptest::prop_assert_eq!(c.view_time.to_bits(), master.view_time.to_bits());
+            }
+        }
     }
 }

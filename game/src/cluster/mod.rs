@@ -32,7 +32,7 @@ pub const SWAP_KEY: &str = "lightcone/cluster/swap";
 pub const READY_KEY: &str = "lightcone/cluster/ready";
 /// Snapshots, asked by a node, answered by the master.
 pub const SNAPSHOT_KEY: &str = "lightcone/cluster/snapshot";
-/// The nodes' liveliness tokens: `lightcone/cluster/node/WALL-PID`.
+/// The nodes' liveliness tokens: `lightcone/cluster/node/WALLS-ID`.
 pub const NODE_KEY: &str = "lightcone/cluster/node";
 /// The master's liveliness token: the nodes stop when it goes.
 pub const MASTER_KEY: &str = "lightcone/cluster/master";

@@ -23,7 +23,8 @@ const SNAPSHOT_WAIT: Duration = Duration::from_secs(5);
 
 /// A render node joined to a master.
 pub struct ClusterNode {
-    /// `WALL-PID`: its liveliness token's and ready answers' name.
+    /// `WALLS-ID` (its walls, and the start of its Zenoh id): its liveliness
+    /// token's and ready answers' name.
     pub name: String,
     walls: Vec<String>,
     session: zenoh::Session,
@@ -101,7 +102,21 @@ impl ClusterNode {
             }
         };
         let err = |what: &str, e: zenoh::Error| format!("cluster at {endpoint}: {what}: {e}");
-        let name = format!("{}-{}", walls.join("+"), std::process::id());
+        // Unique across machines (a Zenoh id is random), and a single
+        // chunk of a key expression.
+        let zid = session.zid().to_string();
+        let walls_part: String = walls
+            .join("+")
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || "-_+".contains(c) {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let name = format!("{walls_part}-{}", &zid[..zid.len().min(8)]);
         let frames = session
             .declare_subscriber(FRAME_KEY)
             .wait()
@@ -146,7 +161,35 @@ impl ClusterNode {
     }
 
     /// Asks the master for a snapshot and starts the copy `game` from it.
-    fn resync(&mut self, game: &mut GameState) -> Result<(), String> {
+    /// `Ok(false)`: none to be had now (said on stderr; the next frame asks
+    /// again); an error: the master's CAVE has not this node's walls.
+    fn resync(&mut self, game: &mut GameState) -> Result<bool, String> {
+        let snapshot = match self.ask_snapshot() {
+            Ok(s) => s,
+            Err(e) => {
+                eprintln!("lightcone wall: {e}; asking again at the next frame");
+                return Ok(false);
+            }
+        };
+        let full = CaveConfig::from_toml_str(&snapshot.cave_toml)
+            .map_err(|e| format!("the master's CAVE file does not read: {e}"))?;
+        let cave = only_walls(&full, &self.walls)?;
+        match message::game_of(&snapshot) {
+            Ok(g) => *game = g,
+            Err(e) => {
+                eprintln!("lightcone wall: {e}; asking again at the next frame");
+                return Ok(false);
+            }
+        }
+        self.synced = Some(snapshot.generation);
+        self.cave = Some(cave);
+        self.seq = snapshot.seq;
+        self.snapshots += 1;
+        Ok(true)
+    }
+
+    /// One snapshot from the master.
+    fn ask_snapshot(&self) -> Result<Snapshot, String> {
         let replies = self
             .session
             .get(SNAPSHOT_KEY)
@@ -159,17 +202,7 @@ impl ClusterNode {
         let sample = reply
             .into_result()
             .map_err(|e| format!("the master refused a snapshot: {e:?}"))?;
-        let bytes = sample.payload().to_bytes();
-        let snapshot: Snapshot = message::decode(&bytes, "snapshot")?;
-        let full = CaveConfig::from_toml_str(&snapshot.cave_toml)
-            .map_err(|e| format!("the master's CAVE file does not read: {e}"))?;
-        let cave = only_walls(&full, &self.walls)?;
-        *game = message::game_of(&snapshot)?;
-        self.synced = Some(snapshot.generation);
-        self.cave = Some(cave);
-        self.seq = snapshot.seq;
-        self.snapshots += 1;
-        Ok(())
+        message::decode(&sample.payload().to_bytes(), "snapshot")
     }
 
     /// Waits at most `timeout` for the master's next frame and applies it
@@ -212,13 +245,17 @@ impl ClusterNode {
                 continue;
             }
             if !fresh || frame.seq != self.seq + 1 {
-                self.resync(game)?;
-                if frame.seq <= self.seq {
+                if !self.resync(game)? {
+                    self.synced = None;
                     continue;
                 }
-                if frame.seq != self.seq + 1 {
-                    // The snapshot is older than the frame: wait for the
-                    // frames between (they are queued).
+                if frame.seq == self.seq && self.synced == Some(frame.generation) {
+                    // The snapshot is the state after this very frame.
+                    return Ok(Some(frame));
+                }
+                if frame.seq != self.seq + 1 || self.synced != Some(frame.generation) {
+                    // Older than the snapshot (newer frames are queued),
+                    // or of another game.
                     continue;
                 }
             }
@@ -293,24 +330,36 @@ pub struct Headless {
     pub screenshot: Option<std::path::PathBuf>,
 }
 
-/// One line of a frame log: the frame number, board times, the tracker
-/// sample's, the sending's and the showing's Unix times (ns), the tracked
-/// head (tracker space, m), and every apparent vertex of
-/// each eye's view (`"mono"`, `"left"`, `"right"`), as `[x, y, z]` metres
-/// relative to the eye (the observer's frame), pucks in index order, then
-/// the table.
-#[allow(clippy::too_many_arguments)]
+/// When a frame's head was sampled, the frame sent and shown (Unix ns).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Stamps {
+    /// The newest tracker sample's publication, if any.
+    pub sample_ns: Option<u64>,
+    /// The master's sending (0 for the master's own log).
+    pub sent_ns: u64,
+    /// The showing (after the swap lock).
+    pub shown_ns: u64,
+}
+
+/// One line of a frame log: the frame number, the game's board times, the
+/// [`Stamps`], the tracked head (tracker space, m); for each eye's view
+/// (`"mono"`, `"left"`, `"right"`) every apparent vertex (`views`) and each
+/// puck's apparent centre (`centres`), as `[x, y, z]` metres relative to
+/// the eye (the observer's frame), pucks in index order, then the table;
+/// and for each wall of `cave` and each eye, the wall's view-projection
+/// matrix (`walls`: 16 numbers, column-major; absent for an eye behind
+/// the wall).
 pub fn frame_record(
     seq: u64,
-    view: &super::message::ViewState,
-    sample_ns: Option<u64>,
-    sent_ns: u64,
+    head: glam::DVec3,
+    stamps: Stamps,
     game: &GameState,
-    views: &[(Side, lightcone_engine::ecs::Entity)],
-    shown_ns: u64,
+    cave: &CaveConfig,
+    eyes: &[(Side, lightcone_engine::ecs::Entity, glam::DVec3)],
 ) -> serde_json::Value {
-    let mut eyes = serde_json::Map::new();
-    for &(side, v) in views {
+    let mut views = serde_json::Map::new();
+    let mut centres = serde_json::Map::new();
+    for &(side, v, _) in eyes {
         let vertices: Vec<[f64; 3]> = game
             .apparent(v)
             .map(|a| {
@@ -320,17 +369,35 @@ pub fn frame_record(
                     .collect()
             })
             .unwrap_or_default();
-        eyes.insert(side.name().to_owned(), serde_json::json!(vertices));
+        views.insert(side.name().to_owned(), serde_json::json!(vertices));
+        let c: Vec<[f64; 3]> = game
+            .centres(v)
+            .iter()
+            .map(|c| c.seen.position.to_array())
+            .collect();
+        centres.insert(side.name().to_owned(), serde_json::json!(c));
+    }
+    let mut walls = serde_json::Map::new();
+    for wall in &cave.walls {
+        let mut per_eye = serde_json::Map::new();
+        for &(side, _, tracker_eye) in eyes {
+            if let Some(m) = cave::wall_view_proj(&cave.tracker, wall, tracker_eye) {
+                per_eye.insert(side.name().to_owned(), serde_json::json!(m.to_cols_array()));
+            }
+        }
+        walls.insert(wall.name.clone(), serde_json::Value::Object(per_eye));
     }
     serde_json::json!({
         "seq": seq,
-        "view_time": view.view_time,
-        "live_time": view.live_time,
-        "sample_ns": sample_ns,
-        "sent_ns": sent_ns,
-        "shown_ns": shown_ns,
-        "head": view.head_position.to_array(),
-        "views": eyes,
+        "view_time": game.view_time,
+        "live_time": game.live_time,
+        "sample_ns": stamps.sample_ns,
+        "sent_ns": stamps.sent_ns,
+        "shown_ns": stamps.shown_ns,
+        "head": head.to_array(),
+        "views": views,
+        "centres": centres,
+        "walls": walls,
     })
 }
 
@@ -371,24 +438,28 @@ pub fn run_headless(node: &mut ClusterNode, options: &Headless) -> Result<u64, S
             &sides,
             frame.view.flight,
         );
-        let views: Vec<(Side, lightcone_engine::ecs::Entity)> = sides
+        let eyes: Vec<(Side, lightcone_engine::ecs::Entity, glam::DVec3)> = sides
             .iter()
             .zip(&views)
-            .map(|(&s, &(v, _))| (s, v))
+            .map(|(&s, &(v, tracker))| (s, v, tracker))
             .collect();
         node.ready(frame.seq);
         node.wait_swap(frame.seq, super::BARRIER * 4);
         let shown_ns = super::now_ns();
         shown += 1;
-        if let Some(log) = log.as_mut() {
+        if let (Some(log), Some(cave)) = (log.as_mut(), node.cave.as_ref()) {
+            let stamps = Stamps {
+                sample_ns: frame.sample_ns,
+                sent_ns: frame.sent_ns,
+                shown_ns,
+            };
             let line = frame_record(
                 frame.seq,
-                &frame.view,
-                frame.sample_ns,
-                frame.sent_ns,
+                frame.view.head_position,
+                stamps,
                 &game,
-                &views,
-                shown_ns,
+                cave,
+                &eyes,
             );
             writeln!(log, "{line}").map_err(|e| format!("frame log: {e}"))?;
         }

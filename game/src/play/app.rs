@@ -89,6 +89,7 @@ pub fn run_node(mut node: ClusterNode, options: &Headless) -> Result<u64, String
         pending: Some(first),
         frames: options.frames,
         silence: options.silence,
+        last_frame: Instant::now(),
         shown: 0,
     });
     event_loop
@@ -113,6 +114,8 @@ struct NodeRole {
     frames: u64,
     /// How long without a frame before the node stops.
     silence: std::time::Duration,
+    /// When the last frame came.
+    last_frame: Instant,
     shown: u64,
 }
 
@@ -180,6 +183,15 @@ struct Gfx {
     egui: egui::Context,
     egui_state: egui_winit::State,
     egui_renderer: egui_wgpu::Renderer,
+}
+
+impl Gfx {
+    /// The window's new size.
+    fn resize(&mut self, size: winit::dpi::PhysicalSize<u32>) {
+        self.config.width = size.width.max(1);
+        self.config.height = size.height.max(1);
+        self.surface.configure(&self.gpu.device, &self.config);
+    }
 }
 
 struct App {
@@ -640,7 +652,17 @@ impl App {
             );
             let sample = self.head.as_ref().and_then(TrackedHead::newest_sample_ns);
             master.publish(&self.state, head, self.flight, sample);
-            master.swap();
+            master.swap(&self.state);
+        }
+        // The frame log reads the views of the state just published: they
+        // are run before the panels (drawn next) can change it.
+        if self.frame_log.is_some() && self.cave.is_some() {
+            self.run_views(0.0, 0.0);
+            self.views_done = true;
+            if let Err(e) = self.log_frame() {
+                eprintln!("--frame-log: {e}; no longer logging");
+                self.frame_log = None;
+            }
         }
         if let Err(e) = self.draw(shot) {
             self.result = Err(e);
@@ -652,10 +674,6 @@ impl App {
                 eprintln!("{line}");
                 self.state.message = line;
             }
-        }
-        if let Err(e) = self.log_frame() {
-            eprintln!("--frame-log: {e}; no longer logging");
-            self.frame_log = None;
         }
         // Answer what the lesson asked while the frame was drawn, so its
         // hook can end before the next frame.
@@ -948,19 +966,28 @@ impl App {
     fn node_frame(&mut self, mut role: NodeRole, event_loop: &ActiveEventLoop) {
         let frame = match role.pending.take() {
             Some(f) => f,
-            None => match role.node.next_frame(&mut self.state, role.silence) {
+            // Waits in short slices, so the window stays responsive (it can
+            // be closed) while the master is silent.
+            None => match role
+                .node
+                .next_frame(&mut self.state, std::time::Duration::from_millis(50))
+            {
                 Ok(Some(f)) => f,
                 Ok(None) => {
+                    let silent = role.last_frame.elapsed() >= role.silence;
                     if role.node.master_gone {
                         eprintln!("lightcone wall: the master is gone; stopping");
-                    } else {
+                    } else if silent {
                         eprintln!(
                             "lightcone wall: no frame from the master in {:?}; stopping",
                             role.silence
                         );
                     }
+                    let stop = silent || role.node.master_gone;
                     self.node = Some(role);
-                    event_loop.exit();
+                    if stop {
+                        event_loop.exit();
+                    }
                     return;
                 }
                 Err(e) => {
@@ -976,6 +1003,7 @@ impl App {
         {
             self.cave = Some(c.clone());
         }
+        role.last_frame = Instant::now();
         self.flight = frame.view.flight;
         self.node_head = Some(frame.view.head());
         self.state.message = role.node.status_line();
@@ -996,18 +1024,20 @@ impl App {
             return;
         }
         role.shown += 1;
-        if let Some(log) = &mut self.frame_log {
+        if let (Some(log), Some(cave)) = (&mut self.frame_log, &self.cave) {
             use std::io::Write;
-            let views: Vec<(Side, lightcone_engine::ecs::Entity)> =
-                self.stereo.iter().map(|&(s, v, _)| (s, v)).collect();
+            let stamps = crate::cluster::node::Stamps {
+                sample_ns: frame.sample_ns,
+                sent_ns: frame.sent_ns,
+                shown_ns,
+            };
             let line = crate::cluster::node::frame_record(
                 frame.seq,
-                &frame.view,
-                frame.sample_ns,
-                frame.sent_ns,
+                frame.view.head_position,
+                stamps,
                 &self.state,
-                &views,
-                shown_ns,
+                cave,
+                &self.stereo,
             );
             if writeln!(log, "{line}").and_then(|()| log.flush()).is_err() {
                 eprintln!("--frame-log: cannot write; no longer logging");
@@ -1022,39 +1052,32 @@ impl App {
     }
 
     /// Writes this frame's CAVE eyes to the frame log (`--frame-log`), as a
-    /// render node logs them.
+    /// render node logs them (call after the frame's views were run).
     fn log_frame(&mut self) -> Result<(), String> {
         use std::io::Write;
-        let Some(log) = &mut self.frame_log else {
+        let (Some(log), Some(cave)) = (&mut self.frame_log, &self.cave) else {
             return Ok(());
         };
-        // What the frame was computed from (the panels drawn since may
-        // have changed the game for the next one).
-        let view = match self.cluster.as_ref().and_then(ClusterMaster::last_view) {
-            Some(v) => v.clone(),
-            None => crate::cluster::message::ViewState::of(
-                &self.state,
-                self.head.as_ref().map_or(
-                    (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
-                    TrackedHead::head,
-                ),
-                self.flight,
-            ),
-        };
+        let head = self.head.as_ref().map_or(
+            (cave::DEFAULT_HEAD, glam::DQuat::IDENTITY),
+            TrackedHead::head,
+        );
         let seq = self
             .cluster
             .as_ref()
             .map_or(u64::from(self.frame), ClusterMaster::seq);
-        let views: Vec<(Side, lightcone_engine::ecs::Entity)> =
-            self.stereo.iter().map(|&(s, v, _)| (s, v)).collect();
+        let stamps = crate::cluster::node::Stamps {
+            sample_ns: self.head.as_ref().and_then(TrackedHead::newest_sample_ns),
+            sent_ns: 0,
+            shown_ns: crate::cluster::now_ns(),
+        };
         let line = crate::cluster::node::frame_record(
             seq,
-            &view,
-            None,
-            0,
+            head.0,
+            stamps,
             &self.state,
-            &views,
-            crate::cluster::now_ns(),
+            cave,
+            &self.stereo,
         );
         writeln!(log, "{line}").map_err(|e| e.to_string())?;
         log.flush().map_err(|e| e.to_string())
@@ -1559,11 +1582,7 @@ impl ApplicationHandler for App {
             // A render node shows the master's game: it takes no input.
             match event {
                 WindowEvent::CloseRequested => event_loop.exit(),
-                WindowEvent::Resized(size) => {
-                    gfx.config.width = size.width.max(1);
-                    gfx.config.height = size.height.max(1);
-                    gfx.surface.configure(&gfx.gpu.device, &gfx.config);
-                }
+                WindowEvent::Resized(size) => gfx.resize(size),
                 WindowEvent::RedrawRequested => self.frame(event_loop),
                 _ => {}
             }
@@ -1572,11 +1591,7 @@ impl ApplicationHandler for App {
         let consumed = gfx.egui_state.on_window_event(&gfx.window, &event).consumed;
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
-            WindowEvent::Resized(size) => {
-                gfx.config.width = size.width.max(1);
-                gfx.config.height = size.height.max(1);
-                gfx.surface.configure(&gfx.gpu.device, &gfx.config);
-            }
+            WindowEvent::Resized(size) => gfx.resize(size),
             WindowEvent::RedrawRequested => self.frame(event_loop),
             WindowEvent::KeyboardInput { event, .. } if !consumed => self.keyboard(&event),
             WindowEvent::CursorMoved { position, .. } => {
