@@ -5,6 +5,8 @@ workspace's build (`cargo test --workspace`): each such crate, and all
 that depend on it, is compiled twice in `scripts/test.sh`. The aligning
 dependencies are at the end of py/Cargo.toml. Expected: only pyo3
 (`auto-initialize`, which the game turns on and the wheel must not).
+The same for `cargo install --path game` (tests/install.rs), whose
+aligning dependencies are in game/Cargo.toml: expected none.
 Exit status 1 if any other crate differs."""
 
 import subprocess
@@ -31,13 +33,20 @@ def features(*args):
     return found
 
 
-wheel = features("-p", "lightcone-py", "-e", "normal,build")
+def drift(alone, workspace):
+    return {
+        p: sorted(workspace[p] - f) + sorted("-" + x for x in f - workspace[p])
+        for p, f in alone.items()
+        if p in workspace and f != workspace[p]
+    }
+
+
 workspace = features("--workspace", "-e", "normal,build,dev")
-drift = {
-    p: sorted(workspace[p] - f) + sorted("-" + x for x in f - workspace[p])
-    for p, f in wheel.items()
-    if p in workspace and f != workspace[p]
-}
-for package, diff in sorted(drift.items()):
-    print(f"{package}: {' '.join(diff)}")
-sys.exit(0 if all(p.startswith("pyo3 ") for p in drift) else 1)
+wheel = drift(features("-p", "lightcone-py", "-e", "normal,build"), workspace)
+game = drift(features("-p", "lightcone", "-e", "normal,build"), workspace)
+for package, diff in sorted(wheel.items()):
+    print(f"wheel: {package}: {' '.join(diff)}")
+for package, diff in sorted(game.items()):
+    print(f"cargo install --path game: {package}: {' '.join(diff)}")
+ok = all(p.startswith("pyo3 ") for p in wheel) and not game
+sys.exit(0 if ok else 1)

@@ -476,7 +476,7 @@ fn bad_cluster_arguments_are_refused() {
         "{err}"
     );
     assert!(start.elapsed() < Duration::from_secs(20));
-    // --serve without a CAVE, --silence out of range: usage errors.
+    // --serve without a CAVE, --silence out of range: usage errors (2).
     let (code, err) = run(&["play", "--serve", "tcp/127.0.0.1:7447"]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--cave"), "{err}");
@@ -489,7 +489,7 @@ fn bad_cluster_arguments_are_refused() {
         "--silence",
         "nan",
     ]);
-    assert_eq!(code, Some(1), "{err}");
+    assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--silence NaN"), "{err}");
     // A master whose endpoint cannot be listened on.
     let (code, err) = run(&[

@@ -29,10 +29,10 @@ pub struct WallArgs {
 pub fn run(args: &WallArgs) -> ExitCode {
     if !(args.silence.is_finite() && args.silence > 0.0 && args.silence <= 3600.0) {
         eprintln!(
-            "--silence {}: give seconds, more than 0 and at most 3600",
+            "lightcone wall: --silence {}: give seconds, more than 0 and at most 3600",
             args.silence
         );
-        return ExitCode::FAILURE;
+        return ExitCode::from(2);
     }
     let mut joined = match ClusterNode::join(
         &args.join,
