@@ -22,22 +22,29 @@ def features(*args):
     if run.returncode != 0:
         sys.exit(f"feature_drift: cargo tree {' '.join(args)} failed:\n{run.stderr}")
     out = run.stdout
+    # A crate built both for the host (build scripts, proc-macros) and the
+    # target has a feature set for each: compare the sets, not their union.
     found = {}
     for line in out.splitlines():
         line = line.strip().replace(" (*)", "")
         if "|" in line:
             package, names = line.split("|", 1)
-            found.setdefault(package, set()).update(n for n in names.split(",") if n)
+            found.setdefault(package, set()).add(
+                frozenset(n for n in names.split(",") if n)
+            )
     if not found:
         sys.exit(f"feature_drift: cargo tree {' '.join(args)} listed no crates")
     return found
 
 
 def drift(alone, workspace):
+    def show(variants):
+        return " / ".join(sorted(",".join(sorted(v)) or "(none)" for v in variants))
+
     return {
-        p: sorted(workspace[p] - f) + sorted("-" + x for x in f - workspace[p])
+        p: [f"workspace {show(workspace[p])}", f"alone {show(f)}"]
         for p, f in alone.items()
-        if p in workspace and f != workspace[p]
+        if p in workspace and not f <= workspace[p]
     }
 
 
