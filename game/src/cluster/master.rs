@@ -33,6 +33,8 @@ pub struct ClusterMaster {
     /// waits for (a node that just joined is taking its snapshot).
     locked: BTreeSet<String>,
     ready_now: BTreeSet<String>,
+    /// Nodes said to be late, not yet ready in time again (said once).
+    said_late: BTreeSet<String>,
     sent: Sent,
     seq: u64,
     view: Option<ViewState>,
@@ -93,6 +95,7 @@ impl ClusterMaster {
             live: BTreeSet::new(),
             locked: BTreeSet::new(),
             ready_now: BTreeSet::new(),
+            said_late: BTreeSet::new(),
             sent: Sent::default(),
             seq: 0,
             view: None,
@@ -177,6 +180,9 @@ impl ClusterMaster {
                 let late: Vec<String> = self.locked.difference(&self.ready_now).cloned().collect();
                 for name in late {
                     self.locked.remove(&name);
+                    if !self.said_late.insert(name.clone()) {
+                        continue;
+                    }
                     self.news.push(format!(
                         "cluster: render node {name} was not ready for frame {} in {BARRIER:?}; not waited for until it catches up",
                         self.seq
@@ -210,6 +216,7 @@ impl ClusterMaster {
         }
         self.locked.insert(r.node.clone());
         if r.seq == self.seq {
+            self.said_late.remove(&r.node);
             self.ready_now.insert(r.node);
         }
     }
@@ -233,6 +240,7 @@ impl ClusterMaster {
                 }
                 SampleKind::Delete => {
                     self.locked.remove(&name);
+                    self.said_late.remove(&name);
                     if self.live.remove(&name) {
                         self.news.push(format!("cluster: render node {name} left"));
                     }
