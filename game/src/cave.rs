@@ -24,7 +24,7 @@ use std::time::Instant;
 use glam::{DMat3, DMat4, DQuat, DVec3, Mat4};
 use lightcone_engine::ecs::Entity;
 use lightcone_engine::spacetime::ProperVelocity;
-use lightcone_tracker::cave::{CaveConfig, TrackerToBoard, Wall};
+use lightcone_tracker::cave::{CaveConfig, OutputEyes, TrackerToBoard, Wall};
 use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus, Verdict};
 use lightcone_tracker::{TrackerSample, unix_now_ns};
 
@@ -312,6 +312,38 @@ impl Side {
             Side::Right => "right",
         }
     }
+}
+
+/// The eyes an output needs drawn, each with its part of the output
+/// (x, y, w, h as fractions of the output).
+pub fn eye_viewports(eyes: OutputEyes) -> Vec<(Side, [f32; 4])> {
+    match eyes {
+        OutputEyes::Mono => vec![(Side::Mono, [0.0, 0.0, 1.0, 1.0])],
+        OutputEyes::Left => vec![(Side::Left, [0.0, 0.0, 1.0, 1.0])],
+        OutputEyes::Right => vec![(Side::Right, [0.0, 0.0, 1.0, 1.0])],
+        OutputEyes::SideBySide => vec![
+            (Side::Left, [0.0, 0.0, 0.5, 1.0]),
+            (Side::Right, [0.5, 0.0, 0.5, 1.0]),
+        ],
+        OutputEyes::TopBottom => vec![
+            (Side::Left, [0.0, 0.0, 1.0, 0.5]),
+            (Side::Right, [0.0, 0.5, 1.0, 0.5]),
+        ],
+    }
+}
+
+/// The eyes every output of `cave` needs, each once, after `first` (the
+/// main window's).
+pub fn sides_needed(cave: &CaveConfig, first: Side) -> Vec<Side> {
+    let mut sides = vec![first];
+    for o in &cave.outputs {
+        for (side, _) in eye_viewports(o.eyes) {
+            if !sides.contains(&side) {
+                sides.push(side);
+            }
+        }
+    }
+    sides
 }
 
 /// Where one stereo eye of the head is: tracker space, and board frame

@@ -77,33 +77,7 @@ enum Command {
     /// A render node of a CAVE cluster: joins the master (`play --cave
     /// FILE --serve`) and draws the named walls of its CAVE, frame by frame
     /// with it.
-    Wall {
-        /// The master's Zenoh endpoint, e.g. tcp/192.168.1.10:7447.
-        #[arg(long)]
-        join: String,
-        /// A wall of the master's CAVE file to draw (repeatable).
-        #[arg(long = "wall", required = true)]
-        walls: Vec<String>,
-        /// Draw nothing: compute the walls' eyes, keep the swap lock and log
-        /// (tests, benchmarks, a node without a display).
-        #[arg(long)]
-        headless: bool,
-        /// Stop after this many frames (0: until the master is silent).
-        #[arg(long, default_value_t = 0)]
-        frames: u64,
-        /// Write each frame shown, one JSON line a frame (as `play
-        /// --frame-log`).
-        #[arg(long)]
-        frame_log: Option<PathBuf>,
-        /// Wait this many seconds for the master to be there, and stop after
-        /// this many without a frame from it.
-        #[arg(long, default_value_t = 10.0)]
-        silence: f64,
-        /// Save a screenshot of the node's windows (the main one, and one
-        /// per output as FILE.<output>.png) after --frames frames, then stop.
-        #[arg(long)]
-        screenshot: Option<PathBuf>,
-    },
+    Wall(commands::wall::WallArgs),
     /// The simulated head tracker: publish head motion (a path, or a
     /// recorded CSV track) with noise and faults on an iceoryx2 service.
     /// Options: --service NAME --path still|circle|walk|figure8 --csv FILE
@@ -481,23 +455,7 @@ fn main() -> ExitCode {
                 frame_log,
             },
         ),
-        Some(Command::Wall {
-            join,
-            walls,
-            headless,
-            frames,
-            frame_log,
-            silence,
-            screenshot,
-        }) => commands::wall::run(&commands::wall::WallArgs {
-            join,
-            walls,
-            headless,
-            frames,
-            frame_log,
-            silence,
-            screenshot,
-        }),
+        Some(Command::Wall(args)) => commands::wall::run(&args),
         Some(Command::Tracker { args }) => commands::tracker::run(args),
         Some(Command::TrackerBridge { args }) => lightcone::tracker_bridge::child_main(&args),
         Some(Command::Cave {

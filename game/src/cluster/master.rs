@@ -38,8 +38,6 @@ pub struct ClusterMaster {
     sent: Sent,
     seq: u64,
     view: Option<ViewState>,
-    /// Frames a live node was not ready for within [`BARRIER`].
-    late: u64,
     /// Lines for the player: nodes joining and leaving.
     news: Vec<String>,
 }
@@ -99,7 +97,6 @@ impl ClusterMaster {
             sent: Sent::default(),
             seq: 0,
             view: None,
-            late: 0,
             news: Vec::new(),
         })
     }
@@ -176,7 +173,6 @@ impl ClusterMaster {
             }
             let left = BARRIER.saturating_sub(start.elapsed());
             if left.is_zero() {
-                self.late += 1;
                 let late: Vec<String> = self.locked.difference(&self.ready_now).cloned().collect();
                 for name in late {
                     self.locked.remove(&name);
@@ -257,16 +253,6 @@ impl ClusterMaster {
     /// The last frame published.
     pub fn seq(&self) -> u64 {
         self.seq
-    }
-
-    /// The view state of the last frame published.
-    pub fn last_view(&self) -> Option<&ViewState> {
-        self.view.as_ref()
-    }
-
-    /// Frames some live node was not ready for in time.
-    pub fn late_frames(&self) -> u64 {
-        self.late
     }
 
     /// The lines to tell the player since the last call (nodes joined and

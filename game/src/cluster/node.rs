@@ -46,8 +46,6 @@ pub struct ClusterNode {
     pub endpoint: String,
     /// The last frame applied.
     seq: u64,
-    /// Snapshots taken (the first one, then one per gap or new game).
-    pub snapshots: u64,
 }
 
 /// `cave` with only the walls named `walls` (in that order) and the outputs
@@ -156,7 +154,6 @@ impl ClusterNode {
             cave: None,
             endpoint: endpoint.to_owned(),
             seq: 0,
-            snapshots: 0,
         })
     }
 
@@ -184,7 +181,6 @@ impl ClusterNode {
         self.synced = Some(snapshot.generation);
         self.cave = Some(cave);
         self.seq = snapshot.seq;
-        self.snapshots += 1;
         Ok(true)
     }
 
@@ -430,7 +426,7 @@ pub fn run_headless(node: &mut ClusterNode, options: &Headless) -> Result<u64, S
         let Some(cave) = node.cave.as_ref() else {
             continue;
         };
-        let sides = crate::play::outputs::sides_needed(cave, Side::Mono);
+        let sides = cave::sides_needed(cave, Side::Mono);
         let views = cave::stereo_views(
             &mut game,
             cave,

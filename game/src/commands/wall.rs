@@ -8,20 +8,32 @@ use std::time::Duration;
 use crate::cluster::node::{self, ClusterNode, Headless};
 
 /// The command line of `wall`.
+#[derive(clap::Args)]
 pub struct WallArgs {
-    /// The master's Zenoh endpoint.
+    /// The master's Zenoh endpoint, e.g. tcp/192.168.1.10:7447.
+    #[arg(long)]
     pub join: String,
-    /// The walls this node draws.
+    /// A wall of the master's CAVE file to draw (repeatable).
+    #[arg(long = "wall", required = true)]
     pub walls: Vec<String>,
-    /// Compute and log, draw nothing.
+    /// Draw nothing: compute the walls' eyes, keep the swap lock and log
+    /// (tests, benchmarks, a node without a display).
+    #[arg(long)]
     pub headless: bool,
-    /// Frames before stopping (0: until the master is silent).
+    /// Stop after this many frames (0: until the master is silent).
+    #[arg(long, default_value_t = 0)]
     pub frames: u64,
-    /// The frame log.
+    /// Write each frame shown, one JSON line a frame (as `play
+    /// --frame-log`).
+    #[arg(long)]
     pub frame_log: Option<PathBuf>,
-    /// Seconds without a frame before stopping.
+    /// Wait this many seconds for the master to be there, and stop after
+    /// this many without a frame from it.
+    #[arg(long, default_value_t = 10.0)]
     pub silence: f64,
-    /// Screenshot after `frames` frames (with a window).
+    /// Save a screenshot of the node's windows (the main one, and one
+    /// per output as FILE.<output>.png) after --frames frames, then stop.
+    #[arg(long)]
     pub screenshot: Option<PathBuf>,
 }
 

@@ -1105,7 +1105,7 @@ impl App {
                         TrackedHead::head,
                     )
                 });
-                let sides = outputs::sides_needed(c, self.cave_eye);
+                let sides = cave::sides_needed(c, self.cave_eye);
                 let views = cave::stereo_views(&mut self.state, c, head, &sides, self.flight);
                 self.stereo = sides
                     .into_iter()

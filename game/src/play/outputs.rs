@@ -16,11 +16,11 @@ use lightcone_render::frame::FrameVertex;
 use lightcone_render::gpu::Gpu;
 use lightcone_render::headless::BACKGROUND;
 use lightcone_render::pipeline::{Draw, Renderer};
-use lightcone_tracker::cave::{CaveConfig, Output, OutputEyes, Placement};
+use lightcone_tracker::cave::{CaveConfig, Output, Placement};
 use winit::event_loop::ActiveEventLoop;
 use winit::window::{Fullscreen, Window, WindowId};
 
-use crate::cave::{self, Side};
+use crate::cave::{self, Side, eye_viewports};
 use crate::model::GameState;
 
 /// A window showing one `[[output]]`.
@@ -31,38 +31,6 @@ pub struct OutputWindow {
     surface: wgpu::Surface<'static>,
     config: Option<wgpu::SurfaceConfiguration>,
     renderer: Option<Renderer>,
-}
-
-/// The eyes an output needs drawn, each with its part of the output
-/// (x, y, w, h as fractions of the output).
-pub fn eye_viewports(eyes: OutputEyes) -> Vec<(Side, [f32; 4])> {
-    match eyes {
-        OutputEyes::Mono => vec![(Side::Mono, [0.0, 0.0, 1.0, 1.0])],
-        OutputEyes::Left => vec![(Side::Left, [0.0, 0.0, 1.0, 1.0])],
-        OutputEyes::Right => vec![(Side::Right, [0.0, 0.0, 1.0, 1.0])],
-        OutputEyes::SideBySide => vec![
-            (Side::Left, [0.0, 0.0, 0.5, 1.0]),
-            (Side::Right, [0.5, 0.0, 0.5, 1.0]),
-        ],
-        OutputEyes::TopBottom => vec![
-            (Side::Left, [0.0, 0.0, 1.0, 0.5]),
-            (Side::Right, [0.0, 0.5, 1.0, 0.5]),
-        ],
-    }
-}
-
-/// The eyes every output of `cave` needs, each once, after `first` (the
-/// main window's).
-pub fn sides_needed(cave: &CaveConfig, first: Side) -> Vec<Side> {
-    let mut sides = vec![first];
-    for o in &cave.outputs {
-        for (side, _) in eye_viewports(o.eyes) {
-            if !sides.contains(&side) {
-                sides.push(side);
-            }
-        }
-    }
-    sides
 }
 
 /// Opens a window for every output of `cave` and a surface on it, with
@@ -298,6 +266,8 @@ pub fn shot_path(path: &Path, name: &str) -> PathBuf {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cave::sides_needed;
+    use lightcone_tracker::cave::OutputEyes;
 
     #[test]
     fn stereo_pairs_split_the_output_and_every_eye_is_drawn_once() {
