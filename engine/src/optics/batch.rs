@@ -63,6 +63,17 @@ impl Soa {
         z: [0.0; LANES],
     };
 
+    /// The largest length of the first `n` triples (a comparison, not
+    /// `f64::max`: the offsets are finite).
+    fn max_length(&self, n: usize) -> f64 {
+        let mut far = 0.0f64;
+        for i in 0..n.min(LANES) {
+            let l = self.x[i] * self.x[i] + self.y[i] * self.y[i] + self.z[i] * self.z[i];
+            far = if l > far { l } else { far };
+        }
+        far.sqrt()
+    }
+
     fn load(&mut self, points: &[DVec3]) {
         for (i, p) in points.iter().take(LANES).enumerate() {
             self.x[i] = p.x;
@@ -277,6 +288,7 @@ impl LaneWork for Batch<'_, '_> {
             }
         }
         let (o, v, since, a2) = (observation.position, s.velocity(), this.since, this.a2);
+        let inv_a2 = 1.0 / a2;
         let (lo, end) = this.range;
         for i in 0..n {
             let (ax, ay, az) = (a.x[i], a.y[i], a.z[i]);
@@ -289,7 +301,7 @@ impl LaneWork for Batch<'_, '_> {
             // Both roots' forms, then the one `light_catch_up` takes
             // (selects, not branches: the loop vectorises).
             let receding = dd / (root - dv);
-            let approaching = (dv + root) / a2;
+            let approaching = (dv + root) * inv_a2;
             let tau = if dv <= 0.0 { receding } else { approaching };
             let tau = if dd == 0.0 { 0.0 } else { tau };
             let dt = (since - tau).max(lo).min(end);
@@ -366,11 +378,7 @@ fn solve_near(
     for chunk in offsets.chunks(LANES) {
         let n = chunk.len().min(LANES);
         r.load(chunk);
-        let rho = chunk
-            .iter()
-            .map(|r| r.length_squared())
-            .fold(0.0, f64::max)
-            .sqrt();
+        let rho = r.max_length(n);
         let safe = margin.is_some_and(|m| m.safe(rho));
         let lanes = Lanes {
             s,

@@ -289,7 +289,8 @@ pub fn light_catch_up(d: DVec3, v: DVec3, c: f64, gamma: f64) -> f64 {
     if dv <= 0.0 {
         dd / (root - dv)
     } else {
-        (dv + root) / a
+        // As a product (the batched kernel divides once per segment).
+        (dv + root) * (1.0 / a)
     }
 }
 

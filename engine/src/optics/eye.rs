@@ -142,8 +142,9 @@ impl Eye {
 
     fn seen_at(position: DVec3) -> Seen {
         let distance = position.length();
+        // One division and three products (the batched kernel's form).
         let direction = if distance > 0.0 {
-            position / distance
+            position * (1.0 / distance)
         } else {
             DVec3::ZERO
         };
@@ -207,11 +208,12 @@ impl LaneWork for Aberrated<'_> {
             .apply_all(&mut ct[..n], &mut x[..n], &mut y[..n], &mut z[..n]);
         for i in 0..n {
             let d = (x[i] * x[i] + y[i] * y[i] + z[i] * z[i]).sqrt();
-            let seen = d > 0.0;
+            // One division, as `seen_at`.
+            let inv = if d > 0.0 { 1.0 / d } else { 0.0 };
             dist[i] = d;
-            ux[i] = if seen { x[i] / d } else { 0.0 };
-            uy[i] = if seen { y[i] / d } else { 0.0 };
-            uz[i] = if seen { z[i] / d } else { 0.0 };
+            ux[i] = x[i] * inv;
+            uy[i] = y[i] * inv;
+            uz[i] = z[i] * inv;
         }
     }
 }
