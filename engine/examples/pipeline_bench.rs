@@ -5,7 +5,7 @@
 //! * each effect alone, one view of a moving observer, 400 pucks;
 //! * frame time per number of views (1, 2, 4: the scene's view, then
 //!   alternately its board-frame "truth" and further copies of it), on
-//!   the paper's scene and on 1 000 pucks.
+//!   the paper's scene, on 1 000 and on 10 000 pucks.
 //!
 //! `cargo run --release -p lightcone-engine --example pipeline_bench [--quick]`
 //! prints the Markdown tables (`lightcone bench optics` prints them too).
@@ -27,17 +27,14 @@ fn main() {
             std::process::exit(1);
         }
     };
-    let mut thousand = lanes(1000);
-    thousand.effects = Effects::default();
+    let sizes: &[usize] = if quick { &[100, 200] } else { &[1000, 10_000] };
+    let names: Vec<String> = sizes.iter().map(|n| format!("{n} pucks (lanes)")).collect();
+    let mut scenes = vec![("paper_carom.toml", paper)];
+    for (name, &n) in names.iter().zip(sizes) {
+        let mut s = lanes(n);
+        s.effects = Effects::default();
+        scenes.push((name, s));
+    }
     println!("{}", effect_costs(if quick { 50 } else { 400 }, frames));
-    println!(
-        "{}",
-        view_counts(
-            &[
-                ("paper_carom.toml", paper),
-                ("1 000 pucks (lanes)", thousand)
-            ],
-            if quick { 3 } else { 60 },
-        )
-    );
+    println!("{}", view_counts(&scenes, if quick { 3 } else { 30 }));
 }

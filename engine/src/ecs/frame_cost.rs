@@ -14,10 +14,13 @@ use crate::scene::{Color, Effect, Effects, ObserverSpec, PuckSpec, Scene, TableS
 use crate::spacetime::ProperVelocity;
 use crate::worldline::mesh::{self, PUCK_SEGMENTS};
 
-/// `n` pucks in lanes on a table four times the paper's, a moving eye.
+/// `n` pucks in lanes, 40 to a row 25 cm apart, on a table four times the
+/// paper's, made longer (along y) when the rows need it (beyond 880
+/// pucks), a moving eye.
 pub fn lanes(n: usize) -> Scene {
-    let size = DVec2::new(2.84 * 4.0, 1.42 * 4.0);
     let per_row = 40;
+    let rows = n.div_ceil(per_row);
+    let size = DVec2::new(2.84 * 4.0, (1.42 * 4.0f64).max(0.4 + 0.25 * rows as f64));
     let pucks = (0..n)
         .map(|i| PuckSpec {
             name: format!("p{i}"),
@@ -40,7 +43,7 @@ pub fn lanes(n: usize) -> Scene {
     Scene {
         title: "lanes".into(),
         description: String::new(),
-        c: size.x / 2.0,
+        c: 2.84 * 4.0 / 2.0,
         table: TableSpec::frictionless(size, 1.0),
         restitution: 1.0,
         effects: Effects::NONE,

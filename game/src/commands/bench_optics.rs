@@ -97,14 +97,23 @@ pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
     progress.inc();
     progress.suspend(|| crate::sayln!("{costs}"));
     progress.step("frame time per number of views");
-    let mut thousand = frame_cost::lanes(if quick { 100 } else { 1000 });
-    thousand.effects = Effects::default();
-    // The paper's scene as built in (whatever the working directory).
-    let scenes = match crate::assets::shipped_scene("paper_carom.toml") {
-        Some(Ok(paper)) => vec![("paper_carom.toml", paper), ("lanes", thousand)],
-        _ => vec![("lanes", thousand)],
+    let lanes = |n: usize| {
+        let mut s = frame_cost::lanes(n);
+        s.effects = Effects::default();
+        s
     };
-    let views = frame_cost::view_counts(&scenes, if quick { 3 } else { 60 });
+    let mut scenes = Vec::new();
+    // The paper's scene as built in (whatever the working directory).
+    if let Some(Ok(paper)) = crate::assets::shipped_scene("paper_carom.toml") {
+        scenes.push(("paper_carom.toml", paper));
+    }
+    if quick {
+        scenes.push(("100 pucks (lanes)", lanes(100)));
+    } else {
+        scenes.push(("1 000 pucks (lanes)", lanes(1000)));
+        scenes.push(("10 000 pucks (lanes)", lanes(10_000)));
+    }
+    let views = frame_cost::view_counts(&scenes, if quick { 3 } else { 30 });
     progress.finish();
     crate::sayln!("{views}");
     ExitCode::SUCCESS
