@@ -236,7 +236,7 @@ impl SeenPoint {
                 t: e.event.t,
                 position: xyz(e.event.position),
             },
-            direction: xyz(s.direction),
+            direction: xyz(s.direction()),
             distance: s.distance,
             doppler: s.doppler,
             intensity: body.intensity[i],

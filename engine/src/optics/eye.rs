@@ -29,19 +29,32 @@ pub struct Eye {
     pub u: ProperVelocity,
 }
 
-/// What the observer sees of one emission.
+/// What the observer sees of one emission. (Its direction is not stored:
+/// [`Self::direction`] derives it; every vertex of every view is one of
+/// these each frame, so its 40 bytes are most of what the optics writes.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Seen {
     /// Where the point appears, relative to the eye, in the observer's rest
     /// frame (axes parallel to the board's), m. With aberration off, the
     /// board-frame offset.
     pub position: DVec3,
-    /// Unit vector from the eye towards it (observer's frame).
-    pub direction: DVec3,
     /// Apparent distance, m.
     pub distance: f64,
     /// Doppler factor, observed / emitted frequency.
     pub doppler: f64,
+}
+
+impl Seen {
+    /// Unit vector from the eye towards the point (observer's frame; zero
+    /// for a point at the eye).
+    #[inline]
+    pub fn direction(&self) -> DVec3 {
+        if self.distance > 0.0 {
+            self.position * (1.0 / self.distance)
+        } else {
+            DVec3::ZERO
+        }
+    }
 }
 
 /// `γ − u·n`, without cancellation when `u` is nearly along `n` at large γ.
@@ -109,7 +122,7 @@ impl Eye {
         let (t0, o) = (self.event.t, self.event.position);
         out.reserve(emissions.len());
         let (mut ct, mut x, mut y, mut z) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
-        let (mut dist, mut ux, mut uy, mut uz) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
+        let mut dist = [0.0; N];
         for chunk in emissions.chunks(N) {
             let n = chunk.len().min(N); // no bounds checks: the loops vectorise
             for (i, e) in chunk.iter().enumerate().take(N) {
@@ -122,11 +135,10 @@ impl Eye {
                 frame,
                 n,
                 ray: (&mut ct, &mut x, &mut y, &mut z),
-                seen: (&mut dist, &mut ux, &mut uy, &mut uz),
+                distance: &mut dist,
             });
             out.extend((0..n).map(|i| Seen {
                 position: DVec3::new(x[i], y[i], z[i]),
-                direction: DVec3::new(ux[i], uy[i], uz[i]),
                 distance: dist[i],
                 doppler: 1.0,
             }));
@@ -141,17 +153,9 @@ impl Eye {
     }
 
     fn seen_at(position: DVec3) -> Seen {
-        let distance = position.length();
-        // One division and three products (the batched kernel's form).
-        let direction = if distance > 0.0 {
-            position * (1.0 / distance)
-        } else {
-            DVec3::ZERO
-        };
         Seen {
             position,
-            direction,
-            distance,
+            distance: position.length(),
             doppler: 1.0,
         }
     }
@@ -178,8 +182,8 @@ impl Eye {
 }
 
 /// Lanes of [`Eye::place_all_in_own_frame`]: the rays (`ct`, `x`, `y`, `z`,
-/// first `n`) boosted in place, then each one's apparent distance and
-/// direction (`seen`), as `seen_at` computes them.
+/// first `n`) boosted in place, then each one's apparent distance, as
+/// `seen_at` computes it.
 struct Aberrated<'a> {
     frame: &'a Boost,
     n: usize,
@@ -189,12 +193,7 @@ struct Aberrated<'a> {
         &'a mut [f64; LANES],
         &'a mut [f64; LANES],
     ),
-    seen: (
-        &'a mut [f64; LANES],
-        &'a mut [f64; LANES],
-        &'a mut [f64; LANES],
-        &'a mut [f64; LANES],
-    ),
+    distance: &'a mut [f64; LANES],
 }
 
 impl LaneWork for Aberrated<'_> {
@@ -203,17 +202,10 @@ impl LaneWork for Aberrated<'_> {
     fn run(self) {
         let n = self.n.min(LANES);
         let (ct, x, y, z) = self.ray;
-        let (dist, ux, uy, uz) = self.seen;
         self.frame
             .apply_all(&mut ct[..n], &mut x[..n], &mut y[..n], &mut z[..n]);
         for i in 0..n {
-            let d = (x[i] * x[i] + y[i] * y[i] + z[i] * z[i]).sqrt();
-            // One division, as `seen_at`.
-            let inv = if d > 0.0 { 1.0 / d } else { 0.0 };
-            dist[i] = d;
-            ux[i] = x[i] * inv;
-            uy[i] = y[i] * inv;
-            uz[i] = z[i] * inv;
+            self.distance[i] = (x[i] * x[i] + y[i] * y[i] + z[i] * z[i]).sqrt();
         }
     }
 }
@@ -272,9 +264,9 @@ mod tests {
             let emission = Event::new(5.0 - far / C, DVec3::new(0.0, far, 0.0));
             let seen = eye.see(emission, ProperVelocity::ZERO, C, true);
             assert!(
-                (seen.direction.x - beta).abs() < 1e-12,
+                (seen.direction().x - beta).abs() < 1e-12,
                 "{beta}: {}",
-                seen.direction
+                seen.direction()
             );
             // General angle: cos θ' = (cos θ + β)/(1 + β cos θ).
             for theta in [0.3f64, 1.0, 2.0, 3.0] {
@@ -282,7 +274,7 @@ mod tests {
                 let emission = Event::new(5.0 - far / C, dir * far);
                 let seen = eye.see(emission, ProperVelocity::ZERO, C, true);
                 let expected = (theta.cos() + beta) / (1.0 + beta * theta.cos());
-                assert!((seen.direction.x - expected).abs() < 1e-12);
+                assert!((seen.direction().x - expected).abs() < 1e-12);
                 // Apparent distance: the light path in the observer's frame,
                 // the null vector's time part, scaled by D = γ(1 − β·n).
                 let d = doppler(-dir, ProperVelocity::ZERO, u);
