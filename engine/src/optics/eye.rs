@@ -30,8 +30,8 @@ pub struct Eye {
 }
 
 /// What the observer sees of one emission. (Its direction is not stored:
-/// [`Self::direction`] derives it; every vertex of every view is one of
-/// these each frame, so its 40 bytes are most of what the optics writes.)
+/// [`Self::direction`] derives it. One is written for every vertex of
+/// every view each frame, so it is kept to 40 bytes.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Seen {
     /// Where the point appears, relative to the eye, in the observer's rest
