@@ -1018,7 +1018,13 @@ impl Billiard {
                 restitution,
             )
         };
-        let overlap_bound = {
+        // The overlap bound is only reported in the collision record: with
+        // recording off its board-frame depth test is not made at all.
+        // Reported only in the collision record: with recording off (long
+        // runs) its board-frame depth test, a full overlap scan, is skipped.
+        let overlap_bound = if !self.record {
+            0.0
+        } else {
             let first = if times[0] <= times[1] { 0 } else { 1 };
             let second = 1 - first;
             let closing = after[first].u.velocity(self.c) - before[second].u.velocity(self.c);
