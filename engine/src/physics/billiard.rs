@@ -1445,7 +1445,13 @@ impl Billiard {
     ///   crossing zero, [`overlap::first_touch`]), meet then, the same way.
     ///
     /// `board_only`: a settled pair (see `Puck::settled`): the pair frame is
-    /// not asked (its contact is the one just resolved), only the board.
+    /// not asked (its contact is the one just resolved), only the board, and
+    /// while the contact's own overlap lasts nothing is predicted.
+    ///
+    /// Both board searches (a golden-section overlap scan per time tried)
+    /// are skipped for a pair that [`overlap::apart_throughout`] proves
+    /// apart on the board for as long as their rest discs overlap: they
+    /// would find nothing.
     fn contact_of(&self, a: usize, b: usize, now: f64, board_only: bool) -> Option<PairContact> {
         let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
         let (sa, sb) = (pa.worldline.last(), pb.worldline.last());
@@ -1469,7 +1475,27 @@ impl Billiard {
         let v_rel = sb.velocity() - sa.velocity();
         // A closing speed below this is rounding (relative to the speeds).
         let still = 1e-12 * (sa.velocity().length() + sb.velocity().length());
-        if let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now) {
+        let d0 = sb.position_at(now) - sa.position_at(now);
+        // How long the centres stay within reach of each other (rest discs
+        // overlapping), if they are or come so; before and after, the board
+        // shapes, inside their rest discs, are apart.
+        let leave = leaves_reach(d0, v_rel, pa.radius + pb.radius);
+        // Proved apart on the board over that whole window (a cheap
+        // one-sided test): the penetration test now and the board's first
+        // touch below would find nothing, so neither search is made.
+        let apart = leave.is_some_and(|leave| {
+            overlap::apart_throughout(sa, pa.radius, sb, pb.radius, now, now + leave)
+        });
+        // A settled pair proved still overlapping (a cheap one-sided test):
+        // the penetration test would find it so, and nothing is predicted.
+        if board_only && overlap::overlap_certain(sa, pa.radius, sb, pb.radius, now) {
+            return None;
+        }
+        if !apart && let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now)
+        {
+            if board_only {
+                return None; // a settled pair's own overlap: it only opens
+            }
             return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
         }
         if !board_only
@@ -1498,23 +1524,10 @@ impl Billiard {
         }
         // Apart now, and the pair frame sees nothing ahead: will the board
         // shapes meet? Only while the centres are within reach.
-        let reach = pa.radius + pb.radius;
-        let d0 = sb.position_at(now) - sa.position_at(now);
-        let vv = v_rel.length_squared();
-        if vv == 0.0 {
+        if apart {
             return None;
         }
-        // |d0 + v τ|² = reach²: the later root is when the centres leave reach.
-        let (p, q) = (d0.dot(v_rel), d0.length_squared() - reach * reach);
-        let disc = p * p - vv * q;
-        if disc < 0.0 {
-            return None;
-        }
-        let leave = (-p + disc.sqrt()) / vv;
-        if leave <= 0.0 {
-            return None;
-        }
-        let end = now + leave;
+        let end = now + leave?;
         // A separating axis along which they do not close: never.
         let (g, m) = overlap::gap(sa, pa.radius, sb, pb.radius, d0);
         if g <= 0.0 && m.dot(v_rel) >= 0.0 {
@@ -1689,19 +1702,9 @@ impl Billiard {
             // sliding into each other after they have parted, seed 339 of
             // `collision_integrity`). While the contact's own overlap lasts,
             // or on braking worldlines, nothing is predicted.
+            // (That overlap is tested in `contact_of`.)
             let settled = self.settled(a, b);
-            if settled
-                && (self.hot[a].braking
-                    || self.hot[b].braking
-                    || overlap::penetration(
-                        self.pucks[a].worldline.last(),
-                        self.pucks[a].radius,
-                        self.pucks[b].worldline.last(),
-                        self.pucks[b].radius,
-                        now,
-                    )
-                    .is_some())
-            {
+            if settled && (self.hot[a].braking || self.hot[b].braking) {
                 continue;
             }
             self.stats.predictions += 1;
@@ -1764,6 +1767,24 @@ impl Billiard {
         };
         self.time + tau
     }
+}
+
+/// How long after now (s) two centres `d0` apart (m, b − a) moving apart
+/// at `v` (m/s, b − a) stay within `reach` (m) of each other: the later root
+/// of `|d0 + v τ|² = reach²`, if it is positive; `None` if they never are
+/// within reach from now on (or do not move relative to each other).
+fn leaves_reach(d0: DVec3, v: DVec3, reach: f64) -> Option<f64> {
+    let vv = v.length_squared();
+    if vv == 0.0 {
+        return None;
+    }
+    let (p, q) = (d0.dot(v), d0.length_squared() - reach * reach);
+    let disc = p * p - vv * q;
+    if disc < 0.0 {
+        return None;
+    }
+    let leave = (-p + disc.sqrt()) / vv;
+    (leave > 0.0).then_some(leave)
 }
 
 /// A lower bound on the board time at which pucks on segments `sa` and
