@@ -1481,22 +1481,31 @@ impl Billiard {
         // shapes, inside their rest discs, are apart.
         let leave = leaves_reach(d0, v_rel, pa.radius + pb.radius);
         // Proved apart on the board over that whole window (a cheap
-        // one-sided test): the penetration test now and the board's first
-        // touch below would find nothing, so neither search is made.
-        let apart = leave.is_some_and(|leave| {
-            overlap::apart_throughout(sa, pa.radius, sb, pb.radius, now, now + leave)
-        });
-        // A settled pair proved still overlapping (a cheap one-sided test):
-        // the penetration test would find it so, and nothing is predicted.
-        if board_only && overlap::overlap_certain(sa, pa.radius, sb, pb.radius, now) {
-            return None;
-        }
-        if !apart && let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now)
-        {
-            if board_only {
-                return None; // a settled pair's own overlap: it only opens
+        // one-sided test, made only where a search would follow): the
+        // penetration test now and the board's first touch below would find
+        // nothing, so neither search is made.
+        let apart = || {
+            leave.is_some_and(|leave| {
+                overlap::apart_throughout(sa, pa.radius, sb, pb.radius, now, now + leave)
+            })
+        };
+        let mut proved_apart = None;
+        if overlap::penetration_needs_scan(sa, pa.radius, sb, pb.radius, d0) {
+            // A settled pair proved still overlapping (a cheap one-sided
+            // test): the penetration test would find it so, and nothing is
+            // predicted.
+            if board_only && overlap::overlap_certain(sa, pa.radius, sb, pb.radius, now) {
+                return None;
             }
-            return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
+            let is_apart = *proved_apart.insert(apart());
+            if !is_apart
+                && let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now)
+            {
+                if board_only {
+                    return None; // a settled pair's own overlap: it only opens
+                }
+                return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
+            }
         }
         if !board_only
             && let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now)
@@ -1524,10 +1533,10 @@ impl Billiard {
         }
         // Apart now, and the pair frame sees nothing ahead: will the board
         // shapes meet? Only while the centres are within reach.
-        if apart {
+        let end = now + leave?;
+        if proved_apart.unwrap_or_else(apart) {
             return None;
         }
-        let end = now + leave?;
         // A separating axis along which they do not close: never.
         let (g, m) = overlap::gap(sa, pa.radius, sb, pb.radius, d0);
         if g <= 0.0 && m.dot(v_rel) >= 0.0 {

@@ -96,17 +96,44 @@ pub fn penetration(
 /// separates the shapes, that axis and its (negative) value are returned
 /// at once: a separating axis, not always the widest.
 pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
+    centre_line_gap(a, radius_a, b, radius_b, d)
+        .unwrap_or_else(|| gap_min(a, radius_a, b, radius_b, d))
+}
+
+/// [`gap`]'s quick answer: the line of centres separates the shapes often
+/// (its value is an upper bound of the minimum, exact for two discs); its
+/// (non-positive) value and direction if it does, `None` if [`gap_min`] is
+/// needed.
+fn centre_line_gap(
+    a: &Segment,
+    radius_a: f64,
+    b: &Segment,
+    radius_b: f64,
+    d: DVec3,
+) -> Option<(f64, DVec3)> {
     let dist = d.length();
     if dist > 0.0 {
-        // The line of centres separates them often: a cheap first answer
-        // (an upper bound of the minimum, exact for two discs).
         let m = d / dist;
         let g = support(a, radius_a, m) + support(b, radius_b, m) - dist;
         if g <= 0.0 {
-            return (g, m); // separated: the exact value is not needed
+            return Some((g, m)); // separated: the exact value is not needed
         }
     }
-    gap_min(a, radius_a, b, radius_b, d)
+    None
+}
+
+/// Whether [`penetration`] of two pucks whose centres are `d` apart (m,
+/// b − a) runs the full overlap scan ([`gap_min`]): only when their rest
+/// discs overlap and the line of centres does not separate their shapes.
+/// Otherwise it finds no overlap at once.
+pub fn penetration_needs_scan(
+    a: &Segment,
+    radius_a: f64,
+    b: &Segment,
+    radius_b: f64,
+    d: DVec3,
+) -> bool {
+    d.length() < radius_a + radius_b && centre_line_gap(a, radius_a, b, radius_b, d).is_none()
 }
 
 /// Number of directions [`gap_min`] scans (uniform in angle).
@@ -202,9 +229,9 @@ pub fn apart_throughout(
     // What the positions are computed from bounds their rounding.
     let scale = radius_a
         + radius_b
-        + a.start.position.length()
-        + b.start.position.length()
-        + (a.velocity().length() + b.velocity().length())
+        + l1(a.start.position)
+        + l1(b.start.position)
+        + (l1(a.velocity()) + l1(b.velocity()))
             * (t0.abs() + t1.abs() + a.start.t.abs() + b.start.t.abs());
     let margin = 1e-12 * scale;
     if !margin.is_finite() {
@@ -222,13 +249,14 @@ pub fn apart_throughout(
     let scan = scan();
     let step = std::f64::consts::TAU / SAMPLES as f64;
     let nearest = |w: DVec3| -> usize {
-        let k = (w.y.atan2(w.x) / step).round();
-        // atan2 ∈ [−π, π]: k ∈ [−45, 45], wrapped into the scan's range.
+        let k = (rough_angle(w.y, w.x) / step).round();
+        // The angle is in [−π, π]: k in [−45, 45], wrapped into the scan's
+        // range. (Any k is sound; the nearest is the likeliest to prove.)
         (k as i64).rem_euclid(SAMPLES as i64) as usize
     };
     // Covered so far: [0, left) by rising lines, (right, 1] by falling ones.
     let (mut left, mut right) = (0.0f64, 1.0f64);
-    for w in [d0, d1, closest] {
+    for w in [closest, d0, d1] {
         if w.length_squared() == 0.0 {
             continue;
         }
@@ -252,6 +280,32 @@ pub fn apart_throughout(
         }
     }
     false
+}
+
+/// `|x| + |y| + |z|`, m (at least the length: a cheap bound for margins).
+fn l1(w: DVec3) -> f64 {
+    w.x.abs() + w.y.abs() + w.z.abs()
+}
+
+/// `atan2(y, x)` to within 3e-4 rad (a polynomial on the octant): enough to
+/// pick the scan direction nearest a vector, and much cheaper than libm's.
+fn rough_angle(y: f64, x: f64) -> f64 {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let (ax, ay) = (x.abs(), y.abs());
+    let (lo, hi) = (ax.min(ay), ax.max(ay));
+    if hi == 0.0 {
+        return 0.0;
+    }
+    let r = lo / hi;
+    let r2 = r * r;
+    let mut angle = ((-0.046_496_474_9 * r2 + 0.159_314_22) * r2 - 0.327_622_764) * r2 * r + r;
+    if ay > ax {
+        angle = FRAC_PI_2 - angle;
+    }
+    if x < 0.0 {
+        angle = PI - angle;
+    }
+    if y < 0.0 { -angle } else { angle }
 }
 
 /// Whether two pucks are proved to overlap on the board at board time `t`
@@ -291,10 +345,9 @@ pub fn overlap_certain(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, t
     let depth = (1.0 - s) * (inner(a, radius_a) + inner(b, radius_b));
     let scale = radius_a
         + radius_b
-        + a.start.position.length()
-        + b.start.position.length()
-        + (a.velocity().length() + b.velocity().length())
-            * (t.abs() + a.start.t.abs() + b.start.t.abs());
+        + l1(a.start.position)
+        + l1(b.start.position)
+        + (l1(a.velocity()) + l1(b.velocity())) * (t.abs() + a.start.t.abs() + b.start.t.abs());
     depth > 1e-12 * scale
 }
 
@@ -533,6 +586,20 @@ mod tests {
             }
         }
         assert!(proved * 2 > overlapping, "{proved} of {overlapping}");
+    }
+
+    #[test]
+    fn rough_angle_is_within_3e4_of_atan2() {
+        for k in 0..10_000 {
+            let theta = -3.2 + 6.4 * k as f64 / 10_000.0;
+            let (y, x) = (3.0 * theta.sin(), 3.0 * theta.cos());
+            let err = (rough_angle(y, x) - y.atan2(x)).abs();
+            assert!(
+                err < 3e-4 || (err - std::f64::consts::TAU).abs() < 3e-4,
+                "{theta}: {err}"
+            );
+        }
+        assert_eq!(rough_angle(0.0, 0.0), 0.0);
     }
 
     #[test]
