@@ -221,28 +221,48 @@ struct Next {
     predicted_at: f64,
 }
 
-/// What the cheap lower bound reads of a puck, packed together so that
-/// scanning a puck's partners touches one small record each: its current
-/// segment's start (board time s, centre m), board velocity (m/s) and rest
-/// radius (m).
-#[derive(Clone, Copy, Debug, Default)]
+/// What scanning a puck's partners reads of each, packed in one cache line
+/// (64 bytes, aligned): its current segment's start (board time s, centre
+/// m), board velocity (m/s) and rest radius (m) for the cheap lower bound,
+/// and the board time its centre leaves its shell (s), which limits the
+/// pair's contacts that count.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 struct Hot {
     t0: f64,
     x0: DVec2,
     v: DVec2,
     radius: f64,
+    /// When the centre leaves its broad-phase shell (infinite if never):
+    /// set by `Billiard::predict`, which works it out first.
+    exit: f64,
     /// On a braking segment: the uniform bound does not apply.
     braking: bool,
 }
 
+impl Default for Hot {
+    fn default() -> Self {
+        Self {
+            t0: 0.0,
+            x0: DVec2::ZERO,
+            v: DVec2::ZERO,
+            radius: 0.0,
+            exit: f64::INFINITY,
+            braking: false,
+        }
+    }
+}
+
 impl Hot {
-    fn of(puck: &Puck) -> Self {
+    /// Puck's motion now, with shell exit `exit` (s).
+    fn of(puck: &Puck, exit: f64) -> Self {
         let s = puck.worldline.last();
         Self {
             t0: s.start.t,
             x0: s.start.position.truncate(),
             v: s.velocity().truncate(),
             radius: puck.radius,
+            exit,
             braking: s.is_braking(),
         }
     }
@@ -284,10 +304,8 @@ pub struct Billiard {
     free_kicks: Vec<usize>,
     contacts_made: u64,
     broad: BroadPhase,
-    /// Each puck's shell: centre (m) and the board time its centre leaves
-    /// it (s, infinite at rest).
+    /// Each puck's shell centre, m (when the centre leaves it is in `hot`).
     shells: Vec<DVec2>,
-    exits: Vec<f64>,
     /// Shell margin, m.
     margin: f64,
     /// Each puck's current motion, for the cheap bound.
@@ -377,7 +395,6 @@ impl Billiard {
             contacts_made: 0,
             broad: BroadPhase::new(&[], &[]),
             shells: vec![DVec2::ZERO; n],
-            exits: vec![f64::INFINITY; n],
             hot: vec![Hot::default(); n],
             margin: SHELL_MARGIN * mean_radius,
             reference: false,
@@ -405,11 +422,15 @@ impl Billiard {
                 .position_at(self.time)
                 .truncate();
         }
-        self.hot = self.pucks.iter().map(Hot::of).collect();
+        self.hot = self
+            .pucks
+            .iter()
+            .map(|p| Hot::of(p, f64::INFINITY))
+            .collect();
         let half: Vec<f64> = self.pucks.iter().map(|p| p.radius + self.margin).collect();
         self.broad = BroadPhase::new(&self.shells, &half);
         for i in 0..self.pucks.len() {
-            self.exits[i] = self.shell_exit(i);
+            self.hot[i].exit = self.shell_exit(i);
         }
         for i in 0..self.pucks.len() {
             self.predict(i);
@@ -800,7 +821,7 @@ impl Billiard {
                 // The motion is unchanged (a braking segment rests after its
                 // stop): no new version, predictions made stay valid.
                 self.pucks[i].worldline.come_to_rest();
-                self.hot[i] = Hot::of(&self.pucks[i]);
+                self.hot[i] = Hot::of(&self.pucks[i], self.hot[i].exit);
             }
         }
         // Unchanged (a stale entry, a shell move): predicted again; changed
@@ -1562,7 +1583,7 @@ impl Billiard {
                     Some(self.forgotten_before.map_or(cutoff, |f| f.max(cutoff)));
             }
         }
-        self.hot[i] = Hot::of(&self.pucks[i]);
+        self.hot[i] = Hot::of(&self.pucks[i], self.hot[i].exit);
         self.predict(i);
     }
 
@@ -1647,9 +1668,9 @@ impl Billiard {
                 }
             }
         }
-        self.exits[i] = self.shell_exit(i);
+        self.hot[i].exit = self.shell_exit(i);
         let key = Key {
-            t: self.exits[i],
+            t: self.hot[i].exit,
             rank: Rank::shell(i as u32),
         };
         if key.before(&best) {
@@ -1666,22 +1687,22 @@ impl Billiard {
                 next.what = What::Stop;
             }
         }
-        let partners = if self.reference {
-            self.pucks.len()
+        // The candidates: the broad phase's partners, or (the reference
+        // path) every other puck.
+        let (partners, everyone) = if self.reference {
+            (&[][..], 0..self.pucks.len())
         } else {
-            self.broad.partners(i).len()
+            (self.broad.partners(i), 0..0)
         };
-        for k in 0..partners {
-            let j = if self.reference {
-                if k == i {
-                    continue;
-                }
-                k
-            } else {
-                self.broad.partners(i)[k] as usize
-            };
+        let candidates = partners
+            .iter()
+            .map(|&j| j as usize)
+            .chain(everyone.filter(|&j| j != i));
+        // Counted here, added to the stats after the scan.
+        let (mut pruned, mut predictions) = (0, 0);
+        for j in candidates {
             let (a, b) = (i.min(j), i.max(j));
-            let limit = best.t.min(self.exits[j]);
+            let limit = best.t.min(self.hot[j].exit);
             if !self.reference {
                 let bound = if self.hot[a].braking || self.hot[b].braking {
                     braking_touch(
@@ -1697,7 +1718,7 @@ impl Billiard {
                 match bound {
                     Some(t) if t <= limit => {}
                     _ => {
-                        self.stats.pruned += 1;
+                        pruned += 1;
                         continue;
                     }
                 }
@@ -1716,7 +1737,7 @@ impl Billiard {
             if settled && (self.hot[a].braking || self.hot[b].braking) {
                 continue;
             }
-            self.stats.predictions += 1;
+            predictions += 1;
             let Some(hit) = self.contact_of(a, b, now, settled) else {
                 continue;
             };
@@ -1741,6 +1762,8 @@ impl Billiard {
                 next.hit = Some(hit);
             }
         }
+        self.stats.pruned += pruned;
+        self.stats.predictions += predictions;
         if !matches!(next.what, What::Pair { .. }) {
             next.hit = None;
         }
