@@ -212,12 +212,14 @@ enum What {
     Stop,
 }
 
-/// A puck's pending event: what, and for a pair the winning prediction,
-/// kept so that it is not computed again when it happens.
+/// A puck's pending event: what, and when it was predicted (board time,
+/// s). For a pair the winning prediction is kept apart, in
+/// `Billiard::hits`, so that it is not computed again when it happens: this
+/// small record is what every event reads, the large one only a pair
+/// contact.
 #[derive(Clone, Copy, Debug)]
 struct Next {
     what: What,
-    hit: Option<PairContact>,
     predicted_at: f64,
 }
 
@@ -300,6 +302,9 @@ pub struct Billiard {
     calendar: Calendar,
     /// What each puck's entry is about.
     next: Vec<Next>,
+    /// For a puck whose entry is a pair contact, the prediction that won
+    /// (other entries leave theirs unread).
+    hits: Vec<Option<PairContact>>,
     kicks: Vec<Option<Kick>>,
     free_kicks: Vec<usize>,
     contacts_made: u64,
@@ -385,11 +390,11 @@ impl Billiard {
             next: vec![
                 Next {
                     what: What::Shell,
-                    hit: None,
                     predicted_at: 0.0,
                 };
                 n
             ],
+            hits: vec![None; n],
             kicks: Vec::new(),
             free_kicks: Vec::new(),
             contacts_made: 0,
@@ -812,7 +817,7 @@ impl Billiard {
                     let flushed_b = self.flush_pending(b);
                     // Else re-predicted with the news they carried.
                     if !(flushed_a || flushed_b) {
-                        self.pair_contact(a, b, next);
+                        self.pair_contact(a, b, self.hits[i], next.predicted_at);
                     }
                 }
             }
@@ -992,14 +997,14 @@ impl Billiard {
         cluster
     }
 
-    /// Resolves the contact of pucks `a` < `b` that `next` predicted: kept
-    /// from the prediction, or (the reference path) computed again from the
-    /// same state, bit for bit.
-    fn pair_contact(&mut self, a: usize, b: usize, next: Next) {
+    /// Resolves the contact of pucks `a` < `b` predicted at board time
+    /// `predicted_at` (s) as `kept`: that prediction, or (the reference path)
+    /// one computed again from the same state, bit for bit.
+    fn pair_contact(&mut self, a: usize, b: usize, kept: Option<PairContact>, predicted_at: f64) {
         let hit = if self.reference {
-            self.contact_of(a, b, next.predicted_at, self.settled(a, b))
+            self.contact_of(a, b, predicted_at, self.settled(a, b))
         } else {
-            next.hit
+            kept
         };
         let Some(hit) = hit else {
             return;
@@ -1142,7 +1147,6 @@ impl Billiard {
         if self.calendar.key(i as u32).is_none_or(|k| key.before(&k)) {
             self.next[i] = Next {
                 what: What::Kick(id),
-                hit: None,
                 predicted_at: self.time,
             };
             self.calendar.set(i as u32, key);
@@ -1639,9 +1643,9 @@ impl Billiard {
         let mut best = Key::NEVER;
         let mut next = Next {
             what: What::Shell,
-            hit: None,
             predicted_at: now,
         };
+        let mut won = None;
         let puck = &self.pucks[i];
         for &k in &puck.pending {
             if let Some(kick) = self.kicks[k] {
@@ -1759,13 +1763,13 @@ impl Billiard {
                     b: b as u32,
                     partner_version: self.pucks[j].version,
                 };
-                next.hit = Some(hit);
+                won = Some(hit);
             }
         }
         self.stats.pruned += pruned;
         self.stats.predictions += predictions;
-        if !matches!(next.what, What::Pair { .. }) {
-            next.hit = None;
+        if matches!(next.what, What::Pair { .. }) {
+            self.hits[i] = won;
         }
         self.next[i] = next;
         self.calendar.set(i as u32, best);
