@@ -1661,9 +1661,9 @@ impl Billiard {
         }
         let segment = puck.worldline.last();
         for (k, cushion) in Cushion::ALL.into_iter().enumerate() {
-            if let Some(hit) = braking::cushion(segment, puck.radius, self.table, cushion, now) {
+            if let Some(t) = braking::cushion_time(segment, puck.radius, self.table, cushion, now) {
                 let key = Key {
-                    t: hit.t,
+                    t,
                     rank: Rank::cushion(i as u32, k as u32),
                 };
                 if key.before(&best) {
