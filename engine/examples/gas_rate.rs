@@ -31,12 +31,41 @@ fn main() {
     let c = b.stats().contacts();
     println!(
         "N = {n}: {c} contacts in {wall:.2} s wall, {cpu:.2} s CPU (build {built:.2} s): \
-         {:.0} contacts/s ({:.0} per CPU second), {:.3} µs/contact; {:?}",
+         {:.0} contacts/s ({:.0} per CPU second), {:.3} µs/contact; {:?}; state {:016x}",
         c as f64 / wall,
         c as f64 / cpu,
         wall / c as f64 * 1e6,
-        b.stats()
+        b.stats(),
+        fingerprint(&b)
     );
+}
+
+/// A hash of every bit of the final state (each puck's current segment and
+/// mass, board time): equal before and after a change of the loop that
+/// keeps the physics unchanged bit for bit.
+fn fingerprint(b: &lightcone_engine::physics::Billiard) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    let mut eat = |x: f64| {
+        for byte in x.to_bits().to_le_bytes() {
+            h = (h ^ u64::from(byte)).wrapping_mul(0x100_0000_01b3);
+        }
+    };
+    eat(b.time());
+    for i in 0..b.len() {
+        let s = b.worldline(i).last();
+        eat(s.start.t);
+        for x in s
+            .start
+            .position
+            .to_array()
+            .into_iter()
+            .chain(s.u.0.to_array())
+        {
+            eat(x);
+        }
+        eat(b.mass(i));
+    }
+    h
 }
 
 /// This process's user + system CPU time, s (Linux; 0 elsewhere): on a

@@ -212,37 +212,59 @@ enum What {
     Stop,
 }
 
-/// A puck's pending event: what, and for a pair the winning prediction,
-/// kept so that it is not computed again when it happens.
+/// A puck's pending event: what, and when it was predicted (board time,
+/// s). For a pair the winning prediction is kept apart, in
+/// `Billiard::hits`, so that it is not computed again when it happens: this
+/// small record is what every event reads, the large one only a pair
+/// contact.
 #[derive(Clone, Copy, Debug)]
 struct Next {
     what: What,
-    hit: Option<PairContact>,
     predicted_at: f64,
 }
 
-/// What the cheap lower bound reads of a puck, packed together so that
-/// scanning a puck's partners touches one small record each: its current
-/// segment's start (board time s, centre m), board velocity (m/s) and rest
-/// radius (m).
-#[derive(Clone, Copy, Debug, Default)]
+/// What scanning a puck's partners reads of each, packed in one cache line
+/// (64 bytes, aligned): its current segment's start (board time s, centre
+/// m), board velocity (m/s) and rest radius (m) for the cheap lower bound,
+/// and the board time its centre leaves its shell (s), which limits the
+/// pair's contacts that count.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 struct Hot {
     t0: f64,
     x0: DVec2,
     v: DVec2,
     radius: f64,
+    /// When the centre leaves its broad-phase shell (infinite if never):
+    /// set by `Billiard::predict`, which works it out first.
+    exit: f64,
     /// On a braking segment: the uniform bound does not apply.
     braking: bool,
 }
 
+impl Default for Hot {
+    fn default() -> Self {
+        Self {
+            t0: 0.0,
+            x0: DVec2::ZERO,
+            v: DVec2::ZERO,
+            radius: 0.0,
+            exit: f64::INFINITY,
+            braking: false,
+        }
+    }
+}
+
 impl Hot {
-    fn of(puck: &Puck) -> Self {
+    /// Puck's motion now, with shell exit `exit` (s).
+    fn of(puck: &Puck, exit: f64) -> Self {
         let s = puck.worldline.last();
         Self {
             t0: s.start.t,
             x0: s.start.position.truncate(),
             v: s.velocity().truncate(),
             radius: puck.radius,
+            exit,
             braking: s.is_braking(),
         }
     }
@@ -280,14 +302,15 @@ pub struct Billiard {
     calendar: Calendar,
     /// What each puck's entry is about.
     next: Vec<Next>,
+    /// For a puck whose entry is a pair contact, the prediction that won
+    /// (other entries leave theirs unread).
+    hits: Vec<Option<PairContact>>,
     kicks: Vec<Option<Kick>>,
     free_kicks: Vec<usize>,
     contacts_made: u64,
     broad: BroadPhase,
-    /// Each puck's shell: centre (m) and the board time its centre leaves
-    /// it (s, infinite at rest).
+    /// Each puck's shell centre, m (when the centre leaves it is in `hot`).
     shells: Vec<DVec2>,
-    exits: Vec<f64>,
     /// Shell margin, m.
     margin: f64,
     /// Each puck's current motion, for the cheap bound.
@@ -367,17 +390,16 @@ impl Billiard {
             next: vec![
                 Next {
                     what: What::Shell,
-                    hit: None,
                     predicted_at: 0.0,
                 };
                 n
             ],
+            hits: vec![None; n],
             kicks: Vec::new(),
             free_kicks: Vec::new(),
             contacts_made: 0,
             broad: BroadPhase::new(&[], &[]),
             shells: vec![DVec2::ZERO; n],
-            exits: vec![f64::INFINITY; n],
             hot: vec![Hot::default(); n],
             margin: SHELL_MARGIN * mean_radius,
             reference: false,
@@ -405,11 +427,15 @@ impl Billiard {
                 .position_at(self.time)
                 .truncate();
         }
-        self.hot = self.pucks.iter().map(Hot::of).collect();
+        self.hot = self
+            .pucks
+            .iter()
+            .map(|p| Hot::of(p, f64::INFINITY))
+            .collect();
         let half: Vec<f64> = self.pucks.iter().map(|p| p.radius + self.margin).collect();
         self.broad = BroadPhase::new(&self.shells, &half);
         for i in 0..self.pucks.len() {
-            self.exits[i] = self.shell_exit(i);
+            self.hot[i].exit = self.shell_exit(i);
         }
         for i in 0..self.pucks.len() {
             self.predict(i);
@@ -791,7 +817,7 @@ impl Billiard {
                     let flushed_b = self.flush_pending(b);
                     // Else re-predicted with the news they carried.
                     if !(flushed_a || flushed_b) {
-                        self.pair_contact(a, b, next);
+                        self.pair_contact(a, b, self.hits[i], next.predicted_at);
                     }
                 }
             }
@@ -800,7 +826,7 @@ impl Billiard {
                 // The motion is unchanged (a braking segment rests after its
                 // stop): no new version, predictions made stay valid.
                 self.pucks[i].worldline.come_to_rest();
-                self.hot[i] = Hot::of(&self.pucks[i]);
+                self.hot[i] = Hot::of(&self.pucks[i], self.hot[i].exit);
             }
         }
         // Unchanged (a stale entry, a shell move): predicted again; changed
@@ -971,14 +997,14 @@ impl Billiard {
         cluster
     }
 
-    /// Resolves the contact of pucks `a` < `b` that `next` predicted: kept
-    /// from the prediction, or (the reference path) computed again from the
-    /// same state, bit for bit.
-    fn pair_contact(&mut self, a: usize, b: usize, next: Next) {
+    /// Resolves the contact of pucks `a` < `b` predicted at board time
+    /// `predicted_at` (s) as `kept`: that prediction, or (the reference path)
+    /// one computed again from the same state, bit for bit.
+    fn pair_contact(&mut self, a: usize, b: usize, kept: Option<PairContact>, predicted_at: f64) {
         let hit = if self.reference {
-            self.contact_of(a, b, next.predicted_at, self.settled(a, b))
+            self.contact_of(a, b, predicted_at, self.settled(a, b))
         } else {
-            next.hit
+            kept
         };
         let Some(hit) = hit else {
             return;
@@ -1018,7 +1044,13 @@ impl Billiard {
                 restitution,
             )
         };
-        let overlap_bound = {
+        // The overlap bound is only reported in the collision record: with
+        // recording off its board-frame depth test is not made at all.
+        // Reported only in the collision record: with recording off (long
+        // runs) its board-frame depth test, a full overlap scan, is skipped.
+        let overlap_bound = if !self.record {
+            0.0
+        } else {
             let first = if times[0] <= times[1] { 0 } else { 1 };
             let second = 1 - first;
             let closing = after[first].u.velocity(self.c) - before[second].u.velocity(self.c);
@@ -1115,7 +1147,6 @@ impl Billiard {
         if self.calendar.key(i as u32).is_none_or(|k| key.before(&k)) {
             self.next[i] = Next {
                 what: What::Kick(id),
-                hit: None,
                 predicted_at: self.time,
             };
             self.calendar.set(i as u32, key);
@@ -1439,7 +1470,13 @@ impl Billiard {
     ///   crossing zero, [`overlap::first_touch`]), meet then, the same way.
     ///
     /// `board_only`: a settled pair (see `Puck::settled`): the pair frame is
-    /// not asked (its contact is the one just resolved), only the board.
+    /// not asked (its contact is the one just resolved), only the board, and
+    /// while the contact's own overlap lasts nothing is predicted.
+    ///
+    /// Both board searches (a golden-section overlap scan per time tried)
+    /// are skipped for a pair that [`overlap::apart_throughout`] proves
+    /// apart on the board for as long as their rest discs overlap: they
+    /// would find nothing.
     fn contact_of(&self, a: usize, b: usize, now: f64, board_only: bool) -> Option<PairContact> {
         let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
         let (sa, sb) = (pa.worldline.last(), pb.worldline.last());
@@ -1463,8 +1500,37 @@ impl Billiard {
         let v_rel = sb.velocity() - sa.velocity();
         // A closing speed below this is rounding (relative to the speeds).
         let still = 1e-12 * (sa.velocity().length() + sb.velocity().length());
-        if let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now) {
-            return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
+        let d0 = sb.position_at(now) - sa.position_at(now);
+        // How long the centres stay within reach of each other (rest discs
+        // overlapping), if they are or come so; before and after, the board
+        // shapes, inside their rest discs, are apart.
+        let leave = leaves_reach(d0, v_rel, pa.radius + pb.radius);
+        // Proved apart on the board over that whole window (a cheap
+        // one-sided test, made only where a search would follow): the
+        // penetration test now and the board's first touch below would find
+        // nothing, so neither search is made.
+        let apart = || {
+            leave.is_some_and(|leave| {
+                overlap::apart_throughout(sa, pa.radius, sb, pb.radius, now, now + leave)
+            })
+        };
+        let mut proved_apart = None;
+        if overlap::penetration_needs_scan(sa, pa.radius, sb, pb.radius, d0) {
+            // A settled pair proved still overlapping (a cheap one-sided
+            // test): the penetration test would find it so, and nothing is
+            // predicted.
+            if board_only && overlap::overlap_certain(sa, pa.radius, sb, pb.radius, now) {
+                return None;
+            }
+            let is_apart = *proved_apart.insert(apart());
+            if !is_apart
+                && let Some((depth, m)) = overlap::penetration(sa, pa.radius, sb, pb.radius, now)
+            {
+                if board_only {
+                    return None; // a settled pair's own overlap: it only opens
+                }
+                return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
+            }
         }
         if !board_only
             && let Some(hit) = puck_puck::predict(self.mover(a), self.mover(b), self.c, now)
@@ -1492,23 +1558,10 @@ impl Billiard {
         }
         // Apart now, and the pair frame sees nothing ahead: will the board
         // shapes meet? Only while the centres are within reach.
-        let reach = pa.radius + pb.radius;
-        let d0 = sb.position_at(now) - sa.position_at(now);
-        let vv = v_rel.length_squared();
-        if vv == 0.0 {
+        let end = now + leave?;
+        if proved_apart.unwrap_or_else(apart) {
             return None;
         }
-        // |d0 + v τ|² = reach²: the later root is when the centres leave reach.
-        let (p, q) = (d0.dot(v_rel), d0.length_squared() - reach * reach);
-        let disc = p * p - vv * q;
-        if disc < 0.0 {
-            return None;
-        }
-        let leave = (-p + disc.sqrt()) / vv;
-        if leave <= 0.0 {
-            return None;
-        }
-        let end = now + leave;
         // A separating axis along which they do not close: never.
         let (g, m) = overlap::gap(sa, pa.radius, sb, pb.radius, d0);
         if g <= 0.0 && m.dot(v_rel) >= 0.0 {
@@ -1534,7 +1587,7 @@ impl Billiard {
                     Some(self.forgotten_before.map_or(cutoff, |f| f.max(cutoff)));
             }
         }
-        self.hot[i] = Hot::of(&self.pucks[i]);
+        self.hot[i] = Hot::of(&self.pucks[i], self.hot[i].exit);
         self.predict(i);
     }
 
@@ -1586,13 +1639,20 @@ impl Billiard {
     /// does not depend on which pairs the broad phase reports beyond what
     /// the shells guarantee).
     fn predict(&mut self, i: usize) {
+        // The partners' records are scattered over `hot`: ask for them all
+        // now, so that fetching them overlaps the work below.
+        if !self.reference {
+            for &j in self.broad.partners(i) {
+                prefetch(&self.hot[j as usize]);
+            }
+        }
         let now = self.time;
         let mut best = Key::NEVER;
         let mut next = Next {
             what: What::Shell,
-            hit: None,
             predicted_at: now,
         };
+        let mut won = None;
         let puck = &self.pucks[i];
         for &k in &puck.pending {
             if let Some(kick) = self.kicks[k] {
@@ -1608,9 +1668,9 @@ impl Billiard {
         }
         let segment = puck.worldline.last();
         for (k, cushion) in Cushion::ALL.into_iter().enumerate() {
-            if let Some(hit) = braking::cushion(segment, puck.radius, self.table, cushion, now) {
+            if let Some(t) = braking::cushion_time(segment, puck.radius, self.table, cushion, now) {
                 let key = Key {
-                    t: hit.t,
+                    t,
                     rank: Rank::cushion(i as u32, k as u32),
                 };
                 if key.before(&best) {
@@ -1619,9 +1679,9 @@ impl Billiard {
                 }
             }
         }
-        self.exits[i] = self.shell_exit(i);
+        self.hot[i].exit = self.shell_exit(i);
         let key = Key {
-            t: self.exits[i],
+            t: self.hot[i].exit,
             rank: Rank::shell(i as u32),
         };
         if key.before(&best) {
@@ -1638,22 +1698,22 @@ impl Billiard {
                 next.what = What::Stop;
             }
         }
-        let partners = if self.reference {
-            self.pucks.len()
+        // The candidates: the broad phase's partners, or (the reference
+        // path) every other puck.
+        let (partners, everyone) = if self.reference {
+            (&[][..], 0..self.pucks.len())
         } else {
-            self.broad.partners(i).len()
+            (self.broad.partners(i), 0..0)
         };
-        for k in 0..partners {
-            let j = if self.reference {
-                if k == i {
-                    continue;
-                }
-                k
-            } else {
-                self.broad.partners(i)[k] as usize
-            };
+        let candidates = partners
+            .iter()
+            .map(|&j| j as usize)
+            .chain(everyone.filter(|&j| j != i));
+        // Counted here, added to the stats after the scan.
+        let (mut pruned, mut predictions) = (0, 0);
+        for j in candidates {
             let (a, b) = (i.min(j), i.max(j));
-            let limit = best.t.min(self.exits[j]);
+            let limit = best.t.min(self.hot[j].exit);
             if !self.reference {
                 let bound = if self.hot[a].braking || self.hot[b].braking {
                     braking_touch(
@@ -1669,7 +1729,7 @@ impl Billiard {
                 match bound {
                     Some(t) if t <= limit => {}
                     _ => {
-                        self.stats.pruned += 1;
+                        pruned += 1;
                         continue;
                     }
                 }
@@ -1683,22 +1743,12 @@ impl Billiard {
             // sliding into each other after they have parted, seed 339 of
             // `collision_integrity`). While the contact's own overlap lasts,
             // or on braking worldlines, nothing is predicted.
+            // (That overlap is tested in `contact_of`.)
             let settled = self.settled(a, b);
-            if settled
-                && (self.hot[a].braking
-                    || self.hot[b].braking
-                    || overlap::penetration(
-                        self.pucks[a].worldline.last(),
-                        self.pucks[a].radius,
-                        self.pucks[b].worldline.last(),
-                        self.pucks[b].radius,
-                        now,
-                    )
-                    .is_some())
-            {
+            if settled && (self.hot[a].braking || self.hot[b].braking) {
                 continue;
             }
-            self.stats.predictions += 1;
+            predictions += 1;
             let Some(hit) = self.contact_of(a, b, now, settled) else {
                 continue;
             };
@@ -1720,11 +1770,13 @@ impl Billiard {
                     b: b as u32,
                     partner_version: self.pucks[j].version,
                 };
-                next.hit = Some(hit);
+                won = Some(hit);
             }
         }
-        if !matches!(next.what, What::Pair { .. }) {
-            next.hit = None;
+        self.stats.pruned += pruned;
+        self.stats.predictions += predictions;
+        if matches!(next.what, What::Pair { .. }) {
+            self.hits[i] = won;
         }
         self.next[i] = next;
         self.calendar.set(i as u32, best);
@@ -1758,6 +1810,39 @@ impl Billiard {
         };
         self.time + tau
     }
+}
+
+/// Asks the processor to bring `value`'s cache line in ahead of its use (a
+/// hint: nothing is read, and the results cannot change).
+#[inline(always)]
+fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        // SAFETY: SSE is part of x86_64's baseline, and a prefetch never
+        // faults nor reads memory the program sees (any address is allowed).
+        unsafe { _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast::<i8>()) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}
+
+/// How long after now (s) two centres `d0` apart (m, b − a) moving apart
+/// at `v` (m/s, b − a) stay within `reach` (m) of each other: the later root
+/// of `|d0 + v τ|² = reach²`, if it is positive; `None` if they never are
+/// within reach from now on (or do not move relative to each other).
+fn leaves_reach(d0: DVec3, v: DVec3, reach: f64) -> Option<f64> {
+    let vv = v.length_squared();
+    if vv == 0.0 {
+        return None;
+    }
+    let (p, q) = (d0.dot(v), d0.length_squared() - reach * reach);
+    let disc = p * p - vv * q;
+    if disc < 0.0 {
+        return None;
+    }
+    let leave = (-p + disc.sqrt()) / vv;
+    (leave > 0.0).then_some(leave)
 }
 
 /// A lower bound on the board time at which pucks on segments `sa` and

@@ -128,6 +128,21 @@ pub fn cushion(
     })
 }
 
+/// The board time of [`cushion`]'s contact alone, s (the same value),
+/// without working out the contact point for a uniform segment.
+pub fn cushion_time(
+    segment: &Segment,
+    radius: f64,
+    table: DVec2,
+    cushion: Cushion,
+    now: f64,
+) -> Option<f64> {
+    if !segment.is_braking() {
+        return puck_cushion::time(segment, radius, table, cushion, now);
+    }
+    self::cushion(segment, radius, table, cushion, now).map(|hit| hit.t)
+}
+
 /// Bisection for a decreasing `f` with `f(lo) > 0 ≥ f(hi)`, to adjacent
 /// floats: the first float at which `f ≤ 0`.
 fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {

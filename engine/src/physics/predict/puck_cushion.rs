@@ -124,6 +124,23 @@ pub fn predict(
     cushion: Cushion,
     now: f64,
 ) -> Option<CushionContact> {
+    let t = time(segment, radius, table, cushion, now)?;
+    let centre = segment.position_at(t);
+    Some(CushionContact {
+        t,
+        point: centre + support_offset(radius, segment.u, cushion),
+    })
+}
+
+/// The board time of [`predict`]'s contact alone, s (the same value): what
+/// the event loop's calendar needs, without the contact point.
+pub fn time(
+    segment: &Segment,
+    radius: f64,
+    table: DVec2,
+    cushion: Cushion,
+    now: f64,
+) -> Option<f64> {
     let k = cushion.axis();
     let s = cushion.outward_sign();
     let towards = segment.velocity()[k] * s;
@@ -134,12 +151,7 @@ pub fn predict(
     let h = half_width(radius, segment.u, k);
     let gap = s * (cushion.line(table) - p[k]) - h;
     let dt = (gap / towards).max(0.0);
-    let t = now + dt;
-    let centre = segment.position_at(t);
-    Some(CushionContact {
-        t,
-        point: centre + support_offset(radius, segment.u, cushion),
-    })
+    Some(now + dt)
 }
 
 #[cfg(test)]
