@@ -15,7 +15,7 @@ use crate::spacetime::ProperVelocity;
 use crate::worldline::mesh::{self, PUCK_SEGMENTS};
 
 /// `n` pucks in lanes, 40 to a row 25 cm apart, on a table four times the
-/// paper's, made longer (along y) when the rows need it (beyond 880
+/// paper's, made longer (along y) when the rows need it (from 841
 /// pucks), a moving eye.
 pub fn lanes(n: usize) -> Scene {
     let per_row = 40;

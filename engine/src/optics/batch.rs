@@ -7,7 +7,7 @@
 //! the same order), or the vertex is handed back to it.
 //!
 //! **Which vertices a batch solves.** The body's segment search is shared:
-//! one binary search for the reference point gives segment `k`. When `k`
+//! one search for the reference point gives segment `k`. When `k`
 //! is uniform (not braking), every vertex is solved on `k`, and it keeps
 //! that answer when the per-vertex search would also have stopped at `k`:
 //! the start of `k` (with `k`'s shape) is in the observation's past light

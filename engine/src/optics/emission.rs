@@ -16,9 +16,12 @@
 //! with `c² − v² = c²/γ²` exact, solved in its cancellation-free form.
 //! `f(t) = c (t₀ − t) − |x₀ − x(t)|` decreases along a worldline, so the
 //! segment holding the root is the last one whose start has `f ≥ 0`
-//! (binary search, O(log S)). At a kink the contracted offset jumps; if the
+//! (found for the body's centre by a search galloping back from the newest
+//! segment, O(log m) for m segments back; then a walk of usually zero
+//! steps for the point). At a kink the contracted offset jumps; if the
 //! jump carries the vertex across the light cone the emission is taken at
-//! the kink.
+//! the kink (where jumps at kinks close together make the point's test
+//! change sign more than once, the crossing nearest the centre's).
 //!
 //! On a **braking** segment (sliding friction) every material point of the
 //! Born-rigid body moves on a braking hyperbola of its own
@@ -260,16 +263,21 @@ pub fn solve(
     shapes: &impl ShapeMaps,
     observation: Event,
 ) -> Emission {
-    let k = segment_index(worldline, offset, shapes, observation);
+    // The centre's segment, then the point's walk from it: the same
+    // answer as [`solve_body`] with the centre as reference, also where
+    // the point's own cone test is not monotone (kinks close together).
+    let k = segment_index(worldline, DVec3::ZERO, shapes, observation);
+    let k = refine_index(worldline, k, offset, shapes, observation);
     solve_on_segment(worldline, k, offset, shapes, observation)
 }
 
 /// Emission events of every point of a body (rest-frame `offsets`, shape
-/// `shapes`), the segment search shared: one binary search for
+/// `shapes`), the segment search shared: one search for
 /// `reference`, then the points solved in batches on that segment
 /// ([`super::batch::solve_from`], structure of arrays, vectorised), each
 /// with a short walk only when it may lie on another. Appends to `out`;
-/// each result equals [`solve`]'s for its point.
+/// with the centre as `reference` each result equals [`solve`]'s for its
+/// point.
 pub fn solve_body(
     worldline: &Worldline,
     offsets: &[DVec3],

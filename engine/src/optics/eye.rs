@@ -50,7 +50,7 @@ impl Seen {
     #[inline]
     pub fn direction(&self) -> DVec3 {
         if self.distance > 0.0 {
-            self.position * (1.0 / self.distance)
+            self.position / self.distance
         } else {
             DVec3::ZERO
         }
