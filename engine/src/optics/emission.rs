@@ -344,13 +344,8 @@ mod tests {
     /// segment the bisection of the whole worldline found before.
     #[test]
     fn segment_search_finds_the_newest_segment_inside_the_cone() {
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::physics::gas::Rng::new(0x2545_F491_4F6C_DD1D);
+        let mut next = move || rng.next_f64();
         for len in [1usize, 2, 3, 7, 40, 333, 2000] {
             let u = |x: f64, y: f64| ProperVelocity(DVec3::new(x, y, 0.0) * 3.0);
             let mut w = Worldline::new(Event::new(0.0, DVec3::new(1.0, 0.5, 0.0)), u(0.3, -0.2), C);

@@ -11,7 +11,8 @@
 //!   observer's frame), apparent distance, Doppler factor, searchlight;
 //! * [`view`]: one kernel per effect over a body's points, the body's
 //!   shape (contracted or at rest) given as data, and the composed
-//!   [`observe`], the engine tests' reference for the schedule.
+//!   [`observe`], the engine tests' reference for the schedule;
+//! * [`solve_rate`]: the workload of the solves-per-second benchmarks.
 //!
 //! The frame schedule (`crate::ecs`) runs the kernels per view.
 //! The rest-frame meshes moved to [`crate::worldline::mesh`] (re-exported
@@ -21,6 +22,7 @@ pub mod batch;
 pub mod emission;
 pub mod eye;
 pub mod history;
+pub mod solve_rate;
 pub mod view;
 
 pub use crate::worldline::mesh;

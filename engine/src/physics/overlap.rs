@@ -528,13 +528,8 @@ mod tests {
     /// Random pairs of uniformly moving pucks, near each other (xorshift,
     /// deterministic): proper velocities up to 3 (γ ≈ 3.2), radii 0.02–0.04.
     fn random_pairs(n: usize) -> Vec<(Worldline, f64, Worldline, f64)> {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::physics::gas::Rng::new(0x2545_f491_4f6c_dd1d);
+        let mut next = move || rng.next_f64();
         (0..n)
             .map(|_| {
                 let mut puck = |x: f64| {

@@ -8,17 +8,16 @@ use std::time::Instant;
 
 use glam::DVec3;
 use lightcone_engine::ecs::frame_cost;
-use lightcone_engine::optics::eye::{Eye, Seen};
+use lightcone_engine::optics::eye::Eye;
 use lightcone_engine::optics::history::{SampledHistory, Search};
+use lightcone_engine::optics::solve_rate::{BodyOutput, SolveRate};
 use lightcone_engine::optics::view::{self, Method};
 use lightcone_engine::optics::{Emission, mesh};
 use lightcone_engine::physics::Billiard;
-use lightcone_engine::physics::gas::dense_box;
 use lightcone_engine::scene::{self, Effects, Scene};
-use lightcone_engine::spacetime::{Event, ProperVelocity};
+use lightcone_engine::spacetime::Event;
 use lightcone_engine::worldline::mesh::PUCK_SEGMENTS;
-use lightcone_engine::worldline::{ContractedShape, RestShape, Worldline};
-use rayon::prelude::*;
+use lightcone_engine::worldline::{RestShape, Worldline};
 
 /// Bytes per vertex per frame of the paper's history table, from its
 /// Table 1 (94.6 MB for 4 960 vertices × 1 000 events).
@@ -361,9 +360,9 @@ fn memory_ten_pucks() -> Result<String, String> {
     ))
 }
 
-/// Table: vertex solves per second at 10⁵–10⁶ vertices, 1 and 2 threads.
-/// The same work as `cargo run --release -p lightcone-engine --example
-/// optics_rate`.
+/// Table: vertex solves per second at 10⁵–10⁶ vertices, 1 and 2 threads
+/// ([`SolveRate`], the workload the `optics_rate` example and the
+/// criterion bench run too).
 fn throughput(quick: bool) -> String {
     let mut out = String::from(
         "### Exact emission solves per second\n\n\
@@ -383,34 +382,8 @@ fn throughput(quick: bool) -> String {
         &[(1000, 48), (1000, 512)]
     };
     for &(n, segments) in configs {
-        let r = 0.0305;
-        let mut b = dense_box(n, r, 3.0 * r, 0.8, 1.42, 11);
-        b.advance_to(2.0);
-        let shape = mesh::puck(r, 0.02, segments);
-        let size = b.table();
-        let eye = Eye {
-            event: Event::new(2.0, DVec3::new(size.x / 2.0, -1.0, 0.8)),
-            u: ProperVelocity::ZERO,
-        };
-        let effects = Effects::default();
-        let vertices = n * shape.vertices.len();
-        let contracted: Vec<ContractedShape> = (0..n)
-            .map(|i| ContractedShape::of(b.worldline(i)))
-            .collect();
-        let work = |puck: usize, e: &mut Vec<Emission>, s: &mut Vec<Seen>| {
-            view::emissions_with_shape(
-                &contracted[puck],
-                puck,
-                b.worldline(puck),
-                &shape.vertices,
-                &eye,
-                &effects,
-                Method::Exact,
-                e,
-            );
-            view::seen(&eye, b.c(), &effects, e, s);
-            s.len()
-        };
+        let work = SolveRate::gas(n, segments);
+        let vertices = work.vertices();
         let reps = if quick { 1 } else { 5 };
         // Best of `reps` runs of `run` (which returns the vertices solved).
         let best = |run: &mut dyn FnMut() -> usize| {
@@ -422,26 +395,16 @@ fn throughput(quick: bool) -> String {
                 })
                 .fold(0.0, f64::max)
         };
-        let mut kept: Vec<(Vec<Emission>, Vec<Seen>)> =
-            (0..n).map(|_| (Vec::new(), Vec::new())).collect();
+        let mut kept = vec![BodyOutput::default(); work.pucks()];
         for threads in [1, rayon::current_num_threads()] {
             let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(threads).build() else {
                 continue;
             };
             let (per_thread, per_body) = pool.install(|| {
-                let per_thread = best(&mut || {
-                    (0..n)
-                        .into_par_iter()
-                        .map_init(|| (Vec::new(), Vec::new()), |(e, s), puck| work(puck, e, s))
-                        .sum()
-                });
-                let per_body = best(&mut || {
-                    kept.par_iter_mut()
-                        .enumerate()
-                        .map(|(puck, (e, s))| work(puck, e, s))
-                        .sum()
-                });
-                (per_thread, per_body)
+                (
+                    best(&mut || work.per_thread()),
+                    best(&mut || work.per_body(&mut kept)),
+                )
             });
             out += &format!(
                 "| {n} | {vertices} | {threads} | {per_thread:.3e} | {:.1} | {per_body:.3e} |\n",
