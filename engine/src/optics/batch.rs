@@ -406,7 +406,6 @@ fn solve_near(
         out.extend((0..n).map(|i| Emission {
             event: Event::new(t_out[i], DVec3::new(e.x[i], e.y[i], e.z[i])),
             u,
-            segment: k,
         }));
         if safe {
             continue;

@@ -36,15 +36,15 @@ use glam::DVec3;
 use crate::spacetime::{Event, ProperVelocity};
 use crate::worldline::{Segment, SegmentShape, ShapeMaps, Worldline};
 
-/// Where and how fast a point was when it emitted the light seen.
+/// Where and how fast a point was when it emitted the light seen. (One is
+/// written for every vertex of every view each frame, so it holds only
+/// what the later effects read: 56 bytes.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Emission {
     /// The emission event, board frame.
     pub event: Event,
     /// The emitter's proper velocity then (for the Doppler factor).
     pub u: ProperVelocity,
-    /// Index of the worldline segment it lies on.
-    pub segment: usize,
 }
 
 /// The vertex's position at the start of segment `s`, of shape `shape`.
@@ -183,7 +183,6 @@ pub fn solve_on_segment(
     Emission {
         event: Event::new(s.start.t + dt, a + v * dt),
         u: s.u,
-        segment: k,
     }
 }
 
@@ -226,7 +225,6 @@ fn solve_on_braking(
         Emission {
             event: Event::new(s.start.t + dt, start + n * law.distance_at(dt)),
             u: ProperVelocity(n * law.proper_speed_at(dt)),
-            segment: k,
         }
     };
     if let Some(dt) = law.emission_time(start, n, observation.position, t_obs) {
@@ -244,7 +242,6 @@ fn solve_on_braking(
         return Emission {
             event: Event::new(s.start.t + dt, start + v * dt),
             u: s.u,
-            segment: k,
         };
     }
     let rest = start + n * law.stopping_distance();
@@ -306,7 +303,6 @@ pub fn simultaneous(
             s.position_at(t) + shapes.on_segment(k, s).place(s, t, offset),
         ),
         u: s.u_at(t),
-        segment: k,
     }
 }
 

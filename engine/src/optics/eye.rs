@@ -312,7 +312,6 @@ mod tests {
                 Emission {
                     event: Event::new(2.0 - 0.013 * x, position),
                     u: ProperVelocity::ZERO,
-                    segment: 0,
                 }
             })
             .collect();

@@ -138,7 +138,6 @@ impl SampledHistory {
         let sample = |i: usize| Emission {
             event: Event::new(self.times[i], self.position(body, i, offset, shapes)),
             u: self.tracks[body].u[i],
-            segment: i,
         };
         if f(0) < 0.0 {
             return Some(sample(0));
@@ -167,7 +166,6 @@ impl SampledHistory {
                 a.event.position + s * (b.event.position - a.event.position),
             ),
             u: a.u,
-            segment: lo,
         })
     }
 }

@@ -369,10 +369,10 @@ fn throughput(quick: bool) -> String {
          A gas of pucks (β < 0.8) run for 2 s of board time (so worldlines have kinks), observed from beside \
          the box; every vertex of every puck solved (emission event and apparent position, aberration on), \
          each puck's contracted shape kept from frame to frame as the schedule's kinematics phase keeps it \
-         (built once, outside the timing). Two ways to keep the output (64 bytes of `Emission` and 40 of \
+         (built once, outside the timing). Two ways to keep the output (56 bytes of `Emission` and 40 of \
          `Seen` per vertex): each thread's arrays used for one body after another (in cache), or one pair \
          of arrays per body kept from frame to frame, as the frame pipeline's `Apparent` keeps them (every \
-         frame writes all of them: 104 MB at 10⁶ vertices). Best of 5 runs each.\n\n\
+         frame writes all of them: 96 MB at 10⁶ vertices). Best of 5 runs each.\n\n\
          | pucks | vertices | threads | solves / s, arrays per thread | ns per vertex | solves / s, arrays per body |\n\
          | --- | --- | --- | --- | --- | --- |\n",
     );
