@@ -41,8 +41,8 @@ fn main() {
 }
 
 /// A hash of every bit of the final state (each puck's current segment's
-/// start and proper velocity, its mass, the board time): equal before and after a change of the loop that
-/// keeps the physics unchanged bit for bit.
+/// start and proper velocity, its mass, the board time): equal before and
+/// after a change of the loop that keeps the physics unchanged bit for bit.
 fn fingerprint(b: &lightcone_engine::physics::Billiard) -> u64 {
     let mut h = 0xcbf2_9ce4_8422_2325u64;
     let mut eat = |x: f64| {

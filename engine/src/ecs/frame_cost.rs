@@ -43,7 +43,7 @@ pub fn lanes(n: usize) -> Scene {
     Scene {
         title: "lanes".into(),
         description: String::new(),
-        c: 2.84 * 4.0 / 2.0,
+        c: size.x / 2.0,
         table: TableSpec::frictionless(size, 1.0),
         restitution: 1.0,
         effects: Effects::NONE,

@@ -1044,10 +1044,9 @@ impl Billiard {
                 restitution,
             )
         };
-        // The overlap bound is only reported in the collision record: with
-        // recording off its board-frame depth test is not made at all.
-        // Reported only in the collision record: with recording off (long
-        // runs) its board-frame depth test, a full overlap scan, is skipped.
+        // The overlap bound is reported only in the collision record: with
+        // recording off (long runs) its board-frame depth test, a full
+        // overlap scan, is skipped.
         let overlap_bound = if !self.record {
             0.0
         } else {

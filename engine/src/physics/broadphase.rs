@@ -13,10 +13,11 @@
 //! place (its ancestors grown to enclose it, O(log N)) and the tree is asked
 //! which AABBs overlap the new one (O(log N) plus the partners). In-place
 //! updates only loosen the tree, so it is rebuilt from the leaves after
-//! every 4N shell moves, at least 256 (O(N log N), amortised O(log N) per move; every N
-//! moves cost 3 % more in all at N = 10⁴, the looser tree's queries less
-//! than the rebuilds); a re-insertion by SAH descent per move cost more. The tree's shape changes
-//! only the order in which partners are found, never which.
+//! every 4N shell moves, at least 256 (O(N log N), amortised O(log N) per
+//! move; every N moves cost 3 % more in all at N = 10⁴, the looser tree's
+//! queries less than the rebuilds); a re-insertion by SAH descent per move
+//! cost more. The tree's shape changes only the order in which partners
+//! are found, never which.
 //! `BroadPhaseBvh::update` is not used: it walks the whole tree on every
 //! call, O(N) per shell move (measured: a third of the time at N = 10⁴).
 
