@@ -7,9 +7,9 @@
 //! puck is simply predicted again when it comes up (lazy invalidation; the
 //! partner's own new entry covers the pair meanwhile).
 //!
-//! The queue is an indexed 4-ary min-heap of the pucks keyed by their
-//! entries, with each puck's place in it kept, so an entry is replaced or
-//! removed in O(log N) with no search and no hashing.
+//! The queue is Paul's calendar queue of the pucks' entries ([`Calendar`]):
+//! each puck's place in it is kept, so an entry is replaced or removed in
+//! O(1) with no search and no hashing.
 
 /// An entry's place in the order of simultaneous events: velocity changes
 /// first, then cushion contacts, then pair contacts, then shell exits; within
@@ -64,70 +64,316 @@ impl Key {
 }
 
 const ABSENT: u32 = u32::MAX;
+/// `place` of an entry in the heap: this bit and its index there.
+const IN_HEAP: u32 = 1 << 31;
+/// End of a bucket list.
+const NIL: u32 = u32::MAX;
 const ARITY: usize = 4;
+/// Events per bucket the width is tuned for (1 to 4 cost the same within
+/// 0.3 %, 16 half a percent more: BENCHMARKS.md).
+const PER_BUCKET: f64 = 4.0;
 
-/// The queue of the pucks' entries.
-#[derive(Clone, Default, Debug)]
+/// Whether entry `(a, i)` comes before `(b, j)`: by key, then by puck (two
+/// pucks predicting the same pair contact have equal keys), so the order of
+/// events is fully given by the entries, whatever the queue's layout.
+#[inline]
+fn first(a: &Key, i: u32, b: &Key, j: u32) -> bool {
+    a.t < b.t || (a.t == b.t && (a.rank < b.rank || (a.rank == b.rank && i < j)))
+}
+
+/// The queue of the pucks' entries: Paul's calendar queue (G. Paul, J.
+/// Comput. Phys. 221, 615 (2007), as Smallenburg uses it, Eur. Phys. J. E
+/// 45, 22 (2022)). Board time is cut into buckets of a tuned width; the
+/// current bucket's entries (and any earlier) are in a small indexed
+/// min-heap, the entries of the next buckets in a ring of doubly linked
+/// lists (O(1) to add or remove), and later ones in an overflow list that
+/// is distributed into the ring when the ring runs empty. The width is
+/// tuned from the event rate (about [`PER_BUCKET`] events a bucket), so
+/// the heap holds a handful of entries whatever N, and an update costs
+/// O(1) instead of the O(log N) of one heap of every puck.
+#[derive(Clone, Debug)]
 pub struct Calendar {
-    /// Heap order: (key, puck).
-    heap: Vec<(Key, u32)>,
-    /// Each puck's index in `heap`, or `ABSENT`.
+    /// Each puck's key (meaningless when absent).
+    keys: Vec<Key>,
+    /// Where each puck's entry is: `ABSENT`, `IN_HEAP | index in heap`, or
+    /// the number of its list (a ring slot, or `ring` for the overflow).
     place: Vec<u32>,
+    /// The lists' links, by puck (`NIL` ends a list).
+    prev: Vec<u32>,
+    next: Vec<u32>,
+    /// Each list's first puck: the ring's slots, then the overflow.
+    heads: Vec<u32>,
+    /// Entries at or before the current bucket: a 4-ary min-heap.
+    heap: Vec<(Key, u32)>,
+    /// Bucket width, s (infinite until tuned: every entry in the heap), and
+    /// its inverse.
+    width: f64,
+    inverse: f64,
+    /// Number of the current bucket (`⌊t / width⌋` of its times).
+    current: i64,
+    /// The ring holds the buckets after the current one and before this.
+    end: i64,
+    /// Entries in the ring, in the overflow.
+    in_ring: usize,
+    in_overflow: usize,
+    /// Tuning: entries taken from the top since the last tuning, the board
+    /// time of the first and of the last, empty buckets stepped over.
+    pops: usize,
+    since: f64,
+    last: f64,
+    empty_steps: usize,
+}
+
+impl Default for Calendar {
+    fn default() -> Self {
+        Self::new(0)
+    }
 }
 
 impl Calendar {
     /// A calendar for `n` pucks, all without entries.
     pub fn new(n: usize) -> Self {
+        let ring = (2 * n).next_power_of_two().max(16);
         Self {
-            heap: Vec::with_capacity(n),
+            keys: vec![Key::NEVER; n],
             place: vec![ABSENT; n],
+            prev: vec![NIL; n],
+            next: vec![NIL; n],
+            heads: vec![NIL; ring + 1],
+            heap: Vec::new(),
+            width: f64::INFINITY,
+            inverse: 0.0,
+            current: 0,
+            end: ring as i64,
+            in_ring: 0,
+            in_overflow: 0,
+            pops: 0,
+            since: f64::NAN,
+            last: f64::NAN,
+            empty_steps: 0,
         }
+    }
+
+    /// Number of ring slots (the overflow list is the one after them).
+    #[inline]
+    fn ring(&self) -> usize {
+        self.heads.len() - 1
+    }
+
+    /// The bucket board time `t` falls in (NaN: bucket 0, the heap's).
+    #[inline]
+    fn bucket(&self, t: f64) -> i64 {
+        (t * self.inverse).floor() as i64
     }
 
     /// Sets puck `i`'s entry to `key` (a key at infinite time removes it).
     pub fn set(&mut self, i: u32, key: Key) {
-        let at = self.place[i as usize];
         if key.t == f64::INFINITY {
-            if at != ABSENT {
-                self.remove_at(at as usize);
-            }
+            self.remove(i);
             return;
         }
-        if at == ABSENT {
-            self.heap.push((key, i));
-            let k = self.heap.len() - 1;
-            self.place[i as usize] = k as u32;
-            self.up(k);
-        } else {
-            let k = at as usize;
+        let b = self.bucket(key.t);
+        let at = self.place[i as usize];
+        if at != ABSENT && at & IN_HEAP != 0 && b <= self.current {
+            // Stays in the heap: moved in place.
+            let k = (at & !IN_HEAP) as usize;
             let old = self.heap[k].0;
             self.heap[k].0 = key;
-            if key.before(&old) {
+            self.keys[i as usize] = key;
+            if first(&key, i, &old, i) {
                 self.up(k);
             } else {
                 self.down(k);
             }
+            return;
         }
+        self.remove(i);
+        self.keys[i as usize] = key;
+        self.insert(i, b);
     }
 
     /// Removes puck `i`'s entry, if any.
     pub fn remove(&mut self, i: u32) {
         let at = self.place[i as usize];
-        if at != ABSENT {
-            self.remove_at(at as usize);
+        if at == ABSENT {
+            return;
+        }
+        if at & IN_HEAP != 0 {
+            let k = (at & !IN_HEAP) as usize;
+            if k == 0 {
+                self.popped(self.heap[0].0.t);
+            }
+            self.remove_at(k);
+        } else {
+            self.unlink(i, at as usize);
         }
     }
 
     /// Puck `i`'s entry's key, if it has one.
     pub fn key(&self, i: u32) -> Option<Key> {
-        let at = self.place[i as usize];
-        (at != ABSENT).then(|| self.heap[at as usize].0)
+        (self.place[i as usize] != ABSENT).then(|| self.keys[i as usize])
     }
 
     /// The earliest entry: its key and puck.
     #[inline]
-    pub fn peek(&self) -> Option<(Key, u32)> {
+    pub fn peek(&mut self) -> Option<(Key, u32)> {
+        if self.heap.is_empty() && !self.advance() {
+            return None;
+        }
         self.heap.first().copied()
+    }
+
+    /// Puck `i` (key in `keys`, bucket `b`) into the heap, the ring or the
+    /// overflow.
+    fn insert(&mut self, i: u32, b: i64) {
+        if b <= self.current {
+            self.heap.push((self.keys[i as usize], i));
+            let k = self.heap.len() - 1;
+            self.place[i as usize] = IN_HEAP | k as u32;
+            self.up(k);
+        } else if b < self.end {
+            let slot = b.rem_euclid(self.ring() as i64) as usize;
+            self.link(i, slot);
+            self.in_ring += 1;
+        } else {
+            let overflow = self.ring();
+            self.link(i, overflow);
+            self.in_overflow += 1;
+        }
+    }
+
+    fn link(&mut self, i: u32, list: usize) {
+        let head = self.heads[list];
+        self.prev[i as usize] = NIL;
+        self.next[i as usize] = head;
+        if head != NIL {
+            self.prev[head as usize] = i;
+        }
+        self.heads[list] = i;
+        self.place[i as usize] = list as u32;
+    }
+
+    fn unlink(&mut self, i: u32, list: usize) {
+        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
+        if p == NIL {
+            self.heads[list] = n;
+        } else {
+            self.next[p as usize] = n;
+        }
+        if n != NIL {
+            self.prev[n as usize] = p;
+        }
+        self.place[i as usize] = ABSENT;
+        if list == self.ring() {
+            self.in_overflow -= 1;
+        } else {
+            self.in_ring -= 1;
+        }
+    }
+
+    /// The heap ran empty: moves on to the next bucket that has entries
+    /// (distributing the overflow when the ring is empty). Returns whether
+    /// there is any entry.
+    fn advance(&mut self) -> bool {
+        loop {
+            if self.in_ring == 0 {
+                if self.in_overflow == 0 {
+                    return false;
+                }
+                // Jump to the overflow's earliest bucket and take the next
+                // ring's worth of buckets from it.
+                let mut earliest = i64::MAX;
+                let mut i = self.heads[self.ring()];
+                while i != NIL {
+                    earliest = earliest.min(self.bucket(self.keys[i as usize].t));
+                    i = self.next[i as usize];
+                }
+                self.current = earliest.max(self.current);
+                self.end = self.current.saturating_add(self.ring() as i64);
+                self.distribute_overflow();
+            } else {
+                self.current += 1;
+                let slot = self.current.rem_euclid(self.ring() as i64) as usize;
+                if self.heads[slot] == NIL {
+                    self.empty_steps += 1;
+                    continue;
+                }
+                let mut i = self.heads[slot];
+                self.heads[slot] = NIL;
+                while i != NIL {
+                    let next = self.next[i as usize];
+                    self.in_ring -= 1;
+                    self.place[i as usize] = ABSENT;
+                    self.insert(i, self.current);
+                    i = next;
+                }
+            }
+            if !self.heap.is_empty() {
+                return true;
+            }
+        }
+    }
+
+    /// Moves the overflow's entries that now fall before `end` into the heap
+    /// or the ring.
+    fn distribute_overflow(&mut self) {
+        let overflow = self.ring();
+        let mut i = self.heads[overflow];
+        while i != NIL {
+            let next = self.next[i as usize];
+            let b = self.bucket(self.keys[i as usize].t);
+            if b < self.end || b <= self.current {
+                self.unlink(i, overflow);
+                self.insert(i, b);
+            }
+            i = next;
+        }
+    }
+
+    /// The top entry (board time `t`) was taken: counts it, and now and
+    /// then tunes the bucket width to the event rate.
+    fn popped(&mut self, t: f64) {
+        if self.pops == 0 {
+            self.since = t;
+        }
+        self.pops += 1;
+        self.last = t;
+        if self.pops + self.empty_steps >= 2 * self.place.len().max(128) {
+            self.tune();
+        }
+    }
+
+    /// Sets the width from the board time the last pops spanned, and
+    /// redistributes every entry if it changed by more than a factor two.
+    fn tune(&mut self) {
+        let span = self.last - self.since;
+        let pops = self.pops;
+        self.pops = 0;
+        self.empty_steps = 0;
+        if pops < 2 || !(span > 0.0 && span.is_finite()) {
+            return;
+        }
+        let width = PER_BUCKET * span / (pops - 1) as f64;
+        let ratio = width / self.width;
+        if !(width > 0.0 && width.is_finite()) || (0.5..=2.0).contains(&ratio) {
+            return;
+        }
+        let live: Vec<u32> = (0..self.place.len() as u32)
+            .filter(|&i| self.place[i as usize] != ABSENT)
+            .collect();
+        self.heap.clear();
+        self.heads.fill(NIL);
+        self.place.fill(ABSENT);
+        self.in_ring = 0;
+        self.in_overflow = 0;
+        self.width = width;
+        self.inverse = 1.0 / width;
+        self.current = self.bucket(self.last);
+        self.end = self.current.saturating_add(self.ring() as i64);
+        for i in live {
+            let b = self.bucket(self.keys[i as usize].t);
+            self.insert(i, b);
+        }
     }
 
     fn remove_at(&mut self, k: usize) {
@@ -137,9 +383,12 @@ impl Calendar {
         if k != last {
             self.heap.swap(k, last);
             self.heap.pop();
-            self.place[self.heap[k].1 as usize] = k as u32;
-            let key = self.heap[k].0;
-            if k > 0 && key.before(&self.heap[(k - 1) / ARITY].0) {
+            let (key, j) = self.heap[k];
+            self.place[j as usize] = IN_HEAP | k as u32;
+            if k > 0 && {
+                let (pk, pj) = self.heap[(k - 1) / ARITY];
+                first(&key, j, &pk, pj)
+            } {
                 self.up(k);
             } else {
                 self.down(k);
@@ -153,40 +402,44 @@ impl Calendar {
         let item = self.heap[k];
         while k > 0 {
             let parent = (k - 1) / ARITY;
-            if !item.0.before(&self.heap[parent].0) {
+            let (pk, pj) = self.heap[parent];
+            if !first(&item.0, item.1, &pk, pj) {
                 break;
             }
             self.heap[k] = self.heap[parent];
-            self.place[self.heap[k].1 as usize] = k as u32;
+            self.place[self.heap[k].1 as usize] = IN_HEAP | k as u32;
             k = parent;
         }
         self.heap[k] = item;
-        self.place[item.1 as usize] = k as u32;
+        self.place[item.1 as usize] = IN_HEAP | k as u32;
     }
 
     fn down(&mut self, mut k: usize) {
         let item = self.heap[k];
         let n = self.heap.len();
         loop {
-            let first = ARITY * k + 1;
-            if first >= n {
+            let first_child = ARITY * k + 1;
+            if first_child >= n {
                 break;
             }
-            let mut best = first;
-            for c in first + 1..(first + ARITY).min(n) {
-                if self.heap[c].0.before(&self.heap[best].0) {
+            let mut best = first_child;
+            for c in first_child + 1..(first_child + ARITY).min(n) {
+                let (ck, cj) = self.heap[c];
+                let (bk, bj) = self.heap[best];
+                if first(&ck, cj, &bk, bj) {
                     best = c;
                 }
             }
-            if !self.heap[best].0.before(&item.0) {
+            let (bk, bj) = self.heap[best];
+            if !first(&bk, bj, &item.0, item.1) {
                 break;
             }
             self.heap[k] = self.heap[best];
-            self.place[self.heap[k].1 as usize] = k as u32;
+            self.place[self.heap[k].1 as usize] = IN_HEAP | k as u32;
             k = best;
         }
         self.heap[k] = item;
-        self.place[item.1 as usize] = k as u32;
+        self.place[item.1 as usize] = IN_HEAP | k as u32;
     }
 }
 
@@ -250,5 +503,99 @@ mod tests {
                 assert_eq!(c.peek().map(|(_, i)| i), best);
             }
         }
+    }
+
+    /// Events as the billiard makes them: the earliest is taken and its
+    /// puck (and a few others) given new entries at or after it, some far
+    /// ahead, some removed, with ties of time and rank and a thousandfold
+    /// change of the event rate halfway (the width is tuned twice); the
+    /// queue must give exactly the order a sort of the entries gives.
+    #[test]
+    fn calendar_queue_gives_the_sorted_order_as_the_rate_changes() {
+        let n = 200u32;
+        let mut c = Calendar::new(n as usize);
+        let mut keys: Vec<Option<Key>> = vec![None; n as usize];
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rand = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let key_at = |t: f64, r: u64, i: u32| Key {
+            t,
+            rank: match r % 3 {
+                0 => Rank::kick(i),
+                1 => Rank::pair(0, 1), // shared by many: ties of rank
+                _ => Rank::shell(i),
+            },
+        };
+        for i in 0..n {
+            let k = key_at((rand() % 1000) as f64 * 1e-3, rand(), i);
+            keys[i as usize] = Some(k);
+            c.set(i, k);
+        }
+        let mut now = 0.0;
+        let mut taken = 0;
+        let (mut ring_used, mut overflow_used, mut widths) = (0, 0, vec![c.width]);
+        for step in 0..40_000u64 {
+            let scale = if step < 20_000 { 1e-3 } else { 1.0 };
+            let expected = (0..n)
+                .filter_map(|i| keys[i as usize].map(|k| (k, i)))
+                .min_by(|(a, i), (b, j)| {
+                    if first(a, *i, b, *j) {
+                        std::cmp::Ordering::Less
+                    } else {
+                        std::cmp::Ordering::Greater
+                    }
+                });
+            let got = c.peek();
+            ring_used = ring_used.max(c.in_ring);
+            overflow_used = overflow_used.max(c.in_overflow);
+            if c.width != *widths.last().unwrap() {
+                widths.push(c.width);
+            }
+            assert_eq!(
+                got.map(|(k, i)| (k.t, k.rank, i)),
+                expected.map(|(k, i)| (k.t, k.rank, i)),
+                "step {step}"
+            );
+            let Some((key, i)) = got else { break };
+            assert!(key.t >= now, "time never goes back");
+            now = key.t;
+            c.remove(i);
+            keys[i as usize] = None;
+            taken += 1;
+            // The puck and a few others predicted again from now on.
+            for j in [i, (rand() % n as u64) as u32, (rand() % n as u64) as u32] {
+                let r = rand();
+                let k = match r % 16 {
+                    0 => None,                                                               // nothing ahead
+                    1 => Some(key_at(now, r >> 4, j)), // now: a tie of time
+                    2 => Some(key_at(now + (r >> 8) as f64 % 1e3 * scale * 1e3, r >> 4, j)), // far ahead
+                    _ => Some(key_at(
+                        now + ((r >> 8) % 1000) as f64 * scale * 1e-3 * n as f64,
+                        r >> 4,
+                        j,
+                    )),
+                };
+                match k {
+                    Some(k) => c.set(j, k),
+                    None => c.remove(j),
+                }
+                keys[j as usize] = k;
+            }
+        }
+        assert!(taken > 30_000, "the queue kept running ({taken} taken)");
+        // Every part of the queue was used, and the width followed the rate.
+        assert!(
+            ring_used > 10 && overflow_used > 0,
+            "{ring_used} {overflow_used}"
+        );
+        assert!(widths.len() >= 3, "widths {widths:?}");
+        assert!(
+            widths[widths.len() - 1] > 100.0 * widths[1],
+            "widths {widths:?}"
+        );
     }
 }

@@ -4,8 +4,8 @@
 //!
 //! * [`predict`]: when and where two pucks, or a puck and a cushion, meet;
 //! * [`resolve`]: what comes out of a collision (4-momentum conserved);
-//! * `calendar`: one pending event per puck, in time order, invalidated
-//!   lazily by the partner's version;
+//! * `calendar`: one pending event per puck, in time order (Paul's
+//!   calendar queue), invalidated lazily by the partner's version;
 //! * `broadphase`: rapier's broad-phase BVH on position shells, used only
 //!   to find candidate pairs;
 //! * [`Billiard`]: the event loop tying them together.
