@@ -1672,7 +1672,24 @@ impl Billiard {
             }
         }
         let segment = puck.worldline.last();
+        // The centre stays in its shell until the shell exit, which is an
+        // event of its own, so a cushion the shell's disc (its margin and
+        // the rest radius, inside which the contracted puck lies) does not
+        // reach cannot be met before it: not worked out. The reach is grown
+        // by far more than the rounding of the positions.
+        let exit = self.shell_exit(i);
+        let shell = self.shells[i];
+        let reach = self.margin + puck.radius + 1e-9 * (self.table.x + self.table.y);
+        let from_shell = [
+            shell.x,
+            self.table.x - shell.x,
+            shell.y,
+            self.table.y - shell.y,
+        ];
         for (k, cushion) in Cushion::ALL.into_iter().enumerate() {
+            if from_shell[k] > reach && !self.reference {
+                continue;
+            }
             if let Some(t) = braking::cushion_time(segment, puck.radius, self.table, cushion, now) {
                 let key = Key {
                     t,
@@ -1684,7 +1701,7 @@ impl Billiard {
                 }
             }
         }
-        self.hot[i].exit = self.shell_exit(i);
+        self.hot[i].exit = exit;
         let key = Key {
             t: self.hot[i].exit,
             rank: Rank::shell(i as u32),
@@ -1716,11 +1733,15 @@ impl Billiard {
             .chain(everyone.filter(|&j| j != i));
         // Counted here, added to the stats after the scan.
         let (mut pruned, mut predictions) = (0, 0);
+        // This puck's side of every bound, worked out once.
+        let own = self.hot[i];
+        let own_now = own.position_at(now);
         for j in candidates {
             let (a, b) = (i.min(j), i.max(j));
-            let limit = best.t.min(self.hot[j].exit);
+            let other = &self.hot[j];
+            let limit = best.t.min(other.exit);
             if !self.reference {
-                let bound = if self.hot[a].braking || self.hot[b].braking {
+                let bound = if own.braking || other.braking {
                     braking_touch(
                         self.pucks[a].worldline.last(),
                         self.pucks[a].radius,
@@ -1729,7 +1750,7 @@ impl Billiard {
                         now,
                     )
                 } else {
-                    disc_touch(&self.hot[a], &self.hot[b], now)
+                    disc_touch(own_now, own.v, own.radius, other, now)
                 };
                 match bound {
                     Some(t) if t <= limit => {}
@@ -1882,8 +1903,9 @@ fn braking_touch(sa: &Segment, ra: f64, sb: &Segment, rb: f64, now: f64) -> Opti
     (closing > 0.0).then(|| now + gap / closing)
 }
 
-/// A lower bound on when two pucks, moving uniformly as `a` and `b` say, can next have a contact event or a velocity change of
-/// it, from board time `now`: the board time at which their rest discs
+/// A lower bound on when two pucks, moving uniformly as `a` and `b` say,
+/// can next have a contact event or a velocity change of it, from board
+/// time `now`: the board time at which their rest discs
 /// first touch (`now` if they overlap), or `None` if they never do (they
 /// miss or recede). Classical and cheap: a quadratic on the board.
 ///
@@ -1897,15 +1919,20 @@ fn braking_touch(sa: &Segment, ra: f64, sb: &Segment, rb: f64, now: f64) -> Opti
 /// kick, is then at interval `S² − (u′p − λ)² ≤ S²` from it, and board
 /// simultaneous events' interval is their board distance squared.) The
 /// reach is grown by 1e-9 so rounding never makes the bound late.
+///
+/// `a` is given by its centre at `now` (m), velocity (m/s) and rest radius
+/// (m), worked out once for all its partners. The result is the same to
+/// the bit with `a` and `b` exchanged (negating both `d` and `v` is exact),
+/// so it does not depend on which of the pair is scanning.
 #[inline]
-fn disc_touch(a: &Hot, b: &Hot, now: f64) -> Option<f64> {
-    let d = b.position_at(now) - a.position_at(now);
-    let reach = (a.radius + b.radius) * (1.0 + 1e-9);
+fn disc_touch(a_now: DVec2, a_v: DVec2, a_radius: f64, b: &Hot, now: f64) -> Option<f64> {
+    let d = b.position_at(now) - a_now;
+    let reach = (a_radius + b.radius) * (1.0 + 1e-9);
     let q = d.length_squared() - reach * reach;
     if q <= 0.0 {
         return Some(now);
     }
-    let v = b.v - a.v;
+    let v = b.v - a_v;
     let p = d.dot(v);
     if p >= 0.0 {
         return None; // receding or parallel
