@@ -157,39 +157,50 @@ fn scan() -> &'static [(f64, f64); SAMPLES] {
 /// in `d` moving linearly (a minimum of functions linear in it), which
 /// [`first_touch`] needs.
 pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
-    let f = |theta: f64| {
-        let m = DVec3::new(theta.cos(), theta.sin(), 0.0);
-        support(a, radius_a, m) + support(b, radius_b, m) - m.dot(d)
-    };
+    let f = |m: DVec3| support(a, radius_a, m) + support(b, radius_b, m) - m.dot(d);
     // Candidates: a uniform scan, plus where the function has its kinks and
     // narrow valleys: a fast puck's shape is a thin ellipse whose support
     // is smallest (a valley of angular width ~1/γ) along its motion.
-    let step = std::f64::consts::TAU / SAMPLES as f64;
-    let mut best = (f64::INFINITY, 0.0);
-    for (k, &(cos, sin)) in scan().iter().enumerate() {
+    let mut best = (f64::INFINITY, DVec3::X);
+    for &(cos, sin) in scan() {
         let m = DVec3::new(cos, sin, 0.0);
-        let v = support(a, radius_a, m) + support(b, radius_b, m) - m.dot(d);
+        let v = f(m);
         if v < best.0 {
-            best = (v, k as f64 * step);
+            best = (v, m);
         }
     }
-    let mut consider = |theta: f64| {
-        let v = f(theta);
-        if v < best.0 {
-            best = (v, theta);
-        }
-    };
     for axis in [a.velocity(), b.velocity(), d] {
-        if axis.length_squared() > 0.0 {
-            let theta = axis.y.atan2(axis.x);
-            consider(theta);
-            consider(theta + std::f64::consts::PI);
+        let axis = DVec3::new(axis.x, axis.y, 0.0);
+        let length = axis.length();
+        if length > 0.0 {
+            for m in [axis / length, -axis / length] {
+                let v = f(m);
+                if v < best.0 {
+                    best = (v, m);
+                }
+            }
         }
     }
-    // Golden-section refinement around the best candidate.
-    let refined = golden_min(f, best.1 - step, best.1 + step, 80, |_| false);
-    let (value, theta) = if refined.0 < best.0 { refined } else { best };
-    (value, DVec3::new(theta.cos(), theta.sin(), 0.0))
+    // Golden-section refinement within one scan step either side of the
+    // best candidate, without trigonometry: the direction turned by the
+    // angle φ is `((1 − s²) m + 2 s m⊥) / (1 + s²)` with `s = tan(φ/2)`,
+    // monotone in φ, so the search over `s` sees the same one valley.
+    let (m0, across) = (best.1, DVec3::new(-best.1.y, best.1.x, 0.0));
+    let turned = |s: f64| (m0 * (1.0 - s * s) + across * (2.0 * s)) * (1.0 + s * s).recip();
+    let half = half_step_tangent();
+    let refined = golden_min(|s| f(turned(s)), -half, half, 80, |_| false);
+    if refined.0 < best.0 {
+        (refined.0, turned(refined.1))
+    } else {
+        best
+    }
+}
+
+/// `tan(π / SAMPLES)`: one scan step, `2π / SAMPLES`, as the half-angle
+/// tangent [`gap_min`]'s refinement searches over.
+fn half_step_tangent() -> f64 {
+    static HALF: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+    *HALF.get_or_init(|| (std::f64::consts::PI / SAMPLES as f64).tan())
 }
 
 /// Whether two uniformly moving pucks are proved apart on the board at
@@ -523,6 +534,38 @@ mod tests {
         );
         let d = depth(a.last(), 0.03, b.last(), 0.03, 0.0);
         assert!((d - 0.01).abs() < 1e-12, "{d}");
+    }
+
+    /// Two equal pucks moving together at γ from 1.5 to 10⁸ in a direction
+    /// at any angle, centres `x` apart across their motion: the depth is the
+    /// distance from the separation to the edge of the ellipse their shapes
+    /// sweep round each other (semi-axes `A = 2R` across the motion, `B =
+    /// 2R/γ` along it), and for a point on the major axis within
+    /// `(A² − B²)/A` of the centre that distance has a closed form,
+    /// `B √(1 − x²/(A² − B²))`, reached in a direction that is none of the
+    /// scan's or the axes' candidates: the refinement must find it.
+    #[test]
+    fn depth_across_a_contracted_pair_matches_the_ellipse_distance() {
+        let r = 0.03;
+        let mut rng = crate::physics::gas::Rng::new(0x5eed_0fe1_1195);
+        for k in 0..400 {
+            let gamma = 1.5 * (1e8f64 / 1.5).powf(k as f64 / 399.0);
+            let alpha = std::f64::consts::TAU * rng.next_f64();
+            let along = DVec3::new(alpha.cos(), alpha.sin(), 0.0);
+            let u = along * (gamma * gamma - 1.0).sqrt();
+            let (big, small) = (2.0 * r, 2.0 * r / gamma);
+            let reach = (big * big - small * small) / big;
+            let x = reach * (0.05 + 0.9 * rng.next_f64());
+            let across = DVec3::new(-along.y, along.x, 0.0);
+            let a = Worldline::new(Event::default(), ProperVelocity(u), 1.0);
+            let b = Worldline::new(Event::new(0.0, across * x), ProperVelocity(u), 1.0);
+            let expected = small * (1.0 - x * x / (big * big - small * small)).sqrt();
+            let d = depth(a.last(), r, b.last(), r, 0.0);
+            assert!(
+                (d - expected).abs() <= 1e-12 * r + 1e-9 * expected,
+                "γ = {gamma:e}, angle {alpha}: depth {d:e}, expected {expected:e}"
+            );
+        }
     }
 
     /// Random pairs of uniformly moving pucks, near each other (xorshift,
