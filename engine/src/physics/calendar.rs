@@ -109,7 +109,7 @@ pub struct Calendar {
     /// its inverse.
     width: f64,
     inverse: f64,
-    /// Number of the current bucket (`⌊t / width⌋` of its times).
+    /// Number of the current bucket ([`Self::bucket`] of its times).
     current: i64,
     /// The ring holds the buckets after the current one and before this.
     end: i64,
@@ -160,10 +160,12 @@ impl Calendar {
         self.heads.len() - 1
     }
 
-    /// The bucket board time `t` falls in (NaN: bucket 0, the heap's).
+    /// The bucket board time `t` falls in: `t / width` rounded towards zero
+    /// (monotone in `t`, which is all the queue needs; no call to `floor`),
+    /// saturating; NaN falls in bucket 0.
     #[inline]
     fn bucket(&self, t: f64) -> i64 {
-        (t * self.inverse).floor() as i64
+        (t * self.inverse) as i64
     }
 
     /// Sets puck `i`'s entry to `key` (a key at infinite time removes it).
