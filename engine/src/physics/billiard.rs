@@ -315,6 +315,9 @@ pub struct Billiard {
     margin: f64,
     /// Each puck's current motion, for the cheap bound.
     hot: Vec<Hot>,
+    /// Scratch of `predict`: the candidates whose bound (board time, s) can
+    /// beat the earliest event, with their index.
+    bounded: Vec<(f64, u32)>,
     /// The slow reference path (tests): every pair a candidate, no cheap
     /// bound, each contact computed again when it happens.
     reference: bool,
@@ -401,6 +404,7 @@ impl Billiard {
             broad: BroadPhase::new(&[], &[]),
             shells: vec![DVec2::ZERO; n],
             hot: vec![Hot::default(); n],
+            bounded: Vec::new(),
             margin: SHELL_MARGIN * mean_radius,
             reference: false,
             driven: false,
@@ -1733,33 +1737,59 @@ impl Billiard {
             .chain(everyone.filter(|&j| j != i));
         // Counted here, added to the stats after the scan.
         let (mut pruned, mut predictions) = (0, 0);
+        // First the cheap bound of every candidate: those that can beat the
+        // earliest event so far are kept, then solved exactly in the order
+        // of their bounds, so that the first exact contacts found prune the
+        // rest. The winner is the earliest key whatever the order (a pair
+        // pruned can only have a later contact than the one that pruned
+        // it), so this order changes how many solves are made, never the
+        // outcome.
+        let mut bounded = std::mem::take(&mut self.bounded);
+        bounded.clear();
         // This puck's side of every bound, worked out once.
         let own = self.hot[i];
         let own_now = own.position_at(now);
         for j in candidates {
-            let (a, b) = (i.min(j), i.max(j));
+            if self.reference {
+                bounded.push((f64::NEG_INFINITY, j as u32));
+                continue;
+            }
             let other = &self.hot[j];
             let limit = best.t.min(other.exit);
-            if !self.reference {
-                let bound = if own.braking || other.braking {
-                    braking_touch(
-                        self.pucks[a].worldline.last(),
-                        self.pucks[a].radius,
-                        self.pucks[b].worldline.last(),
-                        self.pucks[b].radius,
-                        now,
-                    )
-                } else {
-                    disc_touch(own_now, own.v, own.radius, other, now)
-                };
-                match bound {
-                    Some(t) if t <= limit => {}
-                    _ => {
-                        pruned += 1;
-                        continue;
-                    }
-                }
+            let bound = if own.braking || other.braking {
+                let (a, b) = (i.min(j), i.max(j));
+                braking_touch(
+                    self.pucks[a].worldline.last(),
+                    self.pucks[a].radius,
+                    self.pucks[b].worldline.last(),
+                    self.pucks[b].radius,
+                    now,
+                )
+            } else {
+                disc_touch(own_now, own.v, own.radius, other, now)
+            };
+            match bound {
+                Some(t) if t <= limit => bounded.push((t, j as u32)),
+                _ => pruned += 1,
             }
+        }
+        // Insertion sort (a handful of entries), stable: the reference
+        // path's all-equal bounds keep the partners' order.
+        for k in 1..bounded.len() {
+            let mut m = k;
+            while m > 0 && bounded[m - 1].0 > bounded[m].0 {
+                bounded.swap(m - 1, m);
+                m -= 1;
+            }
+        }
+        for &(bound, j) in &bounded {
+            if bound > best.t {
+                pruned += 1;
+                continue; // and every later one: counted as pruned
+            }
+            let j = j as usize;
+            let (a, b) = (i.min(j), i.max(j));
+            let limit = best.t.min(self.hot[j].exit);
             if self.pending_with(a, b) {
                 continue; // the second kick of their last contact is still ahead
             }
@@ -1799,6 +1829,7 @@ impl Billiard {
                 won = Some(hit);
             }
         }
+        self.bounded = bounded;
         self.stats.pruned += pruned;
         self.stats.predictions += predictions;
         if matches!(next.what, What::Pair { .. }) {
