@@ -81,6 +81,19 @@ fn first(a: &Key, i: u32, b: &Key, j: u32) -> bool {
     a.t < b.t || (a.t == b.t && (a.rank < b.rank || (a.rank == b.rank && i < j)))
 }
 
+/// A puck's entry in the [`Calendar`] (32 bytes).
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    /// The key (meaningless when absent).
+    key: Key,
+    /// Where the entry is: `ABSENT`, `IN_HEAP | index in heap`, or the
+    /// number of its list (a ring slot, or `ring` for the overflow).
+    place: u32,
+    /// The list's links (`NIL` ends a list).
+    prev: u32,
+    next: u32,
+}
+
 /// The queue of the pucks' entries: Paul's calendar queue (G. Paul, J.
 /// Comput. Phys. 221, 615 (2007), as Smallenburg uses it, Eur. Phys. J. E
 /// 45, 22 (2022)). Board time is cut into buckets of a tuned width; the
@@ -93,14 +106,9 @@ fn first(a: &Key, i: u32, b: &Key, j: u32) -> bool {
 /// O(1) instead of the O(log N) of one heap of every puck.
 #[derive(Clone, Debug)]
 pub struct Calendar {
-    /// Each puck's key (meaningless when absent).
-    keys: Vec<Key>,
-    /// Where each puck's entry is: `ABSENT`, `IN_HEAP | index in heap`, or
-    /// the number of its list (a ring slot, or `ring` for the overflow).
-    place: Vec<u32>,
-    /// The lists' links, by puck (`NIL` ends a list).
-    prev: Vec<u32>,
-    next: Vec<u32>,
+    /// Each puck's entry: its key, where it is, its list links (one
+    /// record, so that an update touches one cache line of the puck's).
+    slots: Vec<Slot>,
     /// Each list's first puck: the ring's slots, then the overflow.
     heads: Vec<u32>,
     /// Entries at or before the current bucket: a 4-ary min-heap.
@@ -135,10 +143,15 @@ impl Calendar {
     pub fn new(n: usize) -> Self {
         let ring = (2 * n).next_power_of_two().max(16);
         Self {
-            keys: vec![Key::NEVER; n],
-            place: vec![ABSENT; n],
-            prev: vec![NIL; n],
-            next: vec![NIL; n],
+            slots: vec![
+                Slot {
+                    key: Key::NEVER,
+                    place: ABSENT,
+                    prev: NIL,
+                    next: NIL,
+                };
+                n
+            ],
             heads: vec![NIL; ring + 1],
             heap: Vec::new(),
             width: f64::INFINITY,
@@ -175,13 +188,13 @@ impl Calendar {
             return;
         }
         let b = self.bucket(key.t);
-        let at = self.place[i as usize];
+        let at = self.slots[i as usize].place;
         if at != ABSENT && at & IN_HEAP != 0 && b <= self.current {
             // Stays in the heap: moved in place.
             let k = (at & !IN_HEAP) as usize;
             let old = self.heap[k].0;
             self.heap[k].0 = key;
-            self.keys[i as usize] = key;
+            self.slots[i as usize].key = key;
             if first(&key, i, &old, i) {
                 self.up(k);
             } else {
@@ -190,13 +203,13 @@ impl Calendar {
             return;
         }
         self.remove(i);
-        self.keys[i as usize] = key;
+        self.slots[i as usize].key = key;
         self.insert(i, b);
     }
 
     /// Removes puck `i`'s entry, if any.
     pub fn remove(&mut self, i: u32) {
-        let at = self.place[i as usize];
+        let at = self.slots[i as usize].place;
         if at == ABSENT {
             return;
         }
@@ -213,7 +226,7 @@ impl Calendar {
 
     /// Puck `i`'s entry's key, if it has one.
     pub fn key(&self, i: u32) -> Option<Key> {
-        (self.place[i as usize] != ABSENT).then(|| self.keys[i as usize])
+        (self.slots[i as usize].place != ABSENT).then(|| self.slots[i as usize].key)
     }
 
     /// The earliest entry: its key and puck.
@@ -229,9 +242,9 @@ impl Calendar {
     /// overflow.
     fn insert(&mut self, i: u32, b: i64) {
         if b <= self.current {
-            self.heap.push((self.keys[i as usize], i));
+            self.heap.push((self.slots[i as usize].key, i));
             let k = self.heap.len() - 1;
-            self.place[i as usize] = IN_HEAP | k as u32;
+            self.slots[i as usize].place = IN_HEAP | k as u32;
             self.up(k);
         } else if b < self.end {
             let slot = b.rem_euclid(self.ring() as i64) as usize;
@@ -246,26 +259,26 @@ impl Calendar {
 
     fn link(&mut self, i: u32, list: usize) {
         let head = self.heads[list];
-        self.prev[i as usize] = NIL;
-        self.next[i as usize] = head;
+        self.slots[i as usize].prev = NIL;
+        self.slots[i as usize].next = head;
         if head != NIL {
-            self.prev[head as usize] = i;
+            self.slots[head as usize].prev = i;
         }
         self.heads[list] = i;
-        self.place[i as usize] = list as u32;
+        self.slots[i as usize].place = list as u32;
     }
 
     fn unlink(&mut self, i: u32, list: usize) {
-        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
+        let (p, n) = (self.slots[i as usize].prev, self.slots[i as usize].next);
         if p == NIL {
             self.heads[list] = n;
         } else {
-            self.next[p as usize] = n;
+            self.slots[p as usize].next = n;
         }
         if n != NIL {
-            self.prev[n as usize] = p;
+            self.slots[n as usize].prev = p;
         }
-        self.place[i as usize] = ABSENT;
+        self.slots[i as usize].place = ABSENT;
         if list == self.ring() {
             self.in_overflow -= 1;
         } else {
@@ -287,8 +300,8 @@ impl Calendar {
                 let mut earliest = i64::MAX;
                 let mut i = self.heads[self.ring()];
                 while i != NIL {
-                    earliest = earliest.min(self.bucket(self.keys[i as usize].t));
-                    i = self.next[i as usize];
+                    earliest = earliest.min(self.bucket(self.slots[i as usize].key.t));
+                    i = self.slots[i as usize].next;
                 }
                 self.current = earliest.max(self.current);
                 self.end = self.current.saturating_add(self.ring() as i64);
@@ -303,9 +316,9 @@ impl Calendar {
                 let mut i = self.heads[slot];
                 self.heads[slot] = NIL;
                 while i != NIL {
-                    let next = self.next[i as usize];
+                    let next = self.slots[i as usize].next;
                     self.in_ring -= 1;
-                    self.place[i as usize] = ABSENT;
+                    self.slots[i as usize].place = ABSENT;
                     self.insert(i, self.current);
                     i = next;
                 }
@@ -322,8 +335,8 @@ impl Calendar {
         let overflow = self.ring();
         let mut i = self.heads[overflow];
         while i != NIL {
-            let next = self.next[i as usize];
-            let b = self.bucket(self.keys[i as usize].t);
+            let next = self.slots[i as usize].next;
+            let b = self.bucket(self.slots[i as usize].key.t);
             if b < self.end || b <= self.current {
                 self.unlink(i, overflow);
                 self.insert(i, b);
@@ -340,7 +353,7 @@ impl Calendar {
         }
         self.pops += 1;
         self.last = t;
-        if self.pops + self.empty_steps >= 2 * self.place.len().max(128) {
+        if self.pops + self.empty_steps >= 2 * self.slots.len().max(128) {
             self.tune();
         }
     }
@@ -360,12 +373,14 @@ impl Calendar {
         if !(width > 0.0 && width.is_finite()) || (0.5..=2.0).contains(&ratio) {
             return;
         }
-        let live: Vec<u32> = (0..self.place.len() as u32)
-            .filter(|&i| self.place[i as usize] != ABSENT)
+        let live: Vec<u32> = (0..self.slots.len() as u32)
+            .filter(|&i| self.slots[i as usize].place != ABSENT)
             .collect();
         self.heap.clear();
         self.heads.fill(NIL);
-        self.place.fill(ABSENT);
+        for slot in &mut self.slots {
+            slot.place = ABSENT;
+        }
         self.in_ring = 0;
         self.in_overflow = 0;
         self.width = width;
@@ -373,20 +388,20 @@ impl Calendar {
         self.current = self.bucket(self.last);
         self.end = self.current.saturating_add(self.ring() as i64);
         for i in live {
-            let b = self.bucket(self.keys[i as usize].t);
+            let b = self.bucket(self.slots[i as usize].key.t);
             self.insert(i, b);
         }
     }
 
     fn remove_at(&mut self, k: usize) {
         let (_, i) = self.heap[k];
-        self.place[i as usize] = ABSENT;
+        self.slots[i as usize].place = ABSENT;
         let last = self.heap.len() - 1;
         if k != last {
             self.heap.swap(k, last);
             self.heap.pop();
             let (key, j) = self.heap[k];
-            self.place[j as usize] = IN_HEAP | k as u32;
+            self.slots[j as usize].place = IN_HEAP | k as u32;
             if k > 0 && {
                 let (pk, pj) = self.heap[(k - 1) / ARITY];
                 first(&key, j, &pk, pj)
@@ -409,11 +424,11 @@ impl Calendar {
                 break;
             }
             self.heap[k] = self.heap[parent];
-            self.place[self.heap[k].1 as usize] = IN_HEAP | k as u32;
+            self.slots[self.heap[k].1 as usize].place = IN_HEAP | k as u32;
             k = parent;
         }
         self.heap[k] = item;
-        self.place[item.1 as usize] = IN_HEAP | k as u32;
+        self.slots[item.1 as usize].place = IN_HEAP | k as u32;
     }
 
     fn down(&mut self, mut k: usize) {
@@ -437,11 +452,11 @@ impl Calendar {
                 break;
             }
             self.heap[k] = self.heap[best];
-            self.place[self.heap[k].1 as usize] = IN_HEAP | k as u32;
+            self.slots[self.heap[k].1 as usize].place = IN_HEAP | k as u32;
             k = best;
         }
         self.heap[k] = item;
-        self.place[item.1 as usize] = IN_HEAP | k as u32;
+        self.slots[item.1 as usize].place = IN_HEAP | k as u32;
     }
 }
 
