@@ -1,6 +1,10 @@
 //! Contacts per second of the event loop in a dense gas, one thread:
-//! `cargo run --release -p lightcone-engine --example gas_rate -- N [CONTACTS]`
+//! `cargo run --release -p lightcone-engine --example gas_rate -- N [CONTACTS] [MU_G]`
 //! (β < 0.8, pucks 3R apart, elastic, c = 1.42: the gas of BENCHMARKS.md).
+//! With `MU_G` (m/s², sliding friction μg; 1.96 is a cloth's μ = 0.2) every
+//! worldline brakes, and the run stops at board time 0.2 s if it has not
+//! made `CONTACTS` by then (the gas of `lightcone bench physics`'s friction
+//! table: at μg = 1.96 a puck at 0.8 c stops in about 1 s).
 
 use std::time::Instant;
 
@@ -13,16 +17,20 @@ fn main() {
         .next()
         .and_then(|s| s.parse().ok())
         .unwrap_or(1_000_000);
+    let mu_g: f64 = args.next().and_then(|s| s.parse().ok()).unwrap_or(0.0);
     let r = 0.0305;
     let build = Instant::now();
     let mut b = dense_box(n, r, 3.0 * r, 0.8, 1.42, 7);
+    if mu_g > 0.0 {
+        b.set_sliding_friction(mu_g);
+    }
     b.set_recording(false);
     b.set_keep_history(false);
     let built = build.elapsed().as_secs_f64();
     let start = Instant::now();
     let cpu0 = cpu_seconds();
     let mut t = 0.0;
-    while b.stats().contacts() < target {
+    while b.stats().contacts() < target && (mu_g <= 0.0 || t < 0.2) {
         t += 0.01;
         b.advance_to(t);
     }
