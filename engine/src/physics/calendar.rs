@@ -141,7 +141,9 @@ impl Default for Calendar {
 impl Calendar {
     /// A calendar for `n` pucks, all without entries.
     pub fn new(n: usize) -> Self {
-        let ring = (2 * n).next_power_of_two().max(16);
+        // At most 2²⁹ slots, so that the overflow list's number never
+        // reads as a heap place (`IN_HEAP`).
+        let ring = (2 * n).next_power_of_two().clamp(16, 1 << 29);
         Self {
             slots: vec![
                 Slot {
@@ -181,10 +183,11 @@ impl Calendar {
         (t * self.inverse) as i64
     }
 
-    /// Sets puck `i`'s entry to `key` (a key at infinite time removes it).
+    /// Sets puck `i`'s entry to `key` (a key at infinite or NaN time removes
+    /// it).
     pub fn set(&mut self, i: u32, key: Key) {
-        if key.t == f64::INFINITY {
-            self.remove(i);
+        if key.t == f64::INFINITY || key.t.is_nan() {
+            self.remove(i); // a NaN time has no place in the order
             return;
         }
         let b = self.bucket(key.t);
@@ -203,6 +206,8 @@ impl Calendar {
             return;
         }
         self.remove(i);
+        // Worked out again: removing the top entry can retune the width.
+        let b = self.bucket(key.t);
         self.slots[i as usize].key = key;
         self.insert(i, b);
     }
@@ -215,10 +220,12 @@ impl Calendar {
         }
         if at & IN_HEAP != 0 {
             let k = (at & !IN_HEAP) as usize;
-            if k == 0 {
-                self.popped(self.heap[0].0.t);
-            }
+            let t = self.heap[k].0.t;
             self.remove_at(k);
+            // Counted once the entry is out: a retune rebuilds the queue.
+            if k == 0 {
+                self.popped(t);
+            }
         } else {
             self.unlink(i, at as usize);
         }
@@ -238,8 +245,8 @@ impl Calendar {
         self.heap.first().copied()
     }
 
-    /// Puck `i` (key in `keys`, bucket `b`) into the heap, the ring or the
-    /// overflow.
+    /// Puck `i` (its key in its slot, bucket `b`) into the heap, the ring or
+    /// the overflow.
     fn insert(&mut self, i: u32, b: i64) {
         if b <= self.current {
             self.heap.push((self.slots[i as usize].key, i));
@@ -345,8 +352,10 @@ impl Calendar {
         }
     }
 
-    /// The top entry (board time `t`) was taken: counts it, and now and
-    /// then tunes the bucket width to the event rate.
+    /// The top entry (board time `t`) was removed (handled, or moved by
+    /// `set` to a later bucket): counts it, and now and then tunes the
+    /// bucket width to the event rate (which rebuilds the queue: called
+    /// only between operations).
     fn popped(&mut self, t: f64) {
         if self.pops == 0 {
             self.since = t;
@@ -522,8 +531,9 @@ mod tests {
         }
     }
 
-    /// Events as the billiard makes them: the earliest is taken and its
-    /// puck (and a few others) given new entries at or after it, some far
+    /// Events as the billiard makes them: the earliest is taken (or set
+    /// again while earliest) and its puck (and a few others) given new
+    /// entries at or after it, some far
     /// ahead, some removed, with ties of time and rank and a thousandfold
     /// change of the event rate halfway (the width is tuned twice); the
     /// queue must give exactly the order a sort of the entries gives.
@@ -580,8 +590,12 @@ mod tests {
             let Some((key, i)) = got else { break };
             assert!(key.t >= now, "time never goes back");
             now = key.t;
-            c.remove(i);
-            keys[i as usize] = None;
+            // Taken; or (as the second puck of a pair whose first was just
+            // handled) set again while it is still the earliest, below.
+            if step % 2 == 0 {
+                c.remove(i);
+                keys[i as usize] = None;
+            }
             taken += 1;
             // The puck and a few others predicted again from now on.
             for j in [i, (rand() % n as u64) as u32, (rand() % n as u64) as u32] {
@@ -614,5 +628,63 @@ mod tests {
             widths[widths.len() - 1] > 100.0 * widths[1],
             "widths {widths:?}"
         );
+    }
+
+    /// Times far from the tuned width's scale (negative, subnormal, ±0,
+    /// 10¹⁸, ±10³⁰⁰) and NaN (no entry) after the width is tuned: popped in
+    /// the sorted order all the same.
+    #[test]
+    fn extreme_times_keep_the_sorted_order() {
+        let n = 300u32;
+        let mut c = Calendar::new(n as usize);
+        let key = |t: f64, i: u32| Key {
+            t,
+            rank: Rank::shell(i),
+        };
+        // A steady rate first, so that the width is tuned (to about 4 ms).
+        for i in 0..n {
+            c.set(i, key(f64::from(i) * 1e-3, i));
+        }
+        let mut now = 0.0;
+        for _ in 0..2000 {
+            let (k, i) = c.peek().expect("entries");
+            now = k.t;
+            c.remove(i);
+            c.set(i, key(now + 0.3, i));
+        }
+        assert!(c.width.is_finite(), "tuned");
+        let extremes = [
+            -1e300,
+            -5.0,
+            -0.0,
+            0.0,
+            5e-324,
+            now,
+            now + 1e-12,
+            1e18,
+            1e300,
+            f64::NAN,
+            f64::INFINITY,
+        ];
+        let mut expected: Vec<(f64, u32)> = Vec::new();
+        for i in 0..n {
+            let t = if i % 3 == 0 {
+                extremes[(i as usize / 3) % extremes.len()]
+            } else {
+                now + f64::from(i) * 1e-2
+            };
+            c.set(i, key(t, i));
+            if t.is_finite() {
+                expected.push((t, i));
+            }
+        }
+        // By time (±0 equal: ties broken by puck, not by sign), then puck.
+        expected.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap().then(a.1.cmp(&b.1)));
+        let mut got = Vec::new();
+        while let Some((k, i)) = c.peek() {
+            got.push((k.t, i));
+            c.remove(i);
+        }
+        assert_eq!(got, expected);
     }
 }
