@@ -69,8 +69,9 @@ const IN_HEAP: u32 = 1 << 31;
 /// End of a bucket list.
 const NIL: u32 = u32::MAX;
 const ARITY: usize = 4;
-/// Events per bucket the width is tuned for (1 to 4 cost the same within
-/// 0.3 %, 16 half a percent more: BENCHMARKS.md).
+/// Events per bucket the width is tuned for (in the 10⁴-puck gas, 1 to 4
+/// cost the same within 0.2 % of the instructions, 8 and 16 0.7 and 1.3 %
+/// more).
 const PER_BUCKET: f64 = 4.0;
 
 /// Whether entry `(a, i)` comes before `(b, j)`: by key, then by puck (two
