@@ -77,7 +77,7 @@ impl BroadPhase {
             let list: SmallVec<[u32; 14]> = broad
                 .tree
                 .intersect_aabb(&broad.aabbs[i])
-                .filter(|&j| j as usize != i && broad.discs_meet(i, j as usize))
+                .filter(|&j| j as usize != i && discs_meet(centres, half, i, j as usize))
                 .collect();
             broad.partners[i] = Partners(list);
         }
@@ -129,11 +129,6 @@ impl BroadPhase {
         list.clear();
         list.extend_from_slice(&self.found);
         self.partners[i] = Partners(list);
-    }
-
-    /// Whether shells `i` and `j`'s discs overlap (see [`discs_meet`]).
-    fn discs_meet(&self, i: usize, j: usize) -> bool {
-        discs_meet(&self.centres, &self.half, i, j)
     }
 
     /// Current candidate partners of puck `i`.

@@ -79,7 +79,7 @@ const PER_BUCKET: f64 = 4.0;
 /// events is fully given by the entries, whatever the queue's layout.
 #[inline]
 fn first(a: &Key, i: u32, b: &Key, j: u32) -> bool {
-    a.t < b.t || (a.t == b.t && (a.rank < b.rank || (a.rank == b.rank && i < j)))
+    a.before(b) || (a.t == b.t && a.rank == b.rank && i < j)
 }
 
 /// A puck's entry in the [`Calendar`] (32 bytes).
