@@ -34,8 +34,19 @@ impl SolveRate {
     /// `pucks` pucks of radius 3.05 cm, each a puck mesh of `segments`
     /// around (`2 × segments` vertices).
     pub fn gas(pucks: usize, segments: u32) -> Self {
+        Self::gas_on_cloth(pucks, segments, 0.0)
+    }
+
+    /// [`Self::gas`] on a cloth of sliding friction `mu_g` (μg, m/s²; 0
+    /// for none): every worldline brakes, so every emission lies on a
+    /// braking segment (or after a puck's stop). At `mu_g` = 0.3 a puck
+    /// at 0.8 c is still moving at the observation (t = 2 s).
+    pub fn gas_on_cloth(pucks: usize, segments: u32, mu_g: f64) -> Self {
         let r = 0.0305;
         let mut billiard = dense_box(pucks, r, 3.0 * r, 0.8, 1.42, 11);
+        if mu_g > 0.0 {
+            billiard.set_sliding_friction(mu_g);
+        }
         billiard.advance_to(2.0);
         let size = billiard.table();
         let eye = Eye {

@@ -341,27 +341,25 @@ impl Braking {
 
 /// Real roots of `a x² + 2 b x + c = 0` in the cancellation-free form
 /// (`q = −(b + sign(b)√(b² − ac))`, roots `q/a` and `c/q`); a vanishing `a`
-/// leaves the linear root. Empty when there is no real root.
-fn stable_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+/// leaves the linear root. None when there is no real root. At most two,
+/// without allocating (this runs once per vertex and frame in the optics).
+fn stable_roots(a: f64, b: f64, c: f64) -> impl Iterator<Item = f64> {
     let disc = b * b - a * c;
     if disc < 0.0 {
         // A tangency lost to rounding: keep the double root.
-        if disc > -1e-12 * (b * b).max((a * c).abs()) && a != 0.0 {
-            return vec![-b / a];
-        }
-        return Vec::new();
+        let tangent = disc > -1e-12 * (b * b).max((a * c).abs()) && a != 0.0;
+        return [tangent.then(|| -b / a), None].into_iter().flatten();
     }
     let q = -(b + b.signum() * disc.sqrt());
-    let mut roots = Vec::with_capacity(2);
-    if a != 0.0 && q != 0.0 {
-        roots.push(q / a);
-    }
-    if q != 0.0 {
-        roots.push(c / q);
+    let first = (a != 0.0 && q != 0.0).then(|| q / a);
+    let second = if q != 0.0 {
+        Some(c / q)
     } else if a != 0.0 {
-        roots.push(0.0);
-    }
-    roots
+        Some(0.0)
+    } else {
+        None
+    };
+    [first, second].into_iter().flatten()
 }
 
 #[cfg(test)]
