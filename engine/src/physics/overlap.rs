@@ -57,10 +57,53 @@ pub fn bound(radii: [f64; 2], gamma_pair: f64, slide: f64, early: f64) -> f64 {
     early.max(0.0) + (radii[0] + radii[1]) * grow + slide.abs()
 }
 
-/// Support function of a puck's board-frame shape (rest radius `radius`,
-/// moving along `segment`) in direction `m`, m.
-fn support(segment: &Segment, radius: f64, m: DVec3) -> f64 {
-    radius * segment.contract(m).length()
+/// A puck's board-frame shape as the gap function reads it: its rest disc
+/// (radius `radius`, m) contracted by `1/γ` along the unit direction `n` of
+/// its motion on the board (any unit direction at rest, where `1/γ = 1`).
+/// Pucks move in the board plane, so directions are `(cos, sin)` in it.
+#[derive(Clone, Copy, Debug)]
+struct Outline {
+    nx: f64,
+    ny: f64,
+    inverse_gamma: f64,
+    radius: f64,
+}
+
+impl Outline {
+    fn of(segment: &Segment, radius: f64) -> Self {
+        let map = segment.lorentz_map();
+        let n = map.direction();
+        let (nx, ny) = if n.x == 0.0 && n.y == 0.0 {
+            (1.0, 0.0)
+        } else {
+            (n.x, n.y)
+        };
+        Self {
+            nx,
+            ny,
+            inverse_gamma: map.inverse_gamma(),
+            radius,
+        }
+    }
+
+    /// Support function in the unit direction `(cos, sin)`, m: `R
+    /// |contract(m)| = R √((n⊥·m)² + ((n·m)/γ)²)`, the contracted
+    /// component formed as a product (no `1 − 1/γ²`: exact to rounding at
+    /// any γ).
+    #[inline(always)]
+    fn support(&self, cos: f64, sin: f64) -> f64 {
+        let along = (self.nx * cos + self.ny * sin) * self.inverse_gamma;
+        let across = self.nx * sin - self.ny * cos;
+        self.radius * (across * across + along * along).sqrt()
+    }
+}
+
+/// The linear function of the separation `d` (m, b − a) whose minimum over
+/// unit directions `(cos, sin)` is the gap function: `h_a(m) + h_b(m) −
+/// m·d`. One expression, so that every caller computes the same bits.
+#[inline(always)]
+fn gap_along(a: &Outline, b: &Outline, cos: f64, sin: f64, d: DVec3) -> f64 {
+    (a.support(cos, sin) + b.support(cos, sin)) - (cos * d.x + sin * d.y)
 }
 
 /// Penetration depth of two pucks at board time `t` on the board, m: 0 if
@@ -114,7 +157,8 @@ fn centre_line_gap(
     let dist = d.length();
     if dist > 0.0 {
         let m = d / dist;
-        let g = support(a, radius_a, m) + support(b, radius_b, m) - dist;
+        let (oa, ob) = (Outline::of(a, radius_a), Outline::of(b, radius_b));
+        let g = oa.support(m.x, m.y) + ob.support(m.x, m.y) - dist;
         if g <= 0.0 {
             return Some((g, m)); // separated: the exact value is not needed
         }
@@ -139,15 +183,17 @@ pub fn penetration_needs_scan(
 /// Number of directions [`gap_min`] scans (uniform in angle).
 const SAMPLES: usize = 90;
 
-/// The directions [`gap_min`] scans, `(cos θ_k, sin θ_k)` with `θ_k = k 2π /
-/// SAMPLES`, computed once (the same values as computing them in place).
-fn scan() -> &'static [(f64, f64); SAMPLES] {
-    static SCAN: std::sync::OnceLock<[(f64, f64); SAMPLES]> = std::sync::OnceLock::new();
+/// The directions [`gap_min`] scans, `cos θ_k` then `sin θ_k` with `θ_k =
+/// k 2π / SAMPLES`, as two arrays (the scan's loop over them vectorises),
+/// computed once.
+fn scan() -> &'static ([f64; SAMPLES], [f64; SAMPLES]) {
+    static SCAN: std::sync::OnceLock<([f64; SAMPLES], [f64; SAMPLES])> = std::sync::OnceLock::new();
     SCAN.get_or_init(|| {
-        std::array::from_fn(|k| {
-            let theta = k as f64 * (std::f64::consts::TAU / SAMPLES as f64);
-            (theta.cos(), theta.sin())
-        })
+        let theta = |k: usize| k as f64 * (std::f64::consts::TAU / SAMPLES as f64);
+        (
+            std::array::from_fn(|k| theta(k).cos()),
+            std::array::from_fn(|k| theta(k).sin()),
+        )
     })
 }
 
@@ -157,16 +203,20 @@ fn scan() -> &'static [(f64, f64); SAMPLES] {
 /// in `d` moving linearly (a minimum of functions linear in it), which
 /// [`first_touch`] needs.
 pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
-    let f = |m: DVec3| support(a, radius_a, m) + support(b, radius_b, m) - m.dot(d);
+    let (oa, ob) = (Outline::of(a, radius_a), Outline::of(b, radius_b));
+    let f = |cos: f64, sin: f64| gap_along(&oa, &ob, cos, sin, d);
     // Candidates: a uniform scan, plus where the function has its kinks and
     // narrow valleys: a fast puck's shape is a thin ellipse whose support
     // is smallest (a valley of angular width ~1/γ) along its motion.
+    let (cos, sin) = scan();
+    let mut values = [0.0; SAMPLES];
+    for k in 0..SAMPLES {
+        values[k] = f(cos[k], sin[k]);
+    }
     let mut best = (f64::INFINITY, DVec3::X);
-    for &(cos, sin) in scan() {
-        let m = DVec3::new(cos, sin, 0.0);
-        let v = f(m);
+    for (k, &v) in values.iter().enumerate() {
         if v < best.0 {
-            best = (v, m);
+            best = (v, DVec3::new(cos[k], sin[k], 0.0));
         }
     }
     for axis in [a.velocity(), b.velocity(), d] {
@@ -174,7 +224,7 @@ pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3)
         let length = axis.length();
         if length > 0.0 {
             for m in [axis / length, -axis / length] {
-                let v = f(m);
+                let v = f(m.x, m.y);
                 if v < best.0 {
                     best = (v, m);
                 }
@@ -188,7 +238,16 @@ pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3)
     let (m0, across) = (best.1, DVec3::new(-best.1.y, best.1.x, 0.0));
     let turned = |s: f64| (m0 * (1.0 - s * s) + across * (2.0 * s)) * (1.0 + s * s).recip();
     let half = half_step_tangent();
-    let refined = golden_min(|s| f(turned(s)), -half, half, 80, |_| false);
+    let refined = golden_min(
+        |s| {
+            let m = turned(s);
+            f(m.x, m.y)
+        },
+        -half,
+        half,
+        80,
+        |_| false,
+    );
     if refined.0 < best.0 {
         (refined.0, turned(refined.1))
     } else {
@@ -257,7 +316,8 @@ pub fn apart_throughout(
         0.0
     };
     let closest = d0 + v * s;
-    let scan = scan();
+    let (cos, sin) = scan();
+    let (oa, ob) = (Outline::of(a, radius_a), Outline::of(b, radius_b));
     let step = std::f64::consts::TAU / SAMPLES as f64;
     let nearest = |w: DVec3| -> usize {
         let k = (rough_angle(w.y, w.x) / step).round();
@@ -273,10 +333,10 @@ pub fn apart_throughout(
         }
         let k0 = nearest(w);
         for k in [k0, (k0 + 1) % SAMPLES, (k0 + SAMPLES - 1) % SAMPLES] {
-            let (cos, sin) = scan[k];
-            let m = DVec3::new(cos, sin, 0.0);
-            let supports = support(a, radius_a, m) + support(b, radius_b, m);
-            let (g0, g1) = (supports - m.dot(d0), supports - m.dot(d1));
+            let (g0, g1) = (
+                gap_along(&oa, &ob, cos[k], sin[k], d0),
+                gap_along(&oa, &ob, cos[k], sin[k], d1),
+            );
             match (g0 <= -margin, g1 <= -margin) {
                 (true, true) => return true,
                 // Below −margin from 0 to where the line crosses it.
