@@ -1476,7 +1476,7 @@ impl Billiard {
     /// not asked (its contact is the one just resolved), only the board, and
     /// while the contact's own overlap lasts nothing is predicted.
     ///
-    /// Both board searches (a golden-section overlap scan per time tried)
+    /// Both board searches (an overlap scan per time tried)
     /// are skipped for a pair that [`overlap::apart_throughout`] proves
     /// apart on the board for as long as their rest discs overlap: they
     /// would find nothing.
