@@ -295,12 +295,16 @@ pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3)
 /// positive on `[lo, hi]` (its minimum there), by Newton's method on the
 /// slope (`slopes(s)` = first and second derivatives), each step kept
 /// inside the bracket and halving it when Newton's would not (Numerical
-/// Recipes' `rtsafe`); to about 10⁻¹⁷ in `s`. `None` unless the slope is
-/// negative at `lo` and positive at `hi`.
+/// Recipes' `rtsafe`); done when a Newton step is down to the rounding of
+/// `s` (a few ulps of the bracket's size), or the bracket to 10⁻¹⁶. `None`
+/// unless the slope is negative at `lo` and positive at `hi`.
 fn slope_root(slopes: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64) -> Option<f64> {
     if !(slopes(lo).0 < 0.0 && slopes(hi).0 > 0.0) {
         return None;
     }
+    // A Newton step this small is rounding: taking it (or not) changes
+    // nothing, and refusing it would bisect the rest of the bracket.
+    let converged = 8.0 * f64::EPSILON * lo.abs().max(hi.abs());
     let mut s = 0.5 * (lo + hi);
     let mut step = hi - lo;
     for _ in 0..200 {
@@ -314,6 +318,13 @@ fn slope_root(slopes: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64) -> O
             hi = s;
         }
         let newton = first / second;
+        if second > 0.0 && newton.abs() <= converged {
+            let next = s - newton;
+            if next > lo && next < hi {
+                s = next;
+            }
+            break;
+        }
         let step_before = std::mem::replace(&mut step, newton);
         if second > 0.0
             && s - newton > lo
@@ -325,7 +336,7 @@ fn slope_root(slopes: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64) -> O
             step = 0.5 * (hi - lo);
             s = lo + step;
         }
-        if step.abs() <= 1e-17 || hi - lo <= 1e-16 {
+        if hi - lo <= 1e-16 {
             break;
         }
     }
