@@ -211,13 +211,14 @@ impl Margin {
         let v = s.velocity();
         let since = observation.t - s.start.t;
         let d0 = observation.position - (s.start.position + v * since);
-        let dt_ref = if s.is_braking() {
-            emission::solve_on_segment(worldline, k, DVec3::ZERO, shapes, observation)
-                .event
-                .t
-                - s.start.t
+        // The braking law's emission time is clamped to its stop within
+        // `2·10⁻¹²` of the time from the segment's start: its scale grows
+        // by that much more (a review's finding).
+        let (dt_ref, clamped) = if s.is_braking() {
+            let e = emission::solve_on_segment(worldline, k, DVec3::ZERO, shapes, observation);
+            (e.event.t - s.start.t, 2.0 * c * since.abs())
         } else {
-            since - emission::light_catch_up(d0, v, c, s.gamma())
+            (since - emission::light_catch_up(d0, v, c, s.gamma()), 0.0)
         };
         let c_over_gamma = c / s.gamma();
         Self {
@@ -228,6 +229,7 @@ impl Margin {
             has_previous: k > 0,
             per_metre: (c + v.length()) / (c_over_gamma * c_over_gamma),
             scale: c * since.abs()
+                + clamped
                 + d0.length()
                 + observation.position.length()
                 + s.start.position.length(),
