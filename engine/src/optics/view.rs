@@ -20,6 +20,7 @@ use super::eye::{Eye, Seen, searchlight};
 use super::history::{SampledHistory, Search};
 use crate::physics::Billiard;
 use crate::scene::Effects;
+use crate::spacetime::Event;
 use crate::worldline::{ContractedShape, RestShape, Rigid, ShapeMaps, Worldline};
 
 /// How emission events are found.
@@ -104,7 +105,9 @@ pub fn light_delayed_sampled(
 
 /// Without light delay (kernel): every point of the body of shape
 /// `shapes` where it is at the eye's board time (board-simultaneous, the
-/// "truth").
+/// "truth"). The body's segment at that time is found once for all its
+/// points (each point's result is [`emission::simultaneous`]'s, bit for
+/// bit: the same operations).
 pub fn simultaneous(
     worldline: &Worldline,
     offsets: &[DVec3],
@@ -113,11 +116,14 @@ pub fn simultaneous(
     out: &mut Vec<Emission>,
 ) {
     out.clear();
-    out.extend(
-        offsets
-            .iter()
-            .map(|&r| emission::simultaneous(worldline, r, shapes, eye.event.t)),
-    );
+    let t = eye.event.t;
+    let k = worldline.segment_index_at(t);
+    let s = &worldline.segments()[k];
+    let (centre, shape, u) = (s.position_at(t), shapes.on_segment(k, s), s.u_at(t));
+    out.extend(offsets.iter().map(|&r| Emission {
+        event: Event::new(t, centre + shape.place(s, t, r)),
+        u,
+    }));
 }
 
 /// Aberration (kernel): apparent positions of `emissions` in the eye's
@@ -307,6 +313,55 @@ impl Observed<'_> {
             centre,
             seen_proper_time,
             vertices: vertices.map_or_else(Vec::new, |v| self.points(puck, shapes, v)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spacetime::ProperVelocity;
+    use crate::worldline::ContractedShape;
+
+    /// The board-simultaneous kernel, its segment found once per body,
+    /// equals the per-point solve bit for bit: uniform and braking
+    /// worldlines with kinks, contracted (Lorentz and Born-rigid) and at
+    /// rest, at times between kinks, on them and before the start.
+    #[test]
+    fn simultaneous_per_body_equals_per_point() {
+        let c = 1.42;
+        let offsets: Vec<DVec3> = (0..50)
+            .map(|k| {
+                let a = k as f64 * 0.37;
+                DVec3::new(a.cos(), a.sin(), 0.01 * (k % 3) as f64) * 0.03
+            })
+            .collect();
+        let start = Event::new(0.0, DVec3::new(0.5, 0.4, 0.0));
+        let u = |x: f64, y: f64| ProperVelocity(DVec3::new(x, y, 0.0));
+        let mut uniform = Worldline::new(start, u(1.5, -0.4), c);
+        let mut braking = Worldline::braking(start, u(2.0, 0.7), c, 1.96);
+        for (k, t) in [0.1, 0.25, 0.6].into_iter().enumerate() {
+            let v = u(0.3 + k as f64, -0.8 * k as f64);
+            uniform.push(t, v).unwrap();
+            braking.push(t, v).unwrap();
+        }
+        for w in [&uniform, &braking] {
+            let contracted = ContractedShape::of(w);
+            for t in [-0.2, 0.0, 0.05, 0.1, 0.25, 0.3, 0.6, 0.9, 4.0] {
+                let eye = Eye {
+                    event: Event::new(t, DVec3::new(1.0, -1.0, 0.8)),
+                    u: ProperVelocity::ZERO,
+                };
+                let mut out = Vec::new();
+                simultaneous(w, &offsets, &contracted, &eye, &mut out);
+                for (r, e) in offsets.iter().zip(&out) {
+                    assert_eq!(*e, emission::simultaneous(w, *r, &contracted, t), "t = {t}");
+                }
+                simultaneous(w, &offsets, &Rigid, &eye, &mut out);
+                for (r, e) in offsets.iter().zip(&out) {
+                    assert_eq!(*e, emission::simultaneous(w, *r, &Rigid, t), "t = {t}");
+                }
+            }
         }
     }
 }
