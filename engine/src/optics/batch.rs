@@ -370,20 +370,15 @@ fn solve_near(
     let segments = worldline.segments();
     let s = &segments[k];
     let shape = shapes.on_segment(k, s);
-    if steps > MAX_STEPS {
-        out.extend(offsets.iter().map(|&r| {
-            let k = emission::refine_index(worldline, k, r, shapes, observation);
-            emission::solve_on_segment(worldline, k, r, shapes, observation)
-        }));
-        return;
-    }
-    if s.is_braking() || matches!(shape, SegmentShape::BornRigid) {
-        // Each point on its own braking hyperbola, vertex by vertex; the
-        // search skipped for a batch inside the margin.
-        let margin = Margin::of(worldline, k, shapes, observation);
+    let too_deep = steps > MAX_STEPS;
+    if too_deep || s.is_braking() || matches!(shape, SegmentShape::BornRigid) {
+        // Vertex by vertex (on a braking segment each point on its own
+        // braking hyperbola), the search skipped for a batch inside the
+        // margin.
+        let margin = (!too_deep).then(|| Margin::of(worldline, k, shapes, observation));
         for chunk in offsets.chunks(LANES) {
             let rho = chunk.iter().fold(0.0f64, |far, r| far.max(r.length()));
-            let safe = margin.safe(rho);
+            let safe = margin.is_some_and(|m| m.safe(rho));
             out.extend(chunk.iter().map(|&r| {
                 let k = if safe {
                     k

@@ -295,7 +295,18 @@ pub fn simultaneous(
     shapes: &impl ShapeMaps,
     t: f64,
 ) -> Emission {
-    let k = worldline.segment_index_at(t);
+    simultaneous_on(worldline, worldline.segment_index_at(t), offset, shapes, t)
+}
+
+/// [`simultaneous`] on segment `k`, the one in force at board time `t`
+/// (`Worldline::segment_index_at`), found once for all of a body's points.
+pub fn simultaneous_on(
+    worldline: &Worldline,
+    k: usize,
+    offset: DVec3,
+    shapes: &impl ShapeMaps,
+    t: f64,
+) -> Emission {
     let s = &worldline.segments()[k];
     Emission {
         event: Event::new(

@@ -20,7 +20,6 @@ use super::eye::{Eye, Seen, searchlight};
 use super::history::{SampledHistory, Search};
 use crate::physics::Billiard;
 use crate::scene::Effects;
-use crate::spacetime::Event;
 use crate::worldline::{ContractedShape, RestShape, Rigid, ShapeMaps, Worldline};
 
 /// How emission events are found.
@@ -106,8 +105,7 @@ pub fn light_delayed_sampled(
 /// Without light delay (kernel): every point of the body of shape
 /// `shapes` where it is at the eye's board time (board-simultaneous, the
 /// "truth"). The body's segment at that time is found once for all its
-/// points (each point's result is [`emission::simultaneous`]'s, bit for
-/// bit: the same operations).
+/// points.
 pub fn simultaneous(
     worldline: &Worldline,
     offsets: &[DVec3],
@@ -118,12 +116,11 @@ pub fn simultaneous(
     out.clear();
     let t = eye.event.t;
     let k = worldline.segment_index_at(t);
-    let s = &worldline.segments()[k];
-    let (centre, shape, u) = (s.position_at(t), shapes.on_segment(k, s), s.u_at(t));
-    out.extend(offsets.iter().map(|&r| Emission {
-        event: Event::new(t, centre + shape.place(s, t, r)),
-        u,
-    }));
+    out.extend(
+        offsets
+            .iter()
+            .map(|&r| emission::simultaneous_on(worldline, k, r, shapes, t)),
+    );
 }
 
 /// Aberration (kernel): apparent positions of `emissions` in the eye's
@@ -320,15 +317,19 @@ impl Observed<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spacetime::ProperVelocity;
+    use crate::spacetime::{Event, ProperVelocity};
     use crate::worldline::ContractedShape;
 
-    /// The board-simultaneous kernel, its segment found once per body,
-    /// equals the per-point solve bit for bit: uniform and braking
-    /// worldlines with kinks, contracted (Lorentz and Born-rigid) and at
-    /// rest, at times between kinks, on them and before the start.
+    /// The board-simultaneous kernel puts every point at the eye's board
+    /// time, about the centre where the worldline has it then: the rest
+    /// shape keeps each (turned) offset whole; the contracted one, on a
+    /// uniform segment, shrinks its component along the motion by `1/γ`
+    /// (`r⊥ + n (n·r)/γ`) and, braking (Born-rigid), by no more than that
+    /// and no less than nothing, leaving the rest whole. Uniform and
+    /// braking worldlines with kinks, at times between kinks, on them and
+    /// before the start.
     #[test]
-    fn simultaneous_per_body_equals_per_point() {
+    fn simultaneous_points_are_the_shape_about_the_centre_at_that_time() {
         let c = 1.42;
         let offsets: Vec<DVec3> = (0..50)
             .map(|k| {
@@ -352,14 +353,33 @@ mod tests {
                     event: Event::new(t, DVec3::new(1.0, -1.0, 0.8)),
                     u: ProperVelocity::ZERO,
                 };
-                let mut out = Vec::new();
-                simultaneous(w, &offsets, &contracted, &eye, &mut out);
-                for (r, e) in offsets.iter().zip(&out) {
-                    assert_eq!(*e, emission::simultaneous(w, *r, &contracted, t), "t = {t}");
-                }
-                simultaneous(w, &offsets, &Rigid, &eye, &mut out);
-                for (r, e) in offsets.iter().zip(&out) {
-                    assert_eq!(*e, emission::simultaneous(w, *r, &Rigid, t), "t = {t}");
+                let s = w.segment_at(t);
+                let (centre, n) = (w.position_at(t), s.direction());
+                let mut rigid = Vec::new();
+                simultaneous(w, &offsets, &Rigid, &eye, &mut rigid);
+                let mut squeezed = Vec::new();
+                simultaneous(w, &offsets, &contracted, &eye, &mut squeezed);
+                for ((r, a), b) in offsets.iter().zip(&rigid).zip(&squeezed) {
+                    assert!(a.event.t == t && b.event.t == t);
+                    let turned = s.rotate(*r);
+                    assert!((a.event.position - centre - turned).length() < 1e-12);
+                    let q = b.event.position - centre;
+                    let along = n.dot(turned);
+                    let (q_along, q_across) = (n.dot(q), q - n * n.dot(q));
+                    assert!(
+                        (q_across - (turned - n * along)).length() < 1e-12,
+                        "t = {t}"
+                    );
+                    if s.is_braking() {
+                        assert!(q_along.abs() <= along.abs() + 1e-12, "t = {t}");
+                        assert!(q_along * along >= 0.0, "t = {t}");
+                    } else {
+                        let expect = along / s.gamma();
+                        assert!(
+                            (q_along - expect).abs() < 1e-12,
+                            "t = {t}: {q_along} {expect}"
+                        );
+                    }
                 }
             }
         }

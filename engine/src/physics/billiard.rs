@@ -1707,7 +1707,7 @@ impl Billiard {
         }
         self.hot[i].exit = exit;
         let key = Key {
-            t: self.hot[i].exit,
+            t: exit,
             rank: Rank::shell(i as u32),
         };
         if key.before(&best) {

@@ -35,7 +35,6 @@ use smallvec::SmallVec;
 #[derive(Clone)]
 pub struct BroadPhase {
     tree: Bvh,
-    aabbs: Vec<Aabb>,
     /// Each shell's centre (m) and radius (m, the rest radius plus the
     /// margin).
     centres: Vec<DVec2>,
@@ -64,7 +63,6 @@ impl BroadPhase {
         let n = aabbs.len();
         let mut broad = Self {
             tree,
-            aabbs,
             centres: centres.to_vec(),
             half: half.to_vec(),
             partners: vec![Partners::default(); n],
@@ -73,10 +71,10 @@ impl BroadPhase {
             moves: 0,
             workspace: BvhWorkspace::default(),
         };
-        for i in 0..n {
+        for (i, aabb) in aabbs.iter().enumerate() {
             let list: SmallVec<[u32; 14]> = broad
                 .tree
-                .intersect_aabb(&broad.aabbs[i])
+                .intersect_aabb(aabb)
                 .filter(|&j| j as usize != i && discs_meet(centres, half, i, j as usize))
                 .collect();
             broad.partners[i] = Partners(list);
@@ -88,13 +86,12 @@ impl BroadPhase {
     /// the candidate pairs it is in.
     pub fn set_shell(&mut self, i: usize, centre: DVec2, half: f64) {
         let aabb = square(centre, half);
-        self.aabbs[i] = aabb;
         self.centres[i] = centre;
         self.half[i] = half;
         // In place: the leaf's AABB replaced, its ancestors grown as needed.
         self.tree.insert_with_change_detection(aabb, i as u32, 0.0);
         self.moves += 1;
-        if self.moves >= 4 * self.aabbs.len().max(64) {
+        if self.moves >= 4 * self.centres.len().max(64) {
             self.moves = 0;
             self.tree
                 .rebuild(&mut self.workspace, BvhBuildStrategy::Binned);

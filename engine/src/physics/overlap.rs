@@ -283,7 +283,6 @@ pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3)
                 -half,
                 half,
                 80,
-                |_| false,
             )
             .1
         });
@@ -543,21 +542,14 @@ pub fn overlap_certain(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, t
 }
 
 /// Golden-section search for the minimum of `f` on `[lo, hi]` (unimodal
-/// there): at most `steps` steps, stopping early once `done` holds for a
-/// value visited or the interval is down to rounding. Returns the best
-/// `(value, x)` of the last two points.
-fn golden_min(
-    f: impl Fn(f64) -> f64,
-    mut lo: f64,
-    mut hi: f64,
-    steps: usize,
-    done: impl Fn(f64) -> bool,
-) -> (f64, f64) {
+/// there): at most `steps` steps, stopping early once the interval is down
+/// to rounding. Returns the best `(value, x)` of the last two points.
+fn golden_min(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, steps: usize) -> (f64, f64) {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
     let (mut f1, mut f2) = (f(x1), f(x2));
     for _ in 0..steps {
-        if done(f1) || done(f2) || hi - lo <= 1e-15 * hi.abs().max(1.0) {
+        if hi - lo <= 1e-15 * hi.abs().max(1.0) {
             break;
         }
         if f1 < f2 {
@@ -801,7 +793,7 @@ mod tests {
             let (m0, across) = (best.1, DVec3::new(-best.1.y, best.1.x, 0.0));
             let turned = |s: f64| (m0 * (1.0 - s * s) + across * (2.0 * s)) / (1.0 + s * s);
             let half = half_step_tangent();
-            let golden = golden_min(|s| f(turned(s)), -half, half, 80, |_| false).0;
+            let golden = golden_min(|s| f(turned(s)), -half, half, 80).0;
             let before = golden.min(best.0);
             // Golden section about every candidate direction.
             let everywhere = (0..SAMPLES)
@@ -814,7 +806,7 @@ mod tests {
                 .map(|m0| {
                     let across = DVec3::new(-m0.y, m0.x, 0.0);
                     let turned = |s: f64| (m0 * (1.0 - s * s) + across * (2.0 * s)) / (1.0 + s * s);
-                    golden_min(|s| f(turned(s)), -half, half, 80, |_| false).0
+                    golden_min(|s| f(turned(s)), -half, half, 80).0
                 })
                 .fold(before, f64::min);
             let scale = 1e-13 * (ra + rb + d.length());
