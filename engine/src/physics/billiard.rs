@@ -6,6 +6,7 @@
 //! in which a scene lists them; every public index is the caller's own.
 
 use glam::{DVec2, DVec3};
+use smallvec::SmallVec;
 
 use super::broadphase::BroadPhase;
 use super::calendar::{Calendar, Key, Rank};
@@ -169,7 +170,9 @@ struct Puck {
     mass: f64,
     worldline: Worldline,
     version: u32,
-    pending: Vec<usize>,
+    /// Its kicks still ahead (indices into the kick table; rarely more
+    /// than two, kept in the record so reading them chases no pointer).
+    pending: SmallVec<[usize; 2]>,
     /// The last kick that landed: (contact count, version it left).
     kicked_by: Option<(u64, u32)>,
     /// A pair that has collided and that nothing else has touched since:
@@ -368,7 +371,7 @@ impl Billiard {
                 radius: p.radius,
                 mass: p.mass,
                 version: 0,
-                pending: Vec::new(),
+                pending: SmallVec::new(),
                 kicked_by: None,
                 settled: None,
                 quick: (f64::NEG_INFINITY, 0),
@@ -793,6 +796,7 @@ impl Billiard {
     fn handle(&mut self, i: usize, t: f64) {
         let next = self.next[i];
         self.calendar.remove(i as u32);
+        self.fetch_upcoming(false);
         self.time = self.time.max(t);
         let version = self.pucks[i].version;
         match next.what {
@@ -837,6 +841,34 @@ impl Billiard {
         // pucks were predicted as they changed.
         if self.pucks[i].version == version {
             self.predict(i);
+        }
+        self.fetch_upcoming(true);
+    }
+
+    /// Asks for the records the next event will read first (its puck's
+    /// pending event, record, motion and partner list), scattered over
+    /// memory at large N, so that fetching them overlaps the handling of
+    /// this one (a hint: nothing changes if the next event turns out to be
+    /// another). With `deep`, also what those records point to (the
+    /// newest segment, the partner list if it spilled to the heap): read
+    /// once the records themselves have arrived.
+    fn fetch_upcoming(&self, deep: bool) {
+        if self.reference {
+            return;
+        }
+        let Some(j) = self.calendar.upcoming() else {
+            return;
+        };
+        let j = j as usize;
+        let puck = &self.pucks[j];
+        if deep {
+            prefetch(puck.worldline.last());
+            prefetch(self.broad.partners(j));
+        } else {
+            prefetch(&self.next[j]);
+            prefetch_all(puck);
+            prefetch(&self.hot[j]);
+            prefetch(self.broad.partners_record(j));
         }
     }
 
@@ -1259,7 +1291,7 @@ impl Billiard {
         self.free_kicks.push(id);
         let i = kick.puck as usize;
         let puck = &mut self.pucks[i];
-        puck.pending.retain(|&k| k != id);
+        puck.pending.retain(|k| *k != id);
         // At its scheduled time, or now if it lands early (flushed).
         let t = kick.t.min(self.time).max(puck.worldline.last().start.t);
         let now = Body {
@@ -1769,7 +1801,11 @@ impl Billiard {
                 disc_touch(own_now, own.v, own.radius, other, now)
             };
             match bound {
-                Some(t) if t <= limit => bounded.push((t, j as u32)),
+                Some(t) if t <= limit => {
+                    // Its records are read if it is solved: asked for now.
+                    prefetch_all(&self.pucks[j]);
+                    bounded.push((t, j as u32));
+                }
                 _ => pruned += 1,
             }
         }
@@ -1869,19 +1905,34 @@ impl Billiard {
     }
 }
 
-/// Asks the processor to bring `value`'s cache line in ahead of its use (a
-/// hint: nothing is read, and the results cannot change).
+/// Asks the processor to bring `value`'s (first) cache line in ahead of
+/// its use (a hint: nothing is read, and the results cannot change).
 #[inline(always)]
-fn prefetch<T>(value: &T) {
+fn prefetch<T: ?Sized>(value: &T) {
+    prefetch_line((value as *const T).cast::<u8>());
+}
+
+/// [`prefetch`] of every cache line of `value`.
+#[inline(always)]
+fn prefetch_all<T>(value: &T) {
+    let start = (value as *const T).cast::<u8>();
+    for offset in (0..std::mem::size_of::<T>()).step_by(64) {
+        prefetch_line(start.wrapping_add(offset));
+    }
+}
+
+/// The cache line of `address` into the cache (any address: never read).
+#[inline(always)]
+fn prefetch_line(address: *const u8) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         // SAFETY: SSE is part of x86_64's baseline, and a prefetch never
         // faults nor reads memory the program sees (any address is allowed).
-        unsafe { _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast::<i8>()) };
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(address.cast::<i8>()) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
+    let _ = address;
 }
 
 /// How long after now (s) two centres `d0` apart (m, b − a) moving apart

@@ -132,6 +132,11 @@ impl BroadPhase {
     pub fn partners(&self, i: usize) -> &[u32] {
         &self.partners[i].0
     }
+
+    /// Where puck `i`'s partner list is kept (for prefetching).
+    pub fn partners_record(&self, i: usize) -> &impl Sized {
+        &self.partners[i]
+    }
 }
 
 /// Whether the discs of shells `i` and `j` (centres `centres`, m, radii

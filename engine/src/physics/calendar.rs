@@ -246,6 +246,14 @@ impl Calendar {
         self.heap.first().copied()
     }
 
+    /// The puck of the earliest entry if the current bucket holds any (the
+    /// queue is not advanced): the event after the one being handled, as a
+    /// hint for fetching its records ahead.
+    #[inline]
+    pub fn upcoming(&self) -> Option<u32> {
+        self.heap.first().map(|&(_, i)| i)
+    }
+
     /// Puck `i` (its key in its slot, bucket `b`) into the heap, the ring or
     /// the overflow.
     fn insert(&mut self, i: u32, b: i64) {
