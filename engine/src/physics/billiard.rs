@@ -1824,6 +1824,9 @@ impl Billiard {
                 continue; // and every later one: counted as pruned
             }
             let j = j as usize;
+            // Its newest segment is read by the solve: asked for before the
+            // checks below.
+            prefetch(self.pucks[j].worldline.last());
             let (a, b) = (i.min(j), i.max(j));
             let limit = best.t.min(self.hot[j].exit);
             if self.pending_with(a, b) {

@@ -35,10 +35,8 @@ use smallvec::SmallVec;
 #[derive(Clone)]
 pub struct BroadPhase {
     tree: Bvh,
-    /// Each shell's centre (m) and radius (m, the rest radius plus the
-    /// margin).
-    centres: Vec<DVec2>,
-    half: Vec<f64>,
+    /// Each shell's disc.
+    discs: Vec<Disc>,
     partners: Vec<Partners>,
     /// Scratch: which pucks were partners of the moving one (by index).
     mark: Vec<bool>,
@@ -63,8 +61,11 @@ impl BroadPhase {
         let n = aabbs.len();
         let mut broad = Self {
             tree,
-            centres: centres.to_vec(),
-            half: half.to_vec(),
+            discs: centres
+                .iter()
+                .zip(half)
+                .map(|(&centre, &half)| Disc { centre, half })
+                .collect(),
             partners: vec![Partners::default(); n],
             mark: vec![false; n],
             found: Vec::new(),
@@ -75,7 +76,7 @@ impl BroadPhase {
             let list: SmallVec<[u32; 14]> = broad
                 .tree
                 .intersect_aabb(aabb)
-                .filter(|&j| j as usize != i && discs_meet(centres, half, i, j as usize))
+                .filter(|&j| j as usize != i && discs_meet(&broad.discs, i, j as usize))
                 .collect();
             broad.partners[i] = Partners(list);
         }
@@ -86,21 +87,20 @@ impl BroadPhase {
     /// the candidate pairs it is in.
     pub fn set_shell(&mut self, i: usize, centre: DVec2, half: f64) {
         let aabb = square(centre, half);
-        self.centres[i] = centre;
-        self.half[i] = half;
+        self.discs[i] = Disc { centre, half };
         // In place: the leaf's AABB replaced, its ancestors grown as needed.
         self.tree.insert_with_change_detection(aabb, i as u32, 0.0);
         self.moves += 1;
-        if self.moves >= 4 * self.centres.len().max(64) {
+        if self.moves >= 4 * self.discs.len().max(64) {
             self.moves = 0;
             self.tree
                 .rebuild(&mut self.workspace, BvhBuildStrategy::Binned);
         }
         self.found.clear();
-        let (tree, centres, halves) = (&self.tree, &self.centres, &self.half);
+        let (tree, discs) = (&self.tree, &self.discs);
         self.found.extend(
             tree.intersect_aabb(&aabb)
-                .filter(|&j| j as usize != i && discs_meet(centres, halves, i, j as usize)),
+                .filter(|&j| j as usize != i && discs_meet(discs, i, j as usize)),
         );
         let old = std::mem::take(&mut self.partners[i]).0;
         for &j in &old {
@@ -139,14 +139,22 @@ impl BroadPhase {
     }
 }
 
-/// Whether the discs of shells `i` and `j` (centres `centres`, m, radii
-/// `half`, m) overlap, with a slack of 1e-9 of their radii far above the
+/// Whether the discs of shells `i` and `j` (of `discs`) overlap, with a slack of 1e-9 of their radii far above the
 /// rounding of the centres: pucks whose discs do not cannot touch while
 /// both centres are in their shells.
 #[inline]
-fn discs_meet(centres: &[DVec2], half: &[f64], i: usize, j: usize) -> bool {
-    let reach = (half[i] + half[j]) * (1.0 + 1e-9);
-    centres[i].distance_squared(centres[j]) <= reach * reach
+fn discs_meet(discs: &[Disc], i: usize, j: usize) -> bool {
+    let (a, b) = (discs[i], discs[j]);
+    let reach = (a.half + b.half) * (1.0 + 1e-9);
+    a.centre.distance_squared(b.centre) <= reach * reach
+}
+
+/// A shell's disc: centre (m, board frame) and radius (m, the rest radius
+/// plus the margin), together because every partner found reads both.
+#[derive(Clone, Copy)]
+struct Disc {
+    centre: DVec2,
+    half: f64,
 }
 
 /// A puck's partners, in one aligned 64-byte line while there are at most

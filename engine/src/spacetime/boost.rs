@@ -39,6 +39,10 @@ pub struct Boost {
     direction: DVec3,
     /// `e^{η} = γ + |u|`.
     exp_rapidity: f64,
+    /// `|u|` and `γ` of the frame (read by every application's choice of
+    /// form, so worked out once).
+    speed: f64,
+    gamma: f64,
 }
 
 impl Boost {
@@ -52,10 +56,13 @@ impl Boost {
         } else {
             DVec3::ZERO
         };
+        let gamma = frame.gamma();
         Self {
             frame,
             direction,
-            exp_rapidity: frame.gamma() + speed,
+            exp_rapidity: gamma + speed,
+            speed,
+            gamma,
         }
     }
 
@@ -106,10 +113,10 @@ impl Boost {
     /// The form [`Self::apply`] uses for this boost, with what it needs.
     #[inline(always)]
     fn form(&self) -> BoostForm {
-        let speed = self.frame.0.length();
+        let speed = self.speed;
         BoostForm {
             direction: self.direction,
-            direct: (speed < DIRECT_FORM_BELOW).then(|| (self.frame.gamma(), speed)),
+            direct: (speed < DIRECT_FORM_BELOW).then_some((self.gamma, speed)),
             exp_rapidity: self.exp_rapidity,
         }
     }
@@ -133,9 +140,9 @@ impl Boost {
         let parallel = n.dot(u.0);
         let perpendicular = u.0 - n * parallel;
         let gamma = u.gamma();
-        let speed = self.frame.0.length();
+        let speed = self.speed;
         if speed < DIRECT_FORM_BELOW && u.0.length() < DIRECT_FORM_BELOW {
-            let frame_gamma = self.frame.gamma();
+            let frame_gamma = self.gamma;
             return ProperVelocity(perpendicular + n * (frame_gamma * parallel - speed * gamma));
         }
         let transverse_mass_sq = 1.0 + perpendicular.length_squared();
