@@ -1915,12 +1915,15 @@ fn prefetch<T: ?Sized>(value: &T) {
     prefetch_line((value as *const T).cast::<u8>());
 }
 
-/// [`prefetch`] of every cache line of `value`.
+/// [`prefetch`] of every cache line `value` touches (from the 64-byte
+/// boundary at or below its start: a record need not be aligned to one).
 #[inline(always)]
 fn prefetch_all<T>(value: &T) {
     let start = (value as *const T).cast::<u8>();
-    for offset in (0..std::mem::size_of::<T>()).step_by(64) {
-        prefetch_line(start.wrapping_add(offset));
+    let below = start as usize % 64;
+    let first = start.wrapping_sub(below);
+    for offset in (0..below + std::mem::size_of::<T>()).step_by(64) {
+        prefetch_line(first.wrapping_add(offset));
     }
 }
 

@@ -139,9 +139,10 @@ impl BroadPhase {
     }
 }
 
-/// Whether the discs of shells `i` and `j` (of `discs`) overlap, with a slack of 1e-9 of their radii far above the
-/// rounding of the centres: pucks whose discs do not cannot touch while
-/// both centres are in their shells.
+/// Whether the discs of shells `i` and `j` (of `discs`) overlap, with a
+/// slack of 1e-9 of their radii far above the rounding of the centres:
+/// pucks whose discs do not cannot touch while both centres are in their
+/// shells.
 #[inline]
 fn discs_meet(discs: &[Disc], i: usize, j: usize) -> bool {
     let (a, b) = (discs[i], discs[j]);
