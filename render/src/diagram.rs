@@ -222,6 +222,25 @@ pub struct Plot {
 
 /// The diagram of `scene` (its `billiard` run to at least `eye.t`) for
 /// an eye at observation event `eye`.
+/// Most grid lines drawn across one axis of a diagram.
+const MAX_GRID_LINES: f64 = 1000.0;
+
+/// The grid's lines across `range` (m or s): every multiple of 0.5 in it,
+/// none if there would be more than [`MAX_GRID_LINES`] (far from the
+/// origin, where steps of 0.5 no longer change the number, the count is
+/// still bounded: a diagram at board time −10¹⁸ s must not loop).
+fn grid_lines(range: (f64, f64)) -> impl Iterator<Item = f64> {
+    let first = (range.0 / 0.5).ceil();
+    let last = (range.1 / 0.5).floor();
+    let count = last - first + 1.0;
+    let count = if count.is_finite() && count > 0.0 && count <= MAX_GRID_LINES {
+        count as usize
+    } else {
+        0
+    };
+    (0..count).map(move |k| (first + k as f64) * 0.5)
+}
+
 pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
     plot_with(scene, billiard, eye, Options::default())
 }
@@ -260,8 +279,7 @@ pub fn plot_with(scene: &Scene, billiard: &Billiard, eye: Event, options: Option
         };
     // Grid: every 0.5 m and 0.5 s, t = 0 and the cushions brighter.
     let grid = [60, 60, 70];
-    let mut g = (x_range.0 / 0.5).ceil() * 0.5;
-    while g <= x_range.1 {
+    for g in grid_lines(x_range) {
         marks.push(line(
             vec![(g, t_range.0), (g, t_range.1)],
             grid,
@@ -269,10 +287,8 @@ pub fn plot_with(scene: &Scene, billiard: &Billiard, eye: Event, options: Option
             0.6,
             false,
         ));
-        g += 0.5;
     }
-    let mut g = (t_range.0 / 0.5).ceil() * 0.5;
-    while g <= t_range.1 {
+    for g in grid_lines(t_range) {
         marks.push(line(
             vec![(x_range.0, g), (x_range.1, g)],
             grid,
@@ -280,7 +296,6 @@ pub fn plot_with(scene: &Scene, billiard: &Billiard, eye: Event, options: Option
             0.6,
             false,
         ));
-        g += 0.5;
     }
     marks.push(line(
         vec![(x_range.0, 0.0), (x_range.1, 0.0)],
@@ -558,6 +573,22 @@ mod tests {
     /// (c²/μg)(γ₀ − γ(t)) by t = 0.8 s, before its hit; points on the line
     /// are simultaneous with that event in the puck's frame (Lorentz
     /// transform t' = γ(t − v·x/c²)).
+    /// The grid is every 0.5 m or s in range, and stays bounded far from
+    /// the origin, where adding 0.5 no longer changes a number (a diagram
+    /// at board time −10¹⁸ s once looped there until memory ran out).
+    #[test]
+    fn grid_lines_are_every_half_and_bounded_far_out() {
+        let near: Vec<f64> = grid_lines((-0.2, 1.2)).collect();
+        assert_eq!(near, vec![0.0, 0.5, 1.0]);
+        assert!(grid_lines((-1e18 - 3.0, -1e18 + 1.0)).count() <= 1000);
+        assert_eq!(grid_lines((0.0, 1e6)).count(), 0, "too many: none");
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
+        let scene = lightcone_engine::scene::load(&dir.join("paper_carom.toml")).unwrap();
+        let billiard = Billiard::from_scene(&scene);
+        let drawn = draw(&scene, &billiard, 0, -1e18, 64, 64);
+        assert_eq!(drawn.image.width, 64);
+    }
+
     #[test]
     fn the_frame_line_is_the_pucks_now() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
