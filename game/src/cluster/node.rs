@@ -164,7 +164,7 @@ impl ClusterNode {
         let snapshot = match self.ask_snapshot() {
             Ok(s) => s,
             Err(e) => {
-                eprintln!("lightcone wall: {e}; asking again at the next frame");
+                crate::errln!("lightcone wall: {e}; asking again at the next frame");
                 return Ok(false);
             }
         };
@@ -174,7 +174,7 @@ impl ClusterNode {
         match message::game_of(&snapshot) {
             Ok(g) => *game = g,
             Err(e) => {
-                eprintln!("lightcone wall: {e}; asking again at the next frame");
+                crate::errln!("lightcone wall: {e}; asking again at the next frame");
                 return Ok(false);
             }
         }
@@ -231,7 +231,7 @@ impl ClusterNode {
                 Ok(f) => f,
                 Err(e) => {
                     // Dropped; the gap it leaves brings a new snapshot.
-                    eprintln!("lightcone wall: {e}; dropped");
+                    crate::errln!("lightcone wall: {e}; dropped");
                     continue;
                 }
             };
@@ -256,7 +256,7 @@ impl ClusterNode {
                 }
             }
             if let Err(e) = message::apply(&frame, game) {
-                eprintln!("lightcone wall: {e}; taking a new snapshot");
+                crate::errln!("lightcone wall: {e}; taking a new snapshot");
                 self.synced = None;
                 continue;
             }
@@ -414,9 +414,9 @@ pub fn run_headless(node: &mut ClusterNode, options: &Headless) -> Result<u64, S
                 return Err(format!("no frame from the master in {:?}", options.silence));
             }
             if node.master_gone {
-                eprintln!("lightcone wall: the master is gone; stopping");
+                crate::errln!("lightcone wall: the master is gone; stopping");
             } else {
-                eprintln!(
+                crate::errln!(
                     "lightcone wall: no frame from the master in {:?}; stopping",
                     options.silence
                 );

@@ -43,7 +43,7 @@ pub fn run(
     size: &str,
 ) -> ExitCode {
     let fail = |msg: String| {
-        eprintln!("{msg}");
+        crate::errln!("{msg}");
         ExitCode::FAILURE
     };
     if !at.is_finite() {

@@ -36,14 +36,14 @@ pub fn run(paths: &[PathBuf], options: Options) -> ExitCode {
         && options.hook_limit > 0.0
         && options.hook_limit <= 86_400.0)
     {
-        eprintln!(
+        crate::errln!(
             "--hook-limit {}: give seconds in (0, 86400]",
             options.hook_limit
         );
         return ExitCode::FAILURE;
     }
     if options.memory_limit < 256 {
-        eprintln!(
+        crate::errln!(
             "--memory-limit {}: give at least 256 MiB",
             options.memory_limit
         );
@@ -86,13 +86,13 @@ pub fn run(paths: &[PathBuf], options: Options) -> ExitCode {
 /// Runs one lesson and prints its outcome; its exit status.
 fn one(path: &Path, limits: Limits, json: bool) -> u8 {
     if !path.is_file() {
-        eprintln!("{}: no such lesson file", path.display());
+        crate::errln!("{}: no such lesson file", path.display());
         return 1;
     }
     let outcome = match supervise::run(path, limits) {
         Ok(o) => o,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return 1;
         }
     };
@@ -107,7 +107,7 @@ fn one(path: &Path, limits: Limits, json: bool) -> u8 {
     }
     let failed = outcome.claims.iter().filter(|c| !c.ok).count();
     if outcome.error.is_some() {
-        eprintln!("{}: the lesson was stopped (reason above)", path.display());
+        crate::errln!("{}: the lesson was stopped (reason above)", path.display());
     } else if failed > 0 {
         crate::errln!(
             "{}: {failed} of {} claims failed",

@@ -58,7 +58,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     if let Some(t) = at
         && !(t.is_finite() && t >= 0.0)
     {
-        eprintln!("--at {t}: give a board time of 0 s or more");
+        crate::errln!("--at {t}: give a board time of 0 s or more");
         return ExitCode::FAILURE;
     }
     let cave_file = cave;
@@ -84,7 +84,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
             }
         }
         (Some(_), None) => {
-            eprintln!("--serve needs --cave: the render nodes draw the CAVE's walls");
+            crate::errln!("--serve needs --cave: the render nodes draw the CAVE's walls");
             return ExitCode::FAILURE;
         }
         (None, _) => None,
@@ -141,7 +141,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     };
     if let Some(t) = at {
         if lesson.is_some() {
-            eprintln!("--at is for scenes: a lesson runs its own time");
+            crate::errln!("--at is for scenes: a lesson runs its own time");
             return ExitCode::FAILURE;
         }
         game.physics_mut().advance_to(t);
@@ -157,7 +157,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         match crate::model::Pane::parse_list(&spec, &game.scene) {
             Ok(p) => game.panes = Some(p),
             Err(e) => {
-                eprintln!("{e}");
+                crate::errln!("{e}");
                 return ExitCode::FAILURE;
             }
         }
@@ -166,7 +166,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         match crate::commands::observe::parse_effects(&spec, game.effects) {
             Ok(e) => game.effects = e,
             Err(e) => {
-                eprintln!("{e}");
+                crate::errln!("{e}");
                 return ExitCode::FAILURE;
             }
         }

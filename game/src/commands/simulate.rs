@@ -22,13 +22,13 @@ const STEP_EVENTS: usize = 1 << 14;
 /// (stdout when `None`). Warnings (e.g. a Zeno sequence ended) go to stderr.
 pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
     if !until.is_finite() || until < 0.0 {
-        eprintln!("--until {until}: give a finite board time ≥ 0 in seconds");
+        crate::errln!("--until {until}: give a finite board time ≥ 0 in seconds");
         return ExitCode::from(2);
     }
     let scene = match scene::load(scene_path) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
         }
     };
@@ -39,7 +39,7 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
         Some(path) => match std::fs::File::create(path) {
             Ok(f) => stream(&mut billiard, until, BufWriter::new(f)),
             Err(e) => {
-                eprintln!("{}: cannot create: {e}", path.display());
+                crate::errln!("{}: cannot create: {e}", path.display());
                 return ExitCode::FAILURE;
             }
         },
@@ -50,11 +50,11 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
         ),
     };
     for w in billiard.warnings() {
-        eprintln!("{}: warning: {w}", scene_path.display());
+        crate::errln!("{}: warning: {w}", scene_path.display());
     }
     let merges = billiard.stats().zeno_merges;
     if merges > 1 {
-        eprintln!(
+        crate::errln!(
             "{}: warning: {merges} inelastic collapses ended in all",
             scene_path.display()
         );
@@ -67,7 +67,7 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
         // The reader went away (`| head`): not an error of ours.
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("cannot write the output: {e}");
+            crate::errln!("cannot write the output: {e}");
             ExitCode::FAILURE
         }
     }

@@ -40,7 +40,7 @@ pub struct WallArgs {
 /// Runs the node.
 pub fn run(args: &WallArgs) -> ExitCode {
     if !(args.silence.is_finite() && args.silence > 0.0 && args.silence <= 3600.0) {
-        eprintln!(
+        crate::errln!(
             "lightcone wall: --silence {}: give seconds, more than 0 and at most 3600",
             args.silence
         );
@@ -64,7 +64,7 @@ pub fn run(args: &WallArgs) -> ExitCode {
         screenshot: args.screenshot.clone(),
     };
     if args.screenshot.is_some() && (args.headless || args.frames == 0) {
-        eprintln!("--screenshot needs a window and --frames N");
+        crate::errln!("--screenshot needs a window and --frames N");
         return ExitCode::FAILURE;
     }
     let result = if args.headless {
@@ -74,7 +74,7 @@ pub fn run(args: &WallArgs) -> ExitCode {
     };
     match result {
         Ok(shown) => {
-            eprintln!(
+            crate::errln!(
                 "lightcone wall {}: {shown} frames shown",
                 args.walls.join(", ")
             );

@@ -403,7 +403,7 @@ impl LessonHost {
     /// Stops the hooks and keeps `message` for the screen (and stderr, for
     /// whoever started the game from a terminal).
     fn fail(&mut self, message: String) {
-        eprintln!("lesson {} stopped:\n{message}", self.path.display());
+        crate::errln!("lesson {} stopped:\n{message}", self.path.display());
         self.error = Some(message);
     }
 

@@ -190,7 +190,7 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
     let up = match supervise::child_process(memory_mb) {
         Ok(f) => f,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return 1;
         }
     };
@@ -202,7 +202,7 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
         let fd = libc::dup(0);
         let mut pipe = [0; 2];
         if fd < 0 || libc::pipe(pipe.as_mut_ptr()) != 0 || libc::dup2(pipe[0], 0) < 0 {
-            eprintln!("cannot set up the lesson's process");
+            crate::errln!("cannot set up the lesson's process");
             return 1;
         }
         <std::fs::File as std::os::fd::FromRawFd>::from_raw_fd(fd)
@@ -210,7 +210,7 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
     *UP.lock().unwrap_or_else(|e| e.into_inner()) = Some(up);
     *DOWN.lock().unwrap_or_else(|e| e.into_inner()) = Some(BufReader::new(down));
     if let Err(e) = super::init_python() {
-        eprintln!("{e}");
+        crate::errln!("{e}");
         return 1;
     }
     let dir = super::lesson_dir(path);
@@ -224,7 +224,7 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
     let world = match world {
         Ok(w) => w,
         Err(e) => {
-            eprintln!("cannot start the lesson's world: {e}");
+            crate::errln!("cannot start the lesson's world: {e}");
             return 1;
         }
     };

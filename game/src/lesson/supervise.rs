@@ -192,7 +192,7 @@ pub fn child(path: &Path, limits: Limits) -> u8 {
     let events = match child_process(limits.memory_mb) {
         Ok(f) => f,
         Err(e) => {
-            eprintln!("{e}");
+            crate::errln!("{e}");
             return 1;
         }
     };
@@ -352,7 +352,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
             format!("{place}: the lesson's process {how}; the lesson stopped there"),
         )
     };
-    eprintln!("lesson {} stopped:\n{error}", path.display());
+    crate::errln!("lesson {} stopped:\n{error}", path.display());
     Ok(Outcome {
         file: path.display().to_string(),
         t: partial.t,

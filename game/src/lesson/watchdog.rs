@@ -288,7 +288,7 @@ fn interrupt() {
 
 /// Ends the process: the hook would not stop.
 fn hard_stop() -> ! {
-    eprintln!(
+    crate::errln!(
         "{}; it could not be interrupted (a long computation inside one call, such as a C builtin), so the process ends with status {HARD_STOP_STATUS}",
         message()
     );

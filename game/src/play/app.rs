@@ -660,7 +660,7 @@ impl App {
             self.run_views(0.0, 0.0);
             self.views_done = true;
             if let Err(e) = self.log_frame() {
-                eprintln!("--frame-log: {e}; no longer logging");
+                crate::errln!("--frame-log: {e}; no longer logging");
                 self.frame_log = None;
             }
         }
@@ -671,7 +671,7 @@ impl App {
         }
         if let Some(master) = &mut self.cluster {
             for line in master.take_news() {
-                eprintln!("{line}");
+                crate::errln!("{line}");
                 self.state.message = line;
             }
         }
@@ -976,9 +976,9 @@ impl App {
                 Ok(None) => {
                     let silent = role.last_frame.elapsed() >= role.silence;
                     if role.node.master_gone {
-                        eprintln!("lightcone wall: the master is gone; stopping");
+                        crate::errln!("lightcone wall: the master is gone; stopping");
                     } else if silent {
-                        eprintln!(
+                        crate::errln!(
                             "lightcone wall: no frame from the master in {:?}; stopping",
                             role.silence
                         );
@@ -1040,7 +1040,7 @@ impl App {
                 &self.stereo,
             );
             if writeln!(log, "{line}").and_then(|()| log.flush()).is_err() {
-                eprintln!("--frame-log: cannot write; no longer logging");
+                crate::errln!("--frame-log: cannot write; no longer logging");
                 self.frame_log = None;
             }
         }

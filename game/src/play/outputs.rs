@@ -60,7 +60,7 @@ pub fn open(
                             && i64::from(p.y) < i64::from(at[1]) + i64::from(size[1])
                     });
                     if !monitors.is_empty() && !on_a_monitor {
-                        eprintln!(
+                        crate::errln!(
                             "lightcone play: {}: output[{i}] ({:?}).region \
                              [{}, {}, {}, {}] lies on no monitor: its window will not be seen",
                             cave.label(),
