@@ -110,6 +110,23 @@ fn a_hook_that_raises_stops_the_lesson_but_keeps_the_state() {
 }
 
 #[test]
+fn a_thread_that_raises_stops_the_lesson_with_its_traceback() {
+    let out = lightcone(&["lesson", "tests/lessons/broken_thread.py", "--json"]);
+    assert!(!out.status.success());
+    let outcome: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let error = outcome["error"].as_str().expect("an error");
+    assert!(
+        error.contains("in the lesson's thread 'counter'"),
+        "{error}"
+    );
+    assert!(
+        error.contains("broken_thread.py\", line 12, in count_down"),
+        "{error}"
+    );
+    assert!(error.contains("KeyError: 'right'"), "{error}");
+}
+
+#[test]
 fn lesson_rejects_bad_arguments_and_missing_files() {
     let out = lightcone(&["lesson", "no/such/lesson.py"]);
     assert!(!out.status.success());

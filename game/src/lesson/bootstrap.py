@@ -79,3 +79,42 @@ def guard(stop):
     for module in (os, posix):
         module._exit = _no_exit
         module.abort = _no_exit
+    _catch_thread_errors()
+
+
+# Tracebacks of exceptions that ended threads the lesson started, oldest
+# first: the host takes them after each hook and stops the lesson with the
+# first (a thread's error would otherwise only be printed, and the lesson
+# reported as if nothing had happened).
+thread_errors = []
+_thread_errors_lock = None
+
+
+def _catch_thread_errors():
+    import threading
+    import traceback
+
+    global _thread_errors_lock
+    _thread_errors_lock = threading.Lock()
+
+    def caught(args):
+        if args.exc_type is SystemExit:
+            return  # a thread's sys.exit() ends only that thread
+        name = args.thread.name if args.thread is not None else "a thread"
+        text = "".join(
+            traceback.format_exception(args.exc_type, args.exc_value, args.exc_traceback)
+        )
+        with _thread_errors_lock:
+            thread_errors.append(f"in the lesson's thread {name!r}:\n{text.rstrip()}")
+
+    threading.excepthook = caught
+
+
+def take_thread_errors():
+    """The thread errors caught since the last call (and forgets them)."""
+    if _thread_errors_lock is None:
+        return []
+    with _thread_errors_lock:
+        taken = list(thread_errors)
+        del thread_errors[:]
+    return taken

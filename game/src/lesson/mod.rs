@@ -121,6 +121,15 @@ fn drain_printed(py: Python<'_>) -> Vec<String> {
         .collect()
 }
 
+/// Errors that ended threads the lesson started, since the last call (the
+/// bootstrap's `threading.excepthook` keeps them).
+fn take_thread_errors(py: Python<'_>) -> Vec<String> {
+    py.import("lightcone_bootstrap")
+        .and_then(|b| b.call_method0("take_thread_errors"))
+        .and_then(|errors| errors.extract())
+        .unwrap_or_default()
+}
+
 /// How many printed lines the panel keeps.
 const PRINTED_LINES: usize = 40;
 
@@ -486,7 +495,12 @@ impl LessonHost {
                 back,
                 generation,
                 finished,
-                result.map_err(|e| format!("in {hook}:\n{}", traceback(py, &e))),
+                result
+                    .map_err(|e| format!("in {hook}:\n{}", traceback(py, &e)))
+                    .and_then(|()| match take_thread_errors(py).into_iter().next() {
+                        Some(error) => Err(error),
+                        None => Ok(()),
+                    }),
             )
         });
         let (back, generation, finished, outcome) = result;

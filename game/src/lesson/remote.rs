@@ -229,7 +229,10 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
         }
     };
     let mut lesson: Option<Py<PyModule>> = None;
-    while let Some(line) = read_down() {
+    // Waiting for the next call, the interpreter is free: threads the
+    // lesson started run then (and an error that ends one is reported
+    // after the next hook), instead of only while a hook waits.
+    while let Some(line) = Python::attach(|py| py.detach(read_down)) {
         let done =
             Python::attach(|py| run_call(py, &line, world.bind(py), path, limit, &mut lesson));
         match serde_json::to_vec(&done) {
@@ -329,6 +332,8 @@ fn run_call(
             format!("in {hook}:\n{tb}")
         }
     });
+    // Else a thread the lesson started may have failed since the last call.
+    let error = error.or_else(|| super::take_thread_errors(py).into_iter().next());
     done(error, timed_out, hooks)
 }
 
