@@ -50,6 +50,17 @@ pub fn shipped_scene(name: &str) -> Option<Result<Scene, SceneErrors>> {
         .map(|(n, text)| scene::parse(text, &format!("(built in) {n}")))
 }
 
+/// The built-in scene at `path` (`assets/scenes/NAME.toml`, as the
+/// checkout names it), so that `lightcone bench` runs from any folder;
+/// errors name the scene.
+pub fn shipped_at(path: &str) -> Result<Scene, String> {
+    let name = path.trim_start_matches("assets/scenes/");
+    match shipped_scene(name) {
+        Some(scene) => scene.map_err(|e| e.to_string()),
+        None => Err(format!("{path}: not a shipped scene")),
+    }
+}
+
 /// The text of `assets/cave.toml`, the default CAVE.
 pub const DEFAULT_CAVE_TOML: &str = include_str!("../../assets/cave.toml");
 

@@ -182,8 +182,8 @@ enum Command {
     Diagram {
         /// Scene file (TOML).
         scene: PathBuf,
-        /// Board time of the observation, s.
-        #[arg(long)]
+        /// Board time of the observation, s (−1e9 to 1e9).
+        #[arg(long, allow_negative_numbers = true, value_parser = args::time)]
         at: f64,
         /// Observer name (default: the scene's first).
         #[arg(long)]
@@ -199,8 +199,8 @@ enum Command {
         /// Output PNG.
         #[arg(short, long)]
         out: PathBuf,
-        /// Image size, WIDTHxHEIGHT.
-        #[arg(long, default_value = "1000x700")]
+        /// Image size, WIDTHxHEIGHT (each 1 to 16384).
+        #[arg(long, default_value = "1000x700", value_parser = args::size)]
         size: String,
     },
     /// Record what an observer sees from board time 0 to T, headless, as

@@ -100,3 +100,23 @@ macro_rules! sayln {
     () => { $crate::output::print_or_exit("\n") };
     ($($arg:tt)*) => { $crate::output::print_or_exit(&format!("{}\n", format_args!($($arg)*))) };
 }
+
+/// Refuses an output path that names the input file itself (`simulate
+/// s.toml --out s.toml` once replaced the scene with JSON): a message
+/// naming both. Paths that do not exist yet are never the input.
+pub fn not_the_input(out: &std::path::Path, input: &std::path::Path) -> Result<(), String> {
+    use std::os::unix::fs::MetadataExt;
+    let same = match (std::fs::metadata(out), std::fs::metadata(input)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    };
+    if same {
+        Err(format!(
+            "{}: is the scene file {} itself; write the output somewhere else",
+            out.display(),
+            input.display()
+        ))
+    } else {
+        Ok(())
+    }
+}

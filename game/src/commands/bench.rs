@@ -4,7 +4,6 @@
 //! Timing comes from `std::time::Instant` around the engine's own calls, on
 //! whatever machine runs it; the figures in BENCHMARKS.md name theirs.
 
-use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -12,7 +11,6 @@ use glam::{DVec2, DVec3};
 use lightcone_engine::physics::fixed_step::{Detected, FixedStep};
 use lightcone_engine::physics::gas::dense_box;
 use lightcone_engine::physics::{Billiard, CollisionKind, PuckInit};
-use lightcone_engine::scene;
 use lightcone_engine::spacetime::ProperVelocity;
 
 /// Runs the physics benchmarks; `quick` shortens them (for tests).
@@ -64,7 +62,7 @@ fn frame_times(quick: bool) -> Result<String, String> {
         "assets/scenes/paper_carom.toml",
         "assets/scenes/ten_pucks.toml",
     ] {
-        let s = scene::load(Path::new(file)).map_err(|e| e.to_string())?;
+        let s = crate::assets::shipped_at(file)?;
         let (mut quiet, mut busy, mut contacts) = (Vec::new(), Vec::new(), 0u64);
         for _ in 0..runs {
             let mut b = Billiard::from_scene(&s);
@@ -170,7 +168,7 @@ fn friction_costs(quick: bool) -> Result<String, String> {
         "assets/scenes/paper_carom.toml",
         "assets/scenes/ten_pucks.toml",
     ] {
-        let s = scene::load(Path::new(file)).map_err(|e| e.to_string())?;
+        let s = crate::assets::shipped_at(file)?;
         let on = if s.table.deceleration() > 0.0 {
             s.table.deceleration()
         } else {
@@ -284,7 +282,7 @@ fn exactness(quick: bool) -> String {
                 .unwrap_or((f64::NAN, DVec3::NAN))
         })
         .collect();
-    let paper = scene::load(Path::new("assets/scenes/paper_carom.toml")).ok();
+    let paper = crate::assets::shipped_at("assets/scenes/paper_carom.toml").ok();
     let paper_pucks: Vec<PuckInit> = paper
         .as_ref()
         .map(|s| s.pucks.iter().map(PuckInit::from).collect())

@@ -2,7 +2,7 @@
 //! time and memory, for the exact emission solve and the paper's sampled
 //! history, and what each effect costs in the frame schedule.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -14,7 +14,7 @@ use lightcone_engine::optics::solve_rate::{BodyOutput, SolveRate};
 use lightcone_engine::optics::view::{self, Method};
 use lightcone_engine::optics::{Emission, mesh};
 use lightcone_engine::physics::Billiard;
-use lightcone_engine::scene::{self, Effects, Scene};
+use lightcone_engine::scene::{Effects, Scene};
 use lightcone_engine::spacetime::Event;
 use lightcone_engine::worldline::mesh::PUCK_SEGMENTS;
 use lightcone_engine::worldline::{RestShape, Worldline};
@@ -42,7 +42,7 @@ struct Row {
 
 /// Runs the optics benchmarks.
 pub fn run(quick: bool, csv: Option<&PathBuf>) -> ExitCode {
-    let scene = match scene::load(Path::new("assets/scenes/paper_carom.toml")) {
+    let scene = match crate::assets::shipped_at("assets/scenes/paper_carom.toml") {
         Ok(s) => s,
         Err(e) => {
             crate::errln!("{e}");
@@ -335,8 +335,7 @@ fn print_rows(rows: &[Row]) {
 /// History memory for the paper's 10-puck scene over 1 000 frames (its
 /// Table 1 case).
 fn memory_ten_pucks() -> Result<String, String> {
-    let scene =
-        scene::load(Path::new("assets/scenes/ten_pucks.toml")).map_err(|e| e.to_string())?;
+    let scene = crate::assets::shipped_at("assets/scenes/ten_pucks.toml")?;
     let (shapes, _) = shapes_of(&scene);
     let vertices: usize = shapes.iter().map(|s| s.vertices.len()).sum();
     let mut b = Billiard::from_scene(&scene);

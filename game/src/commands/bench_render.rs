@@ -3,12 +3,11 @@
 //! GPU's (drawing and reading the image back), for the paper's scene and a
 //! large one.
 
-use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use glam::{DVec2, DVec3};
-use lightcone_engine::scene::{self, Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
+use lightcone_engine::scene::{Color, Effects, ObserverSpec, PuckSpec, Scene, TableSpec};
 use lightcone_engine::spacetime::ProperVelocity;
 
 use lightcone_render::frame::{self, ViewMeshes};
@@ -63,7 +62,7 @@ pub fn run(quick: bool) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let paper = match scene::load(Path::new("assets/scenes/paper_carom.toml")) {
+    let paper = match crate::assets::shipped_at("assets/scenes/paper_carom.toml") {
         Ok(s) => s,
         Err(e) => {
             crate::errln!("{e}");
@@ -128,7 +127,7 @@ pub fn run(quick: bool) -> ExitCode {
 /// share of the width). CPU: one run of the frame schedule for all views,
 /// then each view's triangle list; GPU: drawing and reading back each.
 fn views_per_frame(gpu: &gpu::Gpu, quick: bool) -> ExitCode {
-    let paper = match scene::load(Path::new("assets/scenes/paper_carom.toml")) {
+    let paper = match crate::assets::shipped_at("assets/scenes/paper_carom.toml") {
         Ok(s) => s,
         Err(e) => {
             crate::errln!("{e}");

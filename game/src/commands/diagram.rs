@@ -53,6 +53,9 @@ pub fn run(
         Ok(s) => s,
         Err(e) => return fail(e),
     };
+    if let Err(e) = crate::output::not_the_input(out, path) {
+        return fail(e);
+    }
     let scene = match scene::load(path) {
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),

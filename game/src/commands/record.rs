@@ -222,6 +222,10 @@ pub fn run(req: Request<'_>) -> ExitCode {
         Ok(s) => s,
         Err(e) => return fail(e),
     };
+    let (Output::Gif(file) | Output::Mp4(file) | Output::Pngs(file)) = &req.out;
+    if let Err(e) = crate::output::not_the_input(file, req.scene) {
+        return fail(e);
+    }
     let scene = match scene::load(req.scene) {
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),

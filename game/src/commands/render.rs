@@ -21,12 +21,25 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
             .filter(|n| (1..=16384).contains(n))
     };
     match (parse(w), parse(h)) {
+        // The picture is read back in one buffer (rows padded to 256
+        // bytes), which wgpu caps at 256 MiB.
+        (Some(w), Some(h))
+            if u64::from(w.next_multiple_of(64)) * 4 * u64::from(h) > MAX_READBACK =>
+        {
+            Err(format!(
+                "--size {s}: at most 67 108 864 pixels in all (e.g. 8192x8192 or 16384x4096): \
+                 the picture is read back in one buffer of at most 256 MiB"
+            ))
+        }
         (Some(w), Some(h)) => Ok((w, h)),
         _ => Err(format!(
             "--size {s}: width and height must be whole numbers from 1 to 16384"
         )),
     }
 }
+
+/// wgpu's largest buffer by default, bytes: the readback of a picture.
+const MAX_READBACK: u64 = 1 << 28;
 
 /// Renders and writes the PNG.
 pub fn run(
@@ -48,6 +61,9 @@ pub fn run(
         Ok(s) => s,
         Err(e) => return fail(e),
     };
+    if let Err(e) = crate::output::not_the_input(out, path) {
+        return fail(e);
+    }
     let scene = match scene::load(path) {
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
@@ -90,4 +106,22 @@ pub fn observer_index(
                 names.join(", ")
             )
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_size;
+
+    /// Sizes the readback buffer can hold are taken, larger ones refused
+    /// with a message (they once panicked inside wgpu).
+    #[test]
+    fn a_size_beyond_the_readback_buffer_is_refused() {
+        assert_eq!(parse_size("8192x8192"), Ok((8192, 8192)));
+        assert_eq!(parse_size("16384x4096"), Ok((16384, 4096)));
+        for big in ["16384x16384", "12000x9000", "16384x4097"] {
+            let e = parse_size(big).expect_err(big);
+            assert!(e.contains("67 108 864 pixels"), "{e}");
+        }
+        assert!(parse_size("0x10").is_err());
+    }
 }

@@ -25,6 +25,10 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
         crate::errln!("--until {until}: give a finite board time ≥ 0 in seconds");
         return ExitCode::from(2);
     }
+    if let Some(Err(e)) = out.map(|o| crate::output::not_the_input(o, scene_path)) {
+        crate::errln!("{e}");
+        return ExitCode::FAILURE;
+    }
     let scene = match scene::load(scene_path) {
         Ok(s) => s,
         Err(e) => {
@@ -67,7 +71,8 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
         // The reader went away (`| head`): not an error of ours.
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(e) => {
-            crate::errln!("cannot write the output: {e}");
+            let to = out.map_or("stdout".to_owned(), |p| p.display().to_string());
+            crate::errln!("{to}: cannot write the output: {e}");
             ExitCode::FAILURE
         }
     }
