@@ -471,6 +471,37 @@ fn a_failed_write_is_an_error_with_a_message() {
     assert!(stderr.contains("stdout: cannot write"), "{stderr}");
 }
 
+/// An output path that is the scene file itself is refused and the scene
+/// left as it was (`simulate s.toml --out s.toml` once replaced it).
+#[test]
+fn an_output_over_the_scene_file_is_refused() {
+    let dir = temp_dir("overwrite");
+    let scene = dir.join("s.toml");
+    let text = std::fs::read(repo().join("assets/scenes/paper_carom.toml")).unwrap();
+    std::fs::write(&scene, &text).unwrap();
+    let s = scene.to_string_lossy().into_owned();
+    for args in [
+        vec!["simulate", &s, "--until", "1", "--out", &s],
+        vec!["render", &s, "--at", "1", "--size", "64x36", "-o", &s],
+        vec!["diagram", &s, "--at", "1", "--size", "64x36", "-o", &s],
+    ] {
+        let out = lightcone(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains("is the scene file"), "{args:?}: {stderr}");
+        assert_eq!(std::fs::read(&scene).unwrap(), text, "{args:?}");
+    }
+    // A negative diagram time is a time.
+    let png = dir.join("d.png").to_string_lossy().into_owned();
+    let out = lightcone(&["diagram", &s, "--at", "-5", "--size", "64x36", "-o", &png]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `lightcone ARGS` must be a usage error (exit 2) whose message says
 /// `words`, without clap's `-- -1` tip.
 fn usage_error(args: &[&str], words: &str) {
@@ -526,6 +557,23 @@ fn requests_with_no_end_are_usage_errors() {
     usage_error(
         &["render", scene, "--at", "1", "-o", "x.png", "--size", "0x0"],
         "--size",
+    );
+    usage_error(
+        &[
+            "render",
+            scene,
+            "--at",
+            "1",
+            "-o",
+            "x.png",
+            "--size",
+            "16384x16384",
+        ],
+        "at most 67 108 864 pixels",
+    );
+    usage_error(
+        &["diagram", scene, "--at", "1e300", "-o", "x.png"],
+        "from -1e9 to 1e9",
     );
     usage_error(
         &["observe", scene, "--at", "1", "--effects", "redshift"],
