@@ -479,18 +479,34 @@ fn an_output_over_the_scene_file_is_refused() {
     let scene = dir.join("s.toml");
     let text = std::fs::read(repo().join("assets/scenes/paper_carom.toml")).unwrap();
     std::fs::write(&scene, &text).unwrap();
+    // A picture's name must end in .png or have no extension: the scene
+    // saved without one.
+    let bare = dir.join("scene");
+    std::fs::write(&bare, &text).unwrap();
     let s = scene.to_string_lossy().into_owned();
+    let b = bare.to_string_lossy().into_owned();
     for args in [
         vec!["simulate", &s, "--until", "1", "--out", &s],
-        vec!["render", &s, "--at", "1", "--size", "64x36", "-o", &s],
-        vec!["diagram", &s, "--at", "1", "--size", "64x36", "-o", &s],
+        vec!["render", &b, "--at", "1", "--size", "64x36", "-o", &b],
+        vec!["diagram", &b, "--at", "1", "--size", "64x36", "-o", &b],
     ] {
         let out = lightcone(&args);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
         assert!(stderr.contains("is the scene file"), "{args:?}: {stderr}");
-        assert_eq!(std::fs::read(&scene).unwrap(), text, "{args:?}");
+        assert_eq!(std::fs::read(args[1]).unwrap(), text, "{args:?}");
     }
+    // Any other extension is refused before anything is written.
+    for args in [
+        vec!["render", &s, "--at", "1", "-o", &s],
+        vec!["diagram", &s, "--at", "1", "-o", "d.jpg"],
+    ] {
+        let out = lightcone(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("ending in .png"), "{args:?}: {stderr}");
+    }
+    assert_eq!(std::fs::read(&scene).unwrap(), text);
     // A negative diagram time is a time.
     let png = dir.join("d.png").to_string_lossy().into_owned();
     let out = lightcone(&["diagram", &s, "--at", "-5", "--size", "64x36", "-o", &png]);
@@ -500,6 +516,22 @@ fn an_output_over_the_scene_file_is_refused() {
         String::from_utf8_lossy(&out.stderr)
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A scene "file" that never ends (`/dev/zero`) is refused after 256 MiB,
+/// not read until memory runs out.
+#[test]
+fn an_endless_scene_file_is_refused() {
+    if !std::path::Path::new("/dev/zero").exists() {
+        return;
+    }
+    let out = lightcone(&["check", "/dev/zero"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("/dev/zero: more than 256 MiB: not a scene file"),
+        "{stderr}"
+    );
 }
 
 /// `lightcone ARGS` must be a usage error (exit 2) whose message says
@@ -574,6 +606,10 @@ fn requests_with_no_end_are_usage_errors() {
     usage_error(
         &["diagram", scene, "--at", "1e300", "-o", "x.png"],
         "from -1e9 to 1e9",
+    );
+    usage_error(
+        &["observe", scene, "--at", "1", "--effects", ""],
+        "give effect names",
     );
     usage_error(
         &["observe", scene, "--at", "1", "--effects", "redshift"],

@@ -243,6 +243,11 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
         ),
         ("exits", 1, &["SystemExit", "cannot end the game"]),
         ("forks", 1, &["PermissionError", "may not start processes"]),
+        (
+            "signals_the_game",
+            1,
+            &["PermissionError", "may not signal the game"],
+        ),
         ("crashes", 4, &["SIGSEGV", "in on_frame"]),
         (
             "exits_for_real",

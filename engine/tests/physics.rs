@@ -417,6 +417,17 @@ fn impulses_add_momentum_and_never_reach_c() {
         b.apply_impulse(0, 3.0, DVec3::new(f64::NAN, 0.0, 0.0))
             .is_err()
     );
+    // Beyond |u| = 1e12 (γ past what the board clock resolves) the push is
+    // refused and the puck keeps its velocity (1e300 once froze it).
+    let before = b.worldline(0).proper_velocity_at(3.0);
+    for du in [1e300, 2.0e12] {
+        let e = b.apply_impulse(0, 3.0, DVec3::new(0.0, du, 0.0));
+        assert!(e.is_err_and(|e| e.to_string().contains("1e12")), "{du}");
+    }
+    assert_eq!(b.worldline(0).proper_velocity_at(3.0), before);
+    b.advance_to(3.5);
+    let after = b.worldline(0).proper_velocity_at(3.5);
+    assert_eq!((after.0.length(), after.0.y), (1e12, 0.0));
 }
 
 /// A box of `n` pucks on a grid 3R apart with random velocities.

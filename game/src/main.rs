@@ -28,7 +28,7 @@ enum Command {
         scene: Option<PathBuf>,
         /// Save a screenshot of the window (with its panels) to this PNG
         /// after `--frames` frames, then quit.
-        #[arg(long)]
+        #[arg(long, value_parser = args::png_file)]
         screenshot: Option<PathBuf>,
         /// Frames to run before the screenshot (1 to 1000000).
         #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
@@ -166,8 +166,8 @@ enum Command {
         /// Observer name (default: the scene's first).
         #[arg(long)]
         observer: Option<String>,
-        /// Output PNG.
-        #[arg(short, long)]
+        /// Output PNG (a .png file).
+        #[arg(short, long, value_parser = args::png_file)]
         out: PathBuf,
         /// Image size, WIDTHxHEIGHT (each 1 to 16384).
         #[arg(long, default_value = "1280x720", value_parser = args::size)]
@@ -196,8 +196,8 @@ enum Command {
         /// The board axis across: x (default) or y.
         #[arg(long, value_enum, default_value = "x")]
         axis: AxisArg,
-        /// Output PNG.
-        #[arg(short, long)]
+        /// Output PNG (a .png file).
+        #[arg(short, long, value_parser = args::png_file)]
         out: PathBuf,
         /// Image size, WIDTHxHEIGHT (each 1 to 16384).
         #[arg(long, default_value = "1000x700", value_parser = args::size)]

@@ -701,7 +701,9 @@ impl Billiard {
     /// Adds a momentum impulse to puck `i` at board time `t` (≥ the current
     /// time; earlier means now): its proper velocity grows by `du` (an
     /// impulse `J` on a puck of mass `m` is `du = J / (m c)`). A push of any
-    /// size leaves it below `c`. Fails on a non-finite `du`.
+    /// size leaves it below `c`. Fails on a non-finite `du`, and on one
+    /// that would take |u| = γ|β| beyond [`crate::scene::MAX_U`] (the
+    /// puck keeps its velocity).
     pub fn apply_impulse(
         &mut self,
         i: usize,
@@ -717,6 +719,9 @@ impl Billiard {
         self.flush_pending(i);
         let puck = &mut self.pucks[i];
         let u = ProperVelocity(puck.worldline.last().u_at(t).0 + du);
+        if !(u.0.length() <= crate::scene::MAX_U) {
+            return Err(crate::worldline::WorldlineError::TooFast(u.0.length()));
+        }
         puck.worldline
             .push(t.max(puck.worldline.last().start.t), u)?;
         self.bump(i);

@@ -22,12 +22,29 @@ pub use validate::MAX_ERRORS_PER_KIND;
 
 use std::path::Path;
 
-/// Reads and validates the scene file at `path`.
+/// The largest scene file read, bytes: a million pucks written out in full
+/// (about 150 bytes each) fit; `/dev/zero` or a video given by mistake is
+/// refused instead of read until memory runs out.
+pub const MAX_SCENE_BYTES: u64 = 256 << 20;
+
+/// Reads and validates the scene file at `path` (at most
+/// [`MAX_SCENE_BYTES`]).
 pub fn load(path: &Path) -> Result<Scene, SceneErrors> {
+    use std::io::Read;
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| {
+    let cannot = |e: std::io::Error| {
         SceneErrors::single(SceneError::whole_file(&file, format!("cannot read: {e}")))
-    })?;
+    };
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_SCENE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(cannot)?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(SceneErrors::single(SceneError::whole_file(
+            &file,
+            format!("more than {} MiB: not a scene file", MAX_SCENE_BYTES >> 20),
+        )));
+    }
     let text = utf8(&bytes, &file)?;
     parse(text, &file)
 }

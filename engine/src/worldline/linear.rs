@@ -22,6 +22,11 @@ pub enum WorldlineError {
     /// Time or velocity not finite.
     #[error("time or velocity is not a finite number")]
     NotFinite,
+    /// A proper velocity beyond what the engine holds (|u| = γ|β| above
+    /// [`crate::scene::MAX_U`]): its γ would lose the board clock's
+    /// resolution.
+    #[error("|u| = γ|β| = {0:e} is beyond what the engine holds: give |u| ≤ 1e12")]
+    TooFast(f64),
     /// A worldline or segment received from elsewhere (a CAVE render
     /// node's copy) that no worldline of this engine could be.
     #[error("not a worldline: {0}")]

@@ -88,6 +88,23 @@ pub fn effects(text: &str) -> Result<String, String> {
     super::observe::parse_effects(text, Effects::default()).map(|_| text.to_owned())
 }
 
+/// An output picture, written as PNG: a `.png` file, or a name with no
+/// extension (`/dev/stdout`); another extension is refused (`-o r.jpg`
+/// was written as a PNG named .jpg).
+pub fn png_file(text: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(text);
+    if path
+        .extension()
+        .is_none_or(|e| e.eq_ignore_ascii_case("png"))
+    {
+        Ok(path)
+    } else {
+        Err(format!(
+            "the picture is written as PNG: give a file name ending in .png, not `{text}`"
+        ))
+    }
+}
+
 /// A lesson: a `.py` file.
 pub fn lesson_file(text: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(text);
@@ -120,5 +137,9 @@ mod tests {
         }
         assert!(lesson_file("scene.toml").unwrap_err().contains(".py file"));
         assert!(lesson_file("lesson.py").is_ok());
+        assert!(png_file("r.jpg").unwrap_err().contains(".png"));
+        assert!(png_file("r.gif").is_err());
+        assert!(png_file("/dev/full").is_ok());
+        assert!(png_file("dir/R.PNG").is_ok());
     }
 }

@@ -22,6 +22,11 @@ pub fn parse_effects(spec: &str, scene: Effects) -> Result<Effects, String> {
         "none" => return Ok(Effects::NONE),
         _ => {}
     }
+    if spec.split(',').all(|k| k.trim().is_empty()) {
+        return Err(format!(
+            "--effects `{spec}`: give effect names separated by commas, or scene, all, none"
+        ));
+    }
     let mut e = Effects::NONE;
     for key in spec.split(',').map(str::trim).filter(|k| !k.is_empty()) {
         let effect = Effect::ALL.iter().find(|x| x.key() == key).ok_or_else(|| {

@@ -175,7 +175,7 @@ unsafe extern "C" {
 }
 
 /// The audit hook: refuses to start processes or to signal the game's own
-/// process. In C, not Python: a Python hook would run Python code (and the
+/// processes (the lesson's, the game's that runs it, a process group). In C, not Python: a Python hook would run Python code (and the
 /// watchdog's pending interrupts) inside `PyEval_SetTrace`.
 unsafe extern "C" fn audit(
     event: *const std::ffi::c_char,
@@ -208,9 +208,17 @@ unsafe extern "C" fn audit(
                 ffi::PyErr_Clear();
                 return 0;
             }
-            if pid == 0 || pid == -1 || pid == libc::getpid() as std::ffi::c_long {
-                return refuse("a lesson may not signal the game's own process".to_owned());
+            // Its own process, the game that runs it (its parent) or a
+            // whole process group (pid ≤ 0) holding either.
+            if pid <= 0
+                || pid == libc::getpid() as std::ffi::c_long
+                || pid == libc::getppid() as std::ffi::c_long
+            {
+                return refuse("a lesson may not signal the game's own processes".to_owned());
             }
+        }
+        if event == c"os.killpg" {
+            return refuse("a lesson may not signal a process group".to_owned());
         }
         0
     }
