@@ -298,6 +298,25 @@ fn every_misbehaving_lesson_is_stopped_within_its_limit_with_its_reason() {
     }
 }
 
+/// A lesson that never finishes and never reaches `--until` (time slowed
+/// to 1e-12) is stopped at `--time-limit`, with its claims kept and a
+/// message that says why; it ran for ever before.
+#[test]
+fn a_lesson_that_never_ends_is_stopped_at_its_time_limit() {
+    let (outcome, code, seconds, stderr) =
+        lesson_outcome("tests/lessons/never_ends.py", &["--time-limit", "3"]);
+    assert_eq!(code, Some(3), "{stderr}");
+    let error = outcome["error"].as_str().unwrap_or_default();
+    assert!(
+        error.contains("without finishing or reaching --until") && error.contains("--time-limit"),
+        "{outcome}"
+    );
+    assert_eq!(outcome["claims"][0]["claim"], "it started", "{outcome}");
+    assert!(outcome["frames"].as_u64().unwrap_or(0) > 0, "{outcome}");
+    assert!((3.0..20.0).contains(&seconds), "{seconds} s");
+    assert!(stderr.contains("never_ends.py stopped"), "{stderr}");
+}
+
 #[test]
 fn lesson_takes_several_files() {
     let out = lightcone(&[

@@ -394,6 +394,12 @@ fn a_zeno_sequence_degrades_gracefully_and_says_so() {
     }
     // Either it merged (and said so, once) or it never collapsed.
     assert_eq!(s.zeno_merges.min(1) as usize, b.warnings().len());
+    for w in b.warnings() {
+        assert!(
+            !w.contains("  "),
+            "a warning's text has a run of spaces: {w}"
+        );
+    }
 }
 
 #[test]

@@ -250,6 +250,11 @@ enum Command {
         /// Address-space limit of each lesson's process, MiB.
         #[arg(long, default_value_t = lightcone::lesson::supervise::MEMORY_LIMIT_MB)]
         memory_limit: u64,
+        /// Stop a lesson that has neither finished nor reached `--until`
+        /// after this much real time (s, up to 86400): a lesson that
+        /// slows time to nothing or restarts for ever.
+        #[arg(long, default_value_t = 600.0, allow_negative_numbers = true, value_parser = args::hook_limit)]
+        time_limit: f64,
         /// Internal: run the lesson in this process and report to the
         /// parent `lightcone lesson` (see lesson::supervise).
         #[arg(long, hide = true)]
@@ -399,6 +404,7 @@ fn main() -> ExitCode {
             fps,
             hook_limit,
             memory_limit,
+            time_limit,
             child,
             window_child,
             json,
@@ -409,6 +415,7 @@ fn main() -> ExitCode {
                 fps,
                 hook_limit,
                 memory_limit,
+                time_limit,
                 child,
                 window_child,
                 json,

@@ -962,7 +962,9 @@ impl Billiard {
             if !self.zeno_said {
                 self.zeno_said = true;
                 self.warnings.push(format!(
-                    "t = {t_kink} s: puck \"{}\" was pressed into cushion {} {ZENO_COUNT} times within                      {:.3e} s (inelastic collapse); it and the {} puck(s) pressing it with one velocity                      stop moving into the cushion (said once; every one is counted)",
+                    "t = {t_kink} s: puck \"{}\" was pressed into cushion {} {ZENO_COUNT} times within {:.3e} s \
+                     (inelastic collapse); it and the {} puck(s) pressing it with one velocity \
+                     stop moving into the cushion (said once; every one is counted)",
                     self.pucks[i].name,
                     cushion.name(),
                     ZENO_GAP * self.table.length() / self.c,

@@ -19,6 +19,8 @@ pub struct Options {
     pub hook_limit: f64,
     /// Address-space limit of each lesson's process, MiB.
     pub memory_limit: u64,
+    /// Longest a lesson runs, real time, s.
+    pub time_limit: f64,
     /// This is the child process of a `lesson` run (internal).
     pub child: bool,
     /// This is the lesson's process of a window (internal).
@@ -54,6 +56,7 @@ pub fn run(paths: &[PathBuf], options: Options) -> ExitCode {
         fps: options.fps,
         hook: std::time::Duration::from_secs_f64(options.hook_limit),
         memory_mb: options.memory_limit,
+        run: std::time::Duration::from_secs_f64(options.time_limit),
     };
     if options.window_child {
         return match paths {

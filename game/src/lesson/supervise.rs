@@ -49,6 +49,9 @@ pub struct Limits {
     pub hook: Duration,
     /// Address-space limit of the lesson's process, MiB.
     pub memory_mb: u64,
+    /// Longest the whole run may take, real time (a lesson that slows
+    /// time to nothing never reaches `until`).
+    pub run: Duration,
 }
 
 /// One line from the child.
@@ -268,6 +271,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
     let mut killed = false;
     let mut exited = None;
     let mut deadline = None;
+    let started = Instant::now();
     loop {
         match rx.recv_timeout(Duration::from_millis(10)) {
             Ok(Event::Hook(Some(name))) => hook = Some((name, Instant::now())),
@@ -296,6 +300,32 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
                 finished: None,
                 error: None,
                 stopped: None,
+                claims: partial.claims,
+                answers: partial.answers,
+            });
+        }
+        if started.elapsed() > limits.run && exited.is_none() {
+            progress.finish();
+            kill_group();
+            let _ = child.wait();
+            let error = format!(
+                "the lesson ran {:.0} s of real time without finishing or reaching --until {} s \
+                 (board time t = {:.3} s after {} frames{}): stopped; give --time-limit for longer",
+                limits.run.as_secs_f64(),
+                limits.until,
+                partial.t,
+                partial.frames,
+                hook.as_ref()
+                    .map_or(String::new(), |(name, _)| format!(", in {name}")),
+            );
+            crate::errln!("lesson {} stopped:\n{error}", path.display());
+            return Ok(Outcome {
+                file: path.display().to_string(),
+                t: partial.t,
+                frames: partial.frames,
+                finished: None,
+                error: Some(error),
+                stopped: Some(Stop::Timeout),
                 claims: partial.claims,
                 answers: partial.answers,
             });
