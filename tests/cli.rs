@@ -590,27 +590,23 @@ fn requests_with_no_end_are_usage_errors() {
         &["render", scene, "--at", "1", "-o", "x.png", "--size", "0x0"],
         "--size",
     );
-    usage_error(
-        &[
-            "render",
-            scene,
-            "--at",
-            "1",
-            "-o",
-            "x.png",
-            "--size",
-            "16384x16384",
-        ],
-        "at most 67 108 864 pixels",
-    );
-    usage_error(
-        &["diagram", scene, "--at", "1e300", "-o", "x.png"],
-        "from -1e9 to 1e9",
-    );
-    usage_error(
-        &["observe", scene, "--at", "1", "--effects", ""],
-        "give effect names",
-    );
+    let size = "16384x16384";
+    for (args, words) in [
+        (
+            vec!["render", scene, "--at", "1", "-o", "x.png", "--size", size],
+            "at most 67 108 864 pixels",
+        ),
+        (
+            vec!["diagram", scene, "--at", "1e300", "-o", "x.png"],
+            "from -1e9 to 1e9",
+        ),
+        (
+            vec!["observe", scene, "--at", "1", "--effects", ""],
+            "give effect names",
+        ),
+    ] {
+        usage_error(&args, words);
+    }
     usage_error(
         &["observe", scene, "--at", "1", "--effects", "redshift"],
         "unknown effect",

@@ -303,7 +303,11 @@ fn simulation_view(
         sim.set_view_effect(view, e, effects.is_on(e));
     }
     sim.set_framing(view, o.framing(aspect));
-    sim.advance_to(t);
+    match billiard {
+        Some(_) => sim.advance_to(t),
+        // Run here to `t`: only what the view can still see is kept.
+        None => sim.run_far_to(t),
+    }
     (sim, view)
 }
 

@@ -45,6 +45,7 @@ pub fn report_at(
     for e in Effect::ALL {
         sim.set_view_effect(view, e, effects.is_on(e));
     }
-    sim.advance_to(t);
+    // Only what the views can still see at `t` is kept (bounded memory).
+    sim.run_far_to(t);
     ObserveReport::of_view(&sim, view, vertices)
 }

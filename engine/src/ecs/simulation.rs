@@ -42,6 +42,11 @@ pub struct Simulation {
     views: Vec<Entity>,
 }
 
+/// The least history [`Simulation::history_needed`] asks for, s of board
+/// time: as much as the game's replay keeps, so that a headless picture
+/// shows what the window shows (collision arcs stay while the pucks rest).
+pub const HEADLESS_HISTORY: f64 = 600.0;
+
 impl Simulation {
     /// Builds the world for `scene`: one entity per puck, per table part
     /// (fixtures at rest) and per observer, each observer with a worldline
@@ -144,6 +149,81 @@ impl Simulation {
     /// Board time of the last frame, s.
     pub fn time(&self) -> f64 {
         self.world.resource::<Clock>().t
+    }
+
+    /// How far back, s of board time, the physics must remember for every
+    /// view to be drawn at any board time from `t0` to `t1`: the longest
+    /// light delay from the table (pucks and cushions, their heights
+    /// included) to any view's eye then, doubled, plus 1 s, and at least
+    /// [`HEADLESS_HISTORY`]. A headless run to a far time gives it to
+    /// [`Billiard::set_history`] so that its memory stays bounded (a whole
+    /// history of 10⁵ s of ten pucks once took 0.8 GB) while every
+    /// emission event it looks for is still held.
+    pub fn history_needed(&self, t0: f64, t1: f64) -> f64 {
+        let size = self.table_size();
+        let (mut reach, mut top) = (CUSHION_WIDTH, CUSHION_HEIGHT);
+        let mut pucks = self.world.try_query::<&Puck>();
+        if let Some(q) = pucks.as_mut() {
+            for p in q.iter(&self.world) {
+                reach = reach.max(p.radius);
+                top = top.max(p.height);
+            }
+        }
+        let corners: Vec<DVec3> = [0.0, 1.0]
+            .into_iter()
+            .flat_map(|x| [0.0, 1.0].map(|y| (x, y)))
+            .flat_map(|(x, y)| {
+                [0.0, top].map(|z| {
+                    DVec3::new(
+                        x * (size.x + 2.0 * reach) - reach,
+                        y * (size.y + 2.0 * reach) - reach,
+                        z,
+                    )
+                })
+            })
+            .collect();
+        let mut delay = 0.0f64;
+        for &view in &self.views {
+            let Some(w) = self
+                .observer_of(view)
+                .and_then(|o| self.observer_worldline(o))
+            else {
+                continue;
+            };
+            // The distance to a point is convex along each straight
+            // segment: its largest is at the ends or the kinks.
+            let kinks = w
+                .segments()
+                .iter()
+                .map(|s| s.start.t)
+                .filter(|&t| t > t0 && t < t1);
+            for t in [t0, t1].into_iter().chain(kinks) {
+                let eye = w.position_at(t);
+                for c in &corners {
+                    delay = delay.max(eye.distance(*c) / self.c());
+                }
+            }
+        }
+        (2.0 * delay + 1.0).max(HEADLESS_HISTORY)
+    }
+
+    /// Runs to board time `t` for a picture at `t` only (a headless
+    /// `observe`, `render`): the physics keeps [`Self::history_needed`]
+    /// and is run there in steps of that horizon, the collision records of
+    /// each step forgotten before the next, then one frame at `t`. Memory
+    /// is bounded however far `t` is; what every view sees at `t` is what
+    /// [`Self::advance_to`] alone gives.
+    pub fn run_far_to(&mut self, t: f64) {
+        let keep = self.history_needed(self.time(), t);
+        let physics = self.physics_mut();
+        physics.set_history(Some(keep));
+        while physics.time() + keep < t {
+            let next = physics.time() + keep;
+            physics.advance_to(next);
+            physics.forget_old_records();
+        }
+        self.advance_to(t);
+        self.physics_mut().forget_old_records();
     }
 
     /// Speed of light, m/s.

@@ -719,7 +719,7 @@ impl Billiard {
         self.flush_pending(i);
         let puck = &mut self.pucks[i];
         let u = ProperVelocity(puck.worldline.last().u_at(t).0 + du);
-        if !(u.0.length() <= crate::scene::MAX_U) {
+        if u.0.length() > crate::scene::MAX_U {
             return Err(crate::worldline::WorldlineError::TooFast(u.0.length()));
         }
         puck.worldline

@@ -245,6 +245,9 @@ pub fn run(req: Request<'_>) -> ExitCode {
     // One simulation with the view to record; each frame runs its schedule.
     let aspect = f64::from(width) / f64::from(height);
     let (mut sim, view) = frame::scene_view(&scene, index, 0.0, req.view, aspect);
+    // Only what the view can still see is kept, to the last frame.
+    let keep = sim.history_needed(0.0, req.until);
+    sim.physics_mut().set_history(Some(keep));
     let meshes = ViewMeshes::new(&mut sim);
     let mut target = Offscreen::new(&gpu, width, height);
     let mut vertices = Vec::new();
