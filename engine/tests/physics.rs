@@ -403,6 +403,32 @@ fn a_zeno_sequence_degrades_gracefully_and_says_so() {
 }
 
 #[test]
+fn a_zeno_sequence_against_a_cushion_says_so_once_in_plain_words() {
+    // A puck pushed into a cushion by a heavier one behind it, every
+    // collision nearly perfectly inelastic: it bounces between the cushion
+    // and the pusher ever faster, and the sequence is ended.
+    let mut pusher = puck("pusher", 2.6, 0.7, beta(0.5, 0.0));
+    pusher.mass = 10.0;
+    let mut b = Billiard::new(
+        C,
+        TABLE,
+        0.01,
+        0.01,
+        vec![pusher, puck("pressed", 2.75, 0.7, beta(0.0, 0.0))],
+    );
+    b.advance_to(3.0);
+    let s = b.stats();
+    assert!(s.zeno_merges > 0, "{s:?}");
+    assert_eq!(b.warnings().len(), 1, "{:?}", b.warnings());
+    let w = &b.warnings()[0];
+    assert!(w.contains("pressed into cushion"), "{w}");
+    assert!(
+        !w.contains("  "),
+        "a warning's text has a run of spaces: {w}"
+    );
+}
+
+#[test]
 fn impulses_add_momentum_and_never_reach_c() {
     let mut b = Billiard::new(
         C,

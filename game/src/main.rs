@@ -200,7 +200,7 @@ enum Command {
         #[arg(short, long, value_parser = args::png_file)]
         out: PathBuf,
         /// Image size, WIDTHxHEIGHT (each 1 to 16384).
-        #[arg(long, default_value = "1000x700", value_parser = args::size)]
+        #[arg(long, default_value = "1000x700", value_parser = args::sides)]
         size: String,
     },
     /// Record what an observer sees from board time 0 to T, headless, as

@@ -306,7 +306,7 @@ fn simulation_view(
     match billiard {
         Some(_) => sim.advance_to(t),
         // Run here to `t`: only what the view can still see is kept.
-        None => sim.run_far_to(t),
+        None => sim.run_far_to(view, t),
     }
     (sim, view)
 }

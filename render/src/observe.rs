@@ -46,6 +46,6 @@ pub fn report_at(
         sim.set_view_effect(view, e, effects.is_on(e));
     }
     // Only what the views can still see at `t` is kept (bounded memory).
-    sim.run_far_to(t);
+    sim.run_far_to(view, t);
     ObserveReport::of_view(&sim, view, vertices)
 }

@@ -1,5 +1,6 @@
 """A deliberately misbehaving lesson: a hook that signals the game running
-it (its parent process) and then its own process group."""
+it (its parent process), through its process group, a process handle
+(pidfd) and its pid."""
 
 import os
 import signal
@@ -13,8 +14,12 @@ def setup(world):
 
 
 def on_frame(world, t):
-    try:
-        os.killpg(os.getpgrp(), signal.SIGTERM)
-    except PermissionError:
-        pass
+    for kill in (
+        lambda: os.killpg(os.getpgrp(), signal.SIGTERM),
+        lambda: signal.pidfd_send_signal(os.pidfd_open(os.getppid()), signal.SIGTERM),
+    ):
+        try:
+            kill()
+        except PermissionError:
+            pass
     os.kill(os.getppid(), signal.SIGTERM)

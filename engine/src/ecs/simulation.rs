@@ -43,8 +43,9 @@ pub struct Simulation {
 }
 
 /// The least history [`Simulation::history_needed`] asks for, s of board
-/// time: as much as the game's replay keeps, so that a headless picture
-/// shows what the window shows (collision arcs stay while the pucks rest).
+/// time: as much as the game's replay keeps, so that up to that time a
+/// headless run forgets nothing (a picture at t < 600 s is drawn from the
+/// whole past, as before).
 pub const HEADLESS_HISTORY: f64 = 600.0;
 
 impl Simulation {
@@ -151,15 +152,16 @@ impl Simulation {
         self.world.resource::<Clock>().t
     }
 
-    /// How far back, s of board time, the physics must remember for every
-    /// view to be drawn at any board time from `t0` to `t1`: the longest
-    /// light delay from the table (pucks and cushions, their heights
-    /// included) to any view's eye then, doubled, plus 1 s, and at least
-    /// [`HEADLESS_HISTORY`]. A headless run to a far time gives it to
+    /// How far back, s of board time, the physics must remember for `view`
+    /// to be drawn at any board time from `t0` to `t1`: the longest light
+    /// delay from the table (pucks and cushions, their heights included)
+    /// to its eye then, doubled, plus 1 s, and at least
+    /// [`HEADLESS_HISTORY`] (infinite for a view with no observer). A
+    /// headless run to a far time gives it to
     /// [`Billiard::set_history`] so that its memory stays bounded (a whole
     /// history of 10⁵ s of ten pucks once took 0.8 GB) while every
     /// emission event it looks for is still held.
-    pub fn history_needed(&self, t0: f64, t1: f64) -> f64 {
+    pub fn history_needed(&self, view: Entity, t0: f64, t1: f64) -> f64 {
         let size = self.table_size();
         let (mut reach, mut top) = (CUSHION_WIDTH, CUSHION_HEIGHT);
         let mut pucks = self.world.try_query::<&Puck>();
@@ -183,13 +185,10 @@ impl Simulation {
             })
             .collect();
         let mut delay = 0.0f64;
-        for &view in &self.views {
-            let Some(w) = self
-                .observer_of(view)
-                .and_then(|o| self.observer_worldline(o))
-            else {
-                continue;
-            };
+        if let Some(w) = self
+            .observer_of(view)
+            .and_then(|o| self.observer_worldline(o))
+        {
             // The distance to a point is convex along each straight
             // segment: its largest is at the ends or the kinks.
             let kinks = w
@@ -203,18 +202,22 @@ impl Simulation {
                     delay = delay.max(eye.distance(*c) / self.c());
                 }
             }
+        } else {
+            // No eye on a worldline to bound the delay: keep everything.
+            return f64::INFINITY;
         }
         (2.0 * delay + 1.0).max(HEADLESS_HISTORY)
     }
 
-    /// Runs to board time `t` for a picture at `t` only (a headless
-    /// `observe`, `render`): the physics keeps [`Self::history_needed`]
-    /// and is run there in steps of that horizon, the collision records of
-    /// each step forgotten before the next, then one frame at `t`. Memory
-    /// is bounded however far `t` is; what every view sees at `t` is what
-    /// [`Self::advance_to`] alone gives.
-    pub fn run_far_to(&mut self, t: f64) {
-        let keep = self.history_needed(self.time(), t);
+    /// Runs to board time `t` for a picture of `view` at `t` only (a
+    /// headless `observe`, `render`): the physics keeps
+    /// [`Self::history_needed`] and is run there in steps of that horizon,
+    /// the collision records of each step forgotten before the next, then
+    /// one frame at `t`. Memory is bounded however far `t` is; what `view`
+    /// sees at `t` is what [`Self::advance_to`] alone gives (other views
+    /// may look further back than was kept).
+    pub fn run_far_to(&mut self, view: Entity, t: f64) {
+        let keep = self.history_needed(view, self.time(), t);
         let physics = self.physics_mut();
         physics.set_history(Some(keep));
         while physics.time() + keep < t {

@@ -702,8 +702,9 @@ impl Billiard {
     /// time; earlier means now): its proper velocity grows by `du` (an
     /// impulse `J` on a puck of mass `m` is `du = J / (m c)`). A push of any
     /// size leaves it below `c`. Fails on a non-finite `du`, and on one
-    /// that would take |u| = γ|β| beyond [`crate::scene::MAX_U`] (the
-    /// puck keeps its velocity).
+    /// that would take |u| = γ|β| beyond [`crate::scene::MAX_U`]: the
+    /// puck keeps its velocity, and nothing changes unless it takes a
+    /// collision's kick still pending first, to find that out.
     pub fn apply_impulse(
         &mut self,
         i: usize,
@@ -715,6 +716,13 @@ impl Billiard {
         }
         let i = self.internal[i] as usize;
         let t = t.max(self.time);
+        // Too large for the velocity the puck has now: refused before
+        // anything moves (the check below, after the run to `t` and the
+        // puck's pending kicks, catches the rest).
+        let ahead = (self.pucks[i].worldline.last().u_at(t).0 + du).length();
+        if ahead > crate::scene::MAX_U {
+            return Err(crate::worldline::WorldlineError::TooFast(ahead));
+        }
         self.advance_to(t);
         self.flush_pending(i);
         let puck = &mut self.pucks[i];

@@ -73,9 +73,16 @@ pub fn scale(text: &str) -> Result<f64, String> {
     }
 }
 
-/// `WIDTHxHEIGHT`, checked (the text is kept).
+/// `WIDTHxHEIGHT` of a picture drawn on the GPU, checked (the text is
+/// kept).
 pub fn size(text: &str) -> Result<String, String> {
     super::render::parse_size(text).map(|_| text.to_owned())
+}
+
+/// `WIDTHxHEIGHT` of a diagram (drawn on the CPU), checked (the text is
+/// kept).
+pub fn sides(text: &str) -> Result<String, String> {
+    super::render::parse_sides(text).map(|_| text.to_owned())
 }
 
 /// `x,y,z`, checked (the text is kept).

@@ -49,7 +49,7 @@ pub fn run(
     if !at.is_finite() {
         return fail(format!("--at {at}: give a finite board time in seconds"));
     }
-    let (width, height) = match super::render::parse_size(size) {
+    let (width, height) = match super::render::parse_sides(size) {
         Ok(s) => s,
         Err(e) => return fail(e),
     };

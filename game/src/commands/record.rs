@@ -246,7 +246,7 @@ pub fn run(req: Request<'_>) -> ExitCode {
     let aspect = f64::from(width) / f64::from(height);
     let (mut sim, view) = frame::scene_view(&scene, index, 0.0, req.view, aspect);
     // Only what the view can still see is kept, to the last frame.
-    let keep = sim.history_needed(0.0, req.until);
+    let keep = sim.history_needed(view, 0.0, req.until);
     sim.physics_mut().set_history(Some(keep));
     let meshes = ViewMeshes::new(&mut sim);
     let mut target = Offscreen::new(&gpu, width, height);

@@ -9,8 +9,25 @@ use lightcone_engine::scene;
 use lightcone_render::frame::ViewKind;
 use lightcone_render::{gpu, headless};
 
-/// Parses `WxH`.
+/// Parses `WxH` for a picture drawn on the GPU (`render`, `record`): each
+/// side from 1 to 16 384 px and the readback within wgpu's buffer.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = parse_sides(s)?;
+    // The picture is read back in one buffer, rows padded to 256 bytes
+    // (64 pixels), which wgpu caps at 256 MiB.
+    if u64::from(w.next_multiple_of(64)) * 4 * u64::from(h) > MAX_READBACK {
+        return Err(format!(
+            "--size {s}: at most 67 108 864 pixels in all, counting the width rounded up \
+             to a multiple of 64 (e.g. 8192x8192 or 16384x4096): the picture is read back \
+             in one buffer of at most 256 MiB"
+        ));
+    }
+    Ok((w, h))
+}
+
+/// Parses `WxH` with each side from 1 to 16 384 px (`diagram`, drawn on
+/// the CPU).
+pub fn parse_sides(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("--size {s}: give WIDTHxHEIGHT, e.g. 1280x720"))?;
@@ -21,16 +38,6 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
             .filter(|n| (1..=16384).contains(n))
     };
     match (parse(w), parse(h)) {
-        // The picture is read back in one buffer (rows padded to 256
-        // bytes), which wgpu caps at 256 MiB.
-        (Some(w), Some(h))
-            if u64::from(w.next_multiple_of(64)) * 4 * u64::from(h) > MAX_READBACK =>
-        {
-            Err(format!(
-                "--size {s}: at most 67 108 864 pixels in all (e.g. 8192x8192 or 16384x4096): \
-                 the picture is read back in one buffer of at most 256 MiB"
-            ))
-        }
         (Some(w), Some(h)) => Ok((w, h)),
         _ => Err(format!(
             "--size {s}: width and height must be whole numbers from 1 to 16384"
@@ -110,7 +117,7 @@ pub fn observer_index(
 
 #[cfg(test)]
 mod tests {
-    use super::parse_size;
+    use super::{parse_sides, parse_size};
 
     /// Sizes the readback buffer can hold are taken, larger ones refused
     /// with a message (they once panicked inside wgpu).
@@ -123,5 +130,11 @@ mod tests {
             assert!(e.contains("67 108 864 pixels"), "{e}");
         }
         assert!(parse_size("0x10").is_err());
+        // 8193 px rows are padded to 8256: 8193x8191 is under 2^26 pixels
+        // but not its readback.
+        assert!(parse_size("8193x8191").is_err());
+        // The diagram is drawn on the CPU: sides only.
+        assert_eq!(parse_sides("16384x8192"), Ok((16384, 8192)));
+        assert!(parse_sides("16385x10").is_err());
     }
 }

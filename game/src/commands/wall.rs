@@ -33,7 +33,7 @@ pub struct WallArgs {
     pub silence: f64,
     /// Save a screenshot of the node's windows (the main one, and one
     /// per output as FILE.<output>.png) after --frames frames, then stop.
-    #[arg(long)]
+    #[arg(long, value_parser = super::args::png_file)]
     pub screenshot: Option<PathBuf>,
 }
 

@@ -79,7 +79,18 @@ def guard(stop):
     for module in (os, posix):
         module._exit = _no_exit
         module.abort = _no_exit
+        # A process handle raises no audit event: os.pidfd_open(getppid())
+        # and signal.pidfd_send_signal would signal the game past the
+        # audit hook. A lesson starts no process, so it needs neither.
+        if hasattr(module, "pidfd_open"):
+            module.pidfd_open = _no_process_handles
+    if hasattr(signal, "pidfd_send_signal"):
+        signal.pidfd_send_signal = _no_process_handles
     _catch_thread_errors()
+
+
+def _no_process_handles(*args, **kwargs):
+    raise PermissionError("a lesson may not signal the game's own processes (pidfd)")
 
 
 # Tracebacks of exceptions that ended threads the lesson started, oldest

@@ -304,19 +304,19 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
                 answers: partial.answers,
             });
         }
-        if started.elapsed() > limits.run && exited.is_none() {
+        // (A lesson whose outcome has arrived has ended: its process is
+        // exiting.)
+        if started.elapsed() > limits.run && exited.is_none() && outcome.is_none() {
             progress.finish();
             kill_group();
             let _ = child.wait();
             let error = format!(
-                "the lesson ran {:.0} s of real time without finishing or reaching --until {} s \
-                 (board time t = {:.3} s after {} frames{}): stopped; give --time-limit for longer",
+                "the lesson ran {} s of real time without finishing or reaching --until {} s \
+                 (board time t = {:.3} s after {} frames): stopped; give --time-limit for longer",
                 limits.run.as_secs_f64(),
                 limits.until,
                 partial.t,
                 partial.frames,
-                hook.as_ref()
-                    .map_or(String::new(), |(name, _)| format!(", in {name}")),
             );
             crate::errln!("lesson {} stopped:\n{error}", path.display());
             return Ok(Outcome {
