@@ -131,6 +131,31 @@ fn lesson_rejects_bad_arguments_and_missing_files() {
     let out = lightcone(&["lesson", "no/such/lesson.py"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("no such lesson file"));
+    // A directory named like a lesson is said to be one.
+    let dir = std::env::temp_dir().join(format!("lc-dir-lesson-{}.py", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = lightcone(&["lesson", dir.to_str().unwrap()]);
+    let _ = std::fs::remove_dir(&dir);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("is a directory, not a lesson file"));
+    // A file whose name starts with `-`, given after `--`, runs (its
+    // process once took the name for an option).
+    let dir = std::env::temp_dir().join(format!("lc-dash-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(
+        repo().join("scripts/lessons/cushion.py"),
+        dir.join("-dash.py"),
+    )
+    .unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .args(["lesson", "--until", "0.2", "--", "-dash.py"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("== -dash.py"));
     let out = lightcone(&["lesson", "scripts/lessons/cushion.py", "--fps", "0"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--fps"));

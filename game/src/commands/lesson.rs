@@ -88,9 +88,26 @@ pub fn run(paths: &[PathBuf], options: Options) -> ExitCode {
 
 /// Runs one lesson and prints its outcome; its exit status.
 fn one(path: &Path, limits: Limits, json: bool) -> u8 {
-    if !path.is_file() {
-        crate::errln!("{}: no such lesson file", path.display());
+    let what = match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => None,
+        Ok(m) if m.is_dir() => Some("is a directory, not a lesson file"),
+        Ok(_) => Some("is not a regular file (a FIFO or device): give a lesson's .py file"),
+        Err(_) => Some("no such lesson file"),
+    };
+    if let Some(what) = what {
+        crate::errln!("{}: {what}", path.display());
         return 1;
+    }
+    // The header first, so that a long lesson shows which one runs.
+    if !json {
+        match crate::outln!("== {}", path.display()) {
+            Ok(()) => {}
+            Err(Stop::Closed) => return 0,
+            Err(Stop::Failed(msg)) => {
+                crate::errln!("{msg}");
+                return 1;
+            }
+        }
     }
     let outcome = match supervise::run(path, limits) {
         Ok(o) => o,
@@ -121,7 +138,8 @@ fn one(path: &Path, limits: Limits, json: bool) -> u8 {
     outcome.status()
 }
 
-/// Prints the outcome: JSON, or one line per answer and claim.
+/// Prints the outcome: JSON, or one line per answer and claim (after the
+/// `== FILE` header [`one`] printed).
 fn show(outcome: &Outcome, json: bool) -> Result<(), Stop> {
     if json {
         // One compact object per line (one line per lesson file).
@@ -130,7 +148,6 @@ fn show(outcome: &Outcome, json: bool) -> Result<(), Stop> {
             Err(e) => Err(Stop::Failed(format!("cannot write the outcome: {e}"))),
         };
     }
-    crate::outln!("== {}", outcome.file)?;
     for (q, a) in &outcome.answers {
         crate::outln!("? {q} -> {a}")?;
     }

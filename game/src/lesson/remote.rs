@@ -433,12 +433,14 @@ impl Remote {
     fn spawn(path: &Path, limit: Duration, isolation: &Isolation) -> Result<Self, String> {
         let args: Vec<std::ffi::OsString> = vec![
             "lesson".into(),
-            path.as_os_str().to_owned(),
             "--hook-limit".into(),
             limit.as_secs_f64().to_string().into(),
             "--memory-limit".into(),
             isolation.memory_mb.to_string().into(),
             "--window-child".into(),
+            // The file last, after `--`: a name that starts with `-`.
+            "--".into(),
+            path.as_os_str().to_owned(),
         ];
         let mut child = supervise::spawn(&isolation.exe, &args)?;
         let (Some(stdin), Some(stdout)) = (child.stdin.take(), child.stdout.take()) else {

@@ -233,7 +233,6 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find lightcone itself: {e}"))?;
     let args: Vec<std::ffi::OsString> = [
         "lesson".into(),
-        path.as_os_str().to_owned(),
         "--until".into(),
         limits.until.to_string().into(),
         "--fps".into(),
@@ -243,6 +242,9 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         "--memory-limit".into(),
         limits.memory_mb.to_string().into(),
         "--child".into(),
+        // The file last, after `--`: a name that starts with `-`.
+        "--".into(),
+        path.as_os_str().to_owned(),
     ]
     .into();
     let mut child = spawn(&exe, &args)?;
