@@ -111,9 +111,8 @@ fn a_hook_that_raises_stops_the_lesson_but_keeps_the_state() {
 
 #[test]
 fn a_thread_that_raises_stops_the_lesson_with_its_traceback() {
-    let out = lightcone(&["lesson", "tests/lessons/broken_thread.py", "--json"]);
-    assert!(!out.status.success());
-    let outcome: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let (outcome, code, _, stderr) = lesson_outcome("tests/lessons/broken_thread.py", &[]);
+    assert_ne!(code, Some(0), "{stderr}");
     let error = outcome["error"].as_str().expect("an error");
     assert!(
         error.contains("in the lesson's thread 'counter'"),

@@ -171,40 +171,29 @@ impl Simulation {
                 top = top.max(p.height);
             }
         }
-        let corners: Vec<DVec3> = [0.0, 1.0]
-            .into_iter()
-            .flat_map(|x| [0.0, 1.0].map(|y| (x, y)))
-            .flat_map(|(x, y)| {
-                [0.0, top].map(|z| {
-                    DVec3::new(
-                        x * (size.x + 2.0 * reach) - reach,
-                        y * (size.y + 2.0 * reach) - reach,
-                        z,
-                    )
-                })
-            })
-            .collect();
-        let mut delay = 0.0f64;
-        if let Some(w) = self
+        // The box every point of the table lies in.
+        let low = DVec3::new(-reach, -reach, 0.0);
+        let high = DVec3::new(size.x + reach, size.y + reach, top);
+        let Some(w) = self
             .observer_of(view)
             .and_then(|o| self.observer_worldline(o))
-        {
-            // The distance to a point is convex along each straight
-            // segment: its largest is at the ends or the kinks.
-            let kinks = w
-                .segments()
-                .iter()
-                .map(|s| s.start.t)
-                .filter(|&t| t > t0 && t < t1);
-            for t in [t0, t1].into_iter().chain(kinks) {
-                let eye = w.position_at(t);
-                for c in &corners {
-                    delay = delay.max(eye.distance(*c) / self.c());
-                }
-            }
-        } else {
+        else {
             // No eye on a worldline to bound the delay: keep everything.
             return f64::INFINITY;
+        };
+        // The distance to a point is convex along each straight segment:
+        // its largest is at the ends or the kinks; the box's farthest
+        // point from the eye is, on each axis, its farther face.
+        let kinks = w
+            .segments()
+            .iter()
+            .map(|s| s.start.t)
+            .filter(|&t| t > t0 && t < t1);
+        let mut delay = 0.0f64;
+        for t in [t0, t1].into_iter().chain(kinks) {
+            let eye = w.position_at(t);
+            let farthest = (eye - low).abs().max((eye - high).abs());
+            delay = delay.max(farthest.length() / self.c());
         }
         (2.0 * delay + 1.0).max(HEADLESS_HISTORY)
     }
