@@ -337,6 +337,25 @@ impl LaneWork for Batch<'_, '_> {
 /// left to the per-vertex walk (it bounds the recursion's stack).
 const MAX_STEPS: usize = 8;
 
+/// Emission events of every point of a body (rest-frame `offsets`, shape
+/// `shapes`), the segment search shared: one search for
+/// `reference`, then the points solved in batches on that segment
+/// ([`solve_from`], structure of arrays, vectorised), each
+/// with a short walk only when it may lie on another. Appends to `out`;
+/// with the centre as `reference` each result equals [`emission::solve`]'s for its
+/// point.
+pub fn solve_body(
+    worldline: &Worldline,
+    offsets: &[DVec3],
+    reference: DVec3,
+    shapes: &impl ShapeMaps,
+    observation: Event,
+    out: &mut Vec<Emission>,
+) {
+    let k0 = emission::segment_index(worldline, reference, shapes, observation);
+    solve_from(worldline, k0, offsets, shapes, observation, out);
+}
+
 /// The emission events of the points at rest-frame `offsets` of a body
 /// moving along `worldline` with shape `shapes`, for light reaching
 /// `observation`, given segment `k` found for the body's reference point;
@@ -569,7 +588,7 @@ mod tests {
             let contracted = ContractedShape::of(&w);
             for reference in [DVec3::ZERO, offsets[0]] {
                 out.clear();
-                emission::solve_body(&w, &offsets, reference, &contracted, observation, &mut out);
+                solve_body(&w, &offsets, reference, &contracted, observation, &mut out);
                 assert_eq!(out.len(), offsets.len());
                 for (r, e) in offsets.iter().zip(&out) {
                     let k = emission::segment_index(&w, reference, &contracted, observation);
@@ -578,7 +597,7 @@ mod tests {
                     assert_eq!(*e, expect, "case {case}, offset {r}");
                 }
                 out.clear();
-                emission::solve_body(&w, &offsets, reference, &Rigid, observation, &mut out);
+                solve_body(&w, &offsets, reference, &Rigid, observation, &mut out);
                 for (r, e) in offsets.iter().zip(&out) {
                     let k = emission::segment_index(&w, reference, &Rigid, observation);
                     let k = emission::refine_index(&w, k, *r, &Rigid, observation);

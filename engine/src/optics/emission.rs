@@ -261,30 +261,11 @@ pub fn solve(
     observation: Event,
 ) -> Emission {
     // The centre's segment, then the point's walk from it: the same
-    // answer as [`solve_body`] with the centre as reference, also where
+    // answer as [`super::batch::solve_body`] with the centre as reference, also where
     // the point's own cone test is not monotone (kinks close together).
     let k = segment_index(worldline, DVec3::ZERO, shapes, observation);
     let k = refine_index(worldline, k, offset, shapes, observation);
     solve_on_segment(worldline, k, offset, shapes, observation)
-}
-
-/// Emission events of every point of a body (rest-frame `offsets`, shape
-/// `shapes`), the segment search shared: one search for
-/// `reference`, then the points solved in batches on that segment
-/// ([`super::batch::solve_from`], structure of arrays, vectorised), each
-/// with a short walk only when it may lie on another. Appends to `out`;
-/// with the centre as `reference` each result equals [`solve`]'s for its
-/// point.
-pub fn solve_body(
-    worldline: &Worldline,
-    offsets: &[DVec3],
-    reference: DVec3,
-    shapes: &impl ShapeMaps,
-    observation: Event,
-    out: &mut Vec<Emission>,
-) {
-    let k0 = segment_index(worldline, reference, shapes, observation);
-    super::batch::solve_from(worldline, k0, offsets, shapes, observation, out);
 }
 
 /// The board-frame-simultaneous "emission" (light delay off): the point of
@@ -476,7 +457,7 @@ mod tests {
         let obs = Event::new(3.7, DVec3::new(1.0, -1.0, 0.5));
         let mut shared = Vec::new();
         let shapes = ContractedShape::of(&w);
-        solve_body(&w, &offsets, DVec3::ZERO, &shapes, obs, &mut shared);
+        crate::optics::batch::solve_body(&w, &offsets, DVec3::ZERO, &shapes, obs, &mut shared);
         for (r, e) in offsets.iter().zip(&shared) {
             assert_eq!(*e, solve(&w, *r, &shapes, obs));
         }

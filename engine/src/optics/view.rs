@@ -76,7 +76,7 @@ pub fn light_delayed(
     out: &mut Vec<Emission>,
 ) {
     out.clear();
-    emission::solve_body(worldline, offsets, DVec3::ZERO, shapes, eye.event, out);
+    super::batch::solve_body(worldline, offsets, DVec3::ZERO, shapes, eye.event, out);
 }
 
 /// Light delay (kernel) by the paper's method: emission events of `offsets`
