@@ -13,7 +13,7 @@
 use glam::{DVec2, DVec3};
 use lightcone_engine::physics::{Billiard, CollisionKind};
 
-use super::overlay::{project, ring_colour};
+use super::shown::{Shown, project, ring_colour};
 use crate::model::GameState;
 use lightcone_render::frame::ViewKind;
 
@@ -95,7 +95,7 @@ pub fn draw(
     painter: &egui::Painter,
     rect: [f32; 4],
     kind: ViewKind,
-    shown: &super::overlay::Shown,
+    shown: &Shown,
     ppp: f32,
 ) {
     let (eye, camera, effects) = (shown.eye, shown.camera, shown.effects);

@@ -4,20 +4,13 @@
 
 use egui::{Color32, RichText};
 
+use super::actions::UiAction;
 use crate::lesson::LessonHost;
 use lightcone_python::{Bars, LessonUi};
 
-/// What the student did in the panel (applied after the frame's UI).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LessonAction {
-    /// Chose answer `i` to the open question.
-    Answer(usize),
-    /// Asked to reload the lesson file.
-    Reload,
-}
-
-/// Draws the panel for `host`; clicks become `actions`.
-pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<LessonAction>) {
+/// Draws the panel for `host`; clicks become `actions` (applied after the
+/// frame's UI).
+pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<UiAction>) {
     let name = host.path().file_name().map_or_else(
         || host.path().display().to_string(),
         |n| n.to_string_lossy().into_owned(),
@@ -25,7 +18,7 @@ pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<LessonAction
     ui.horizontal(|ui| {
         ui.heading(format!("Lesson: {name}"));
         if ui.button("reload (F5)").clicked() {
-            actions.push(LessonAction::Reload);
+            actions.push(UiAction::ReloadLesson);
         }
     });
     ui.separator();
@@ -79,7 +72,7 @@ fn mark(ui: &mut egui::Ui, ok: bool, colour: Color32) {
     }
 }
 
-fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<LessonAction>) {
+fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<UiAction>) {
     if !lesson.text.is_empty() {
         ui.label(RichText::new(&lesson.text).size(15.0));
         ui.separator();
@@ -91,7 +84,7 @@ fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<LessonAction
                 ui.label("Time is paused: predict, then choose.");
                 for (i, choice) in q.choices.iter().enumerate() {
                     if ui.button(choice).clicked() {
-                        actions.push(LessonAction::Answer(i));
+                        actions.push(UiAction::Answer(i));
                     }
                 }
             }

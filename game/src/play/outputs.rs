@@ -226,14 +226,7 @@ impl OutputWindow {
             cleared = true;
         }
         if let Some(path) = shot {
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("CAVE output screenshot"),
-                });
-            let (buffer, padded) = super::app::copy_out(gpu, config, &frame.texture, &mut encoder);
-            gpu.queue.submit([encoder.finish()]);
-            super::app::save(gpu, config, &buffer, padded, &self.shot_path(path))?;
+            super::screenshot::save_frame(gpu, config, &frame.texture, &self.shot_path(path))?;
         }
         gpu.queue.present(frame);
         Ok(())

@@ -5,50 +5,16 @@
 //! several pictures, and the Doppler legend. Each reads its picture's view
 //! (the frame schedule's output: apparent centres, clocks, eye, camera).
 
-use glam::{DVec2, DVec3, Vec4};
+use glam::{DVec2, DVec3};
 
+use super::shown::{Shown, project, ring_colour, shown};
 use crate::model::{EyeChoice, GameState, Pane};
-use lightcone_engine::ecs::Entity;
-use lightcone_engine::optics::Eye;
-use lightcone_engine::scene::Effects;
-use lightcone_render::frame::{Camera, ViewKind};
-
-/// Width / height of a rectangle `[x, y, w, h]`.
-pub fn aspect(rect: [f32; 4]) -> f64 {
-    f64::from(rect[2].max(1.0)) / f64::from(rect[3].max(1.0))
-}
-
-/// Screen position (physical px) of a point at `p` relative to the eye in
-/// the observer's frame, inside `rect`; `None` behind the camera.
-pub fn project(camera: &Camera, rect: [f32; 4], p: DVec3) -> Option<DVec2> {
-    let m = camera.view_proj(rect[2] / rect[3]);
-    let clip = m * Vec4::new(p.x as f32, p.y as f32, p.z as f32, 1.0);
-    if clip.w <= 1e-6 {
-        return None;
-    }
-    let (x, y) = (clip.x / clip.w, clip.y / clip.w);
-    Some(DVec2::new(
-        f64::from(rect[0] + (x + 1.0) / 2.0 * rect[2]),
-        f64::from(rect[1] + (1.0 - y) / 2.0 * rect[3]),
-    ))
-}
+use lightcone_render::frame::ViewKind;
 
 /// Smallest diameter of the ring marking a puck, physical px: a carom
 /// puck on a whole table is 13–25 px across at 1280×720, too small to find
 /// at a glance, so each is ringed in its colour at least this wide.
 pub const MARKER_PX: f32 = 32.0;
-
-/// The colour a puck is ringed and named in: its own, lightened when too
-/// dark to see on the dark room (a black puck).
-pub fn ring_colour(c: lightcone_engine::scene::Color) -> egui::Color32 {
-    let y = 0.2126 * f32::from(c.r) + 0.7152 * f32::from(c.g) + 0.0722 * f32::from(c.b);
-    if y < 40.0 {
-        let mix = |x: u8| ((f32::from(x) + 200.0) / 2.0) as u8;
-        egui::Color32::from_rgb(mix(c.r), mix(c.g), mix(c.b))
-    } else {
-        egui::Color32::from_rgb(c.r, c.g, c.b)
-    }
-}
 
 /// A puck as marked over one view.
 #[derive(Clone, Debug)]
@@ -66,31 +32,6 @@ pub struct Marker {
     /// On-screen unit direction of its rest-frame +x (its dark stripe), as
     /// the Thomas–Wigner rotation has turned it, uncontracted.
     pub heading: Option<DVec2>,
-}
-
-/// What one picture's view saw at the last frame: the view entity, its eye,
-/// its camera and its effects.
-pub struct Shown {
-    /// The view entity.
-    pub view: Entity,
-    /// The eye (observation event, observer's proper velocity).
-    pub eye: Eye,
-    /// The camera.
-    pub camera: Camera,
-    /// The effects the view has.
-    pub effects: Effects,
-}
-
-/// What the picture `pane` showed at the last frame; `None` before its view
-/// ran.
-pub fn shown(state: &GameState, pane: Pane) -> Option<Shown> {
-    let view = state.view_of(pane)?;
-    Some(Shown {
-        view,
-        eye: state.apparent(view)?.eye?,
-        camera: state.camera(view)?,
-        effects: state.view_effects(view),
-    })
 }
 
 /// The caption of a picture: what it shows, and through whose eye when

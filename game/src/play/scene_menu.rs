@@ -62,15 +62,12 @@ pub fn open_path(state: &mut GameState, path: &str) {
     }
 }
 
-/// A key pressed in the window (not taken by a text field): M toggles the
-/// menu; while it is open ↑/↓/Enter/Esc act on it. Returns whether the key
+/// A key pressed in the window (not taken by a text field): while the menu
+/// is open ↑/↓/Enter/Esc act on it (M, which opens and closes it, is in
+/// the window's action table, `play::actions`). Returns whether the key
 /// was the menu's.
 pub fn key(state: &mut GameState, code: KeyCode, lesson: bool) -> bool {
     let menu = &mut state.scene_menu;
-    if code == KeyCode::KeyM {
-        menu.open = !menu.open;
-        return true;
-    }
     if !menu.open {
         return false;
     }
@@ -155,13 +152,14 @@ pub fn window(ctx: &egui::Context, state: &mut GameState, lesson: bool) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::play::actions::UiAction;
 
     #[test]
     fn keys_choose_and_start_a_shipped_scene_keeping_the_players_view() {
         let mut state = GameState::new(crate::assets::default_scene().unwrap());
         state.view = crate::model::ViewMode::Split;
         state.live_time = 3.0;
-        assert!(key(&mut state, KeyCode::KeyM, false));
+        UiAction::SceneMenu.apply(&mut state);
         assert!(state.scene_menu.open);
         let target = crate::assets::SCENES
             .iter()
@@ -178,7 +176,7 @@ mod tests {
         // Closed, the arrows are the camera's again.
         assert!(!key(&mut state, KeyCode::ArrowDown, false));
         // While a lesson runs, Enter starts nothing.
-        key(&mut state, KeyCode::KeyM, true);
+        UiAction::SceneMenu.apply(&mut state);
         key(&mut state, KeyCode::ArrowUp, true);
         key(&mut state, KeyCode::Enter, true);
         assert_eq!(state.scene.pucks.len(), 5);

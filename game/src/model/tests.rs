@@ -1,0 +1,201 @@
+//! The game's rules against closed forms and against the headless paths:
+//! time and replay, strokes and thrust below c, a change of c, and the
+//! pictures the window's views see.
+
+use super::*;
+use lightcone_engine::ecs::Apparent;
+use lightcone_engine::scene::Effect;
+use lightcone_render::frame::ViewKind;
+
+fn game() -> GameState {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml");
+    GameState::new(lightcone_engine::scene::load(&path).unwrap())
+}
+
+#[test]
+fn time_runs_pauses_and_replays() {
+    let mut g = game();
+    g.step(0.5);
+    g.time_scale = 2.0;
+    g.step(0.5);
+    assert!((g.live_time - 1.5).abs() < 1e-12);
+    g.replay_to(0.4);
+    assert!(g.paused && g.replaying());
+    g.step(1.0);
+    assert_eq!(g.view_time, 0.4); // paused
+    g.paused = false;
+    g.step(0.1);
+    assert!((g.view_time - 0.6).abs() < 1e-12); // replay plays forward
+    assert!((g.live_time - 1.5).abs() < 1e-12);
+    g.go_live();
+    assert!(!g.replaying());
+}
+
+#[test]
+fn no_stroke_reaches_c_and_replays_refuse_strokes() {
+    let mut g = game();
+    let after = g.aim(1, DVec2::new(-1e9, 0.0));
+    assert!(after.speed_deficit() > 0.0);
+    assert!((after.0.x - MAX_STROKE).abs() < 1e-12);
+    g.strike().unwrap();
+    g.step(0.1);
+    assert!(g.physics().worldline(1).proper_velocity_at(g.live_time).0.x > 9.0);
+    g.replay_to(0.05);
+    g.aim(0, DVec2::new(1.0, 0.0));
+    assert!(g.strike().is_err());
+}
+
+#[test]
+fn thrust_never_reaches_c_and_flies_the_eye() {
+    let mut g = game();
+    for _ in 0..1000 {
+        g.thrust(DVec3::new(1e6, 0.0, 0.0), DVec3::ZERO);
+    }
+    assert!(g.eye.u.speed_deficit() > 0.0);
+    let x0 = g.eye.position.x;
+    g.step(0.01);
+    assert!((g.eye.position.x - x0 - g.eye.u.velocity(g.scene.c).x * 0.01).abs() < 1e-12);
+    g.halt();
+    assert_eq!(g.eye.u, ProperVelocity::ZERO);
+}
+
+#[test]
+fn changing_c_keeps_each_pucks_proper_velocity_in_metres_per_second() {
+    let mut g = game();
+    let before: Vec<DVec3> = g.scene.pucks.iter().map(|p| p.u.0 * g.scene.c).collect();
+    g.restart_with_c(1e6);
+    for (p, b) in g.scene.pucks.iter().zip(&before) {
+        assert!((p.u.0 * 1e6 - *b).length() < 1e-12 * (1.0 + b.length()));
+    }
+    // Slow light on the cloth: below √(R μ g) ≈ 0.245 m/s a puck would
+    // not fit inside the braking's Rindler horizon; refused, with the
+    // reason shown, and the game keeps its scene.
+    g.restart_with_c(0.01);
+    assert_eq!(g.scene.c, 1e6);
+    assert!(g.message.contains("c must be above"), "{}", g.message);
+    // Frictionless, slow light: the same momentum, never c.
+    g.scene.table.friction = 0.0;
+    g.restart_with_c(0.01);
+    assert!(g.scene.pucks[0].u.speed_deficit() > 0.0);
+    assert!((g.scene.pucks[0].u.0 * 0.01 - before[0]).length() < 1e-12);
+}
+
+#[test]
+fn changing_c_restarts() {
+    let mut g = game();
+    g.step(1.0);
+    g.restart_with_c(3.0);
+    assert_eq!(g.physics().c(), 3.0);
+    assert_eq!(g.live_time, 0.0);
+    g.restart_with_c(-1.0);
+    assert_eq!(g.physics().c(), 3.0);
+    assert!(!g.message.is_empty());
+}
+
+/// The pictures of `a` and `b` agree to `tol` (m): same eye, same bodies,
+/// every point seen at the same place.
+fn same_picture(a: &Apparent, b: &Apparent, tol: f64) {
+    let (ea, eb) = (a.eye.unwrap(), b.eye.unwrap());
+    assert!((ea.event.position - eb.event.position).length() < tol);
+    assert_eq!(ea.event.t, eb.event.t);
+    assert_eq!(a.bodies.len(), b.bodies.len());
+    for (x, y) in a.bodies.iter().zip(&b.bodies) {
+        assert_eq!(x.body, y.body);
+        assert_eq!(x.seen.len(), y.seen.len());
+        for (p, q) in x.seen.iter().zip(&y.seen) {
+            assert!(
+                (p.position - q.position).length() < tol,
+                "{:?}: {} vs {}",
+                x.body,
+                p.position,
+                q.position
+            );
+            assert!((p.doppler - q.doppler).abs() < tol);
+        }
+        assert!((x.seen_proper_time - y.seen_proper_time).abs() < tol);
+    }
+}
+
+#[test]
+fn a_replay_shows_what_the_flying_eye_saw_then() {
+    let mut g = game();
+    for e in Effect::ALL {
+        g.effects.set(e, true);
+    }
+    // Frames of 1/60 s; the eye thrusts, then is orbited (a jump).
+    let frame = |g: &mut GameState| {
+        g.step(1.0 / 60.0);
+        g.run_seen()
+    };
+    for _ in 0..12 {
+        g.thrust(DVec3::new(0.05, 0.02, 0.0), DVec3::ZERO);
+        frame(&mut g);
+    }
+    let v = frame(&mut g);
+    let t1 = g.live_time;
+    let live = g.apparent(v).unwrap().clone();
+    assert!(live.eye.unwrap().u.0.length() > 0.5);
+    // The next thrust must come a frame later: a thrust at the live time
+    // puts a kink at exactly t1, and at a kink the worldline gives the
+    // later segment's velocity, which the picture taken at t1 (before
+    // the thrust) did not have.
+    frame(&mut g);
+    for _ in 0..20 {
+        g.thrust(DVec3::new(-0.04, 0.03, 0.01), DVec3::ZERO);
+        frame(&mut g);
+    }
+    g.orbit(0.4, 0.1);
+    for _ in 0..10 {
+        frame(&mut g);
+    }
+    g.replay_to(t1);
+    let v = g.run_seen();
+    same_picture(&live, g.apparent(v).unwrap(), 1e-12);
+    // Moving the eye during the replay watches the past from where it
+    // now is ("replay and move"): another picture of the same time.
+    g.thrust(DVec3::ZERO, DVec3::new(0.0, 0.0, 0.3));
+    let v = g.run_seen();
+    let moved = g.apparent(v).unwrap();
+    assert!(g.replay_and_move);
+    assert_eq!(moved.eye.unwrap().event.t, t1);
+    assert!((moved.eye.unwrap().event.position - live.eye.unwrap().event.position).length() > 0.1);
+    g.go_live();
+    assert!(!g.replay_and_move);
+}
+
+#[test]
+fn the_window_sees_what_headless_render_and_observe_see() {
+    // The window's picture through the scene's observer, after a run of
+    // frames, against a fresh simulation advanced straight to that time
+    // (the path of `lightcone render` and `observe`).
+    let mut g = game();
+    g.observer = Some(0);
+    for _ in 0..45 {
+        g.step(1.0 / 60.0);
+        g.run_seen();
+    }
+    let v = g.run_seen();
+    let (sim, view) =
+        lightcone_render::frame::scene_view(&g.scene, 0, g.view_time, ViewKind::Seen, 16.0 / 9.0);
+    same_picture(g.apparent(v).unwrap(), sim.apparent(view).unwrap(), 1e-12);
+}
+
+#[test]
+fn several_pictures_run_in_one_frame_each_with_its_eye_and_effects() {
+    let mut g = game();
+    g.panes = Some(Pane::parse_list("seen,truth,you:truth", &g.scene).unwrap());
+    g.step(0.5);
+    let panes: Vec<(Pane, f64)> = g.pane_list().into_iter().map(|p| (p, 1.0)).collect();
+    let views = g.run_frame(&panes);
+    assert_eq!(views.len(), 3);
+    // The free eye looked through: "truth" and "you: truth" are one view.
+    assert_eq!(views[1], views[2]);
+    assert_eq!(g.view_effects(views[0]), g.effects);
+    assert_eq!(g.view_effects(views[1]), ViewKind::Truth.effects(g.effects));
+    assert!(Pane::parse_list("nobody", &g.scene).is_err());
+    assert!(Pane::parse_list("you:sideways", &g.scene).is_err());
+    // Fewer pictures drop the others' views.
+    let one = g.run_frame(&panes[..1]);
+    assert_eq!(g.sim.views(), &one[..]);
+}

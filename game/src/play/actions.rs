@@ -1,0 +1,254 @@
+//! The one table of what the player can do: every key and every panel
+//! control becomes a [`UiAction`], and [`UiAction::apply`] is the one place
+//! each is carried out, so no action is written twice.
+
+use lightcone_engine::scene::Effect;
+use winit::keyboard::KeyCode;
+
+use crate::model::{Framing, GameState, ViewMode};
+
+/// A drawing over the views that a key and a checkbox turn on and off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Overlay {
+    /// Trails (7).
+    Trails,
+    /// The ghost of the truth (8).
+    Ghost,
+    /// Velocity arrows (9).
+    Arrows,
+    /// The space-time diagram's window (Y).
+    Diagram,
+}
+
+/// Something the player asked for, by key or in a panel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum UiAction {
+    /// Pause or run board time (and leave the scene's intro).
+    Pause,
+    /// Leave the scene's intro and run board time.
+    Start,
+    /// Back to the live edge.
+    GoLive,
+    /// The scene again from board time 0.
+    Restart,
+    /// The default view (camera fitted to the table, the eye at the first
+    /// observer).
+    ResetView,
+    /// Stop the free eye.
+    Halt,
+    /// The free eye above the table.
+    TopView,
+    /// One overlay on or off.
+    Toggle(Overlay),
+    /// One effect on or off.
+    ToggleEffect(Effect),
+    /// The camera on the next puck (after the last: the table).
+    CycleFollow,
+    /// The camera on puck `i`, or on the table.
+    Follow(Option<usize>),
+    /// Orbit the free eye (radians about the vertical, of elevation).
+    Orbit(f64, f64),
+    /// Turn the free eye (radians of yaw, of pitch).
+    Look(f64, f64),
+    /// Zoom by a factor (> 1 in).
+    Zoom(f64),
+    /// Seen → truth → split → seen (`--views` ends in seen).
+    CycleView,
+    /// One view mode.
+    SetView(ViewMode),
+    /// Look through the scene's observer `i`, or the free eye.
+    SetObserver(Option<usize>),
+    /// Board seconds per real second.
+    TimeScale(f64),
+    /// Show board time `t`, paused.
+    ReplayTo(f64),
+    /// Restart with another speed of light, m/s.
+    RestartWithC(f64),
+    /// Open or close the scene menu.
+    SceneMenu,
+    /// The CAVE walls for the next eye (mono, left, right).
+    CycleCaveEye,
+    /// Load the lesson file again.
+    ReloadLesson,
+    /// Answer `i` to the lesson's open question.
+    Answer(usize),
+}
+
+/// The keys, each with its action (the scene menu's own keys, while it is
+/// open, come first: `play::scene_menu::key`).
+pub const KEYS: &[(KeyCode, UiAction)] = &[
+    (KeyCode::KeyP, UiAction::Pause),
+    (KeyCode::Space, UiAction::Pause),
+    (KeyCode::KeyL, UiAction::GoLive),
+    (KeyCode::KeyX, UiAction::Halt),
+    (KeyCode::Home, UiAction::ResetView),
+    (KeyCode::Digit7, UiAction::Toggle(Overlay::Trails)),
+    (KeyCode::Digit8, UiAction::Toggle(Overlay::Ghost)),
+    (KeyCode::Digit9, UiAction::Toggle(Overlay::Arrows)),
+    (KeyCode::KeyY, UiAction::Toggle(Overlay::Diagram)),
+    (KeyCode::KeyV, UiAction::TopView),
+    (KeyCode::KeyG, UiAction::CycleFollow),
+    (KeyCode::ArrowLeft, UiAction::Orbit(-0.1, 0.0)),
+    (KeyCode::ArrowRight, UiAction::Orbit(0.1, 0.0)),
+    (KeyCode::ArrowUp, UiAction::Orbit(0.0, 0.08)),
+    (KeyCode::ArrowDown, UiAction::Orbit(0.0, -0.08)),
+    (KeyCode::Equal, UiAction::Zoom(1.25)),
+    (KeyCode::NumpadAdd, UiAction::Zoom(1.25)),
+    (KeyCode::Minus, UiAction::Zoom(0.8)),
+    (KeyCode::NumpadSubtract, UiAction::Zoom(0.8)),
+    (KeyCode::KeyE, UiAction::CycleCaveEye),
+    (KeyCode::F5, UiAction::ReloadLesson),
+    (KeyCode::KeyT, UiAction::CycleView),
+    (KeyCode::KeyM, UiAction::SceneMenu),
+    (KeyCode::Digit1, UiAction::ToggleEffect(Effect::ALL[0])),
+    (KeyCode::Digit2, UiAction::ToggleEffect(Effect::ALL[1])),
+    (KeyCode::Digit3, UiAction::ToggleEffect(Effect::ALL[2])),
+    (KeyCode::Digit4, UiAction::ToggleEffect(Effect::ALL[3])),
+    (KeyCode::Digit5, UiAction::ToggleEffect(Effect::ALL[4])),
+    (KeyCode::Digit6, UiAction::ToggleEffect(Effect::ALL[5])),
+];
+
+/// The action of key `code`, if it has one.
+pub fn for_key(code: KeyCode) -> Option<UiAction> {
+    KEYS.iter().find(|(k, _)| *k == code).map(|&(_, a)| a)
+}
+
+impl UiAction {
+    /// Carries the action out on the game. Returns it back when it is not
+    /// the game's but the window's (the CAVE eye, the lesson), for the
+    /// window to carry out.
+    pub fn apply(self, s: &mut GameState) -> Option<UiAction> {
+        match self {
+            UiAction::Pause => {
+                s.paused = !s.paused;
+                s.intro = false;
+            }
+            UiAction::Start => {
+                s.intro = false;
+                s.paused = false;
+            }
+            UiAction::GoLive => s.go_live(),
+            UiAction::Restart => s.restart(),
+            UiAction::ResetView => s.reset_view(),
+            UiAction::Halt => s.halt(),
+            UiAction::TopView => s.top_view(),
+            UiAction::Toggle(o) => {
+                let on = match o {
+                    Overlay::Trails => &mut s.show.trails,
+                    Overlay::Ghost => &mut s.show.ghost,
+                    Overlay::Arrows => &mut s.show.arrows,
+                    Overlay::Diagram => &mut s.show.diagram,
+                };
+                *on = !*on;
+            }
+            UiAction::ToggleEffect(e) => {
+                let on = s.effects.is_on(e);
+                s.effects.set(e, !on);
+            }
+            UiAction::CycleFollow => {
+                let n = s.physics().len();
+                let next = match s.follow {
+                    None if n > 0 => Some(0),
+                    Some(i) if i + 1 < n => Some(i + 1),
+                    _ => None,
+                };
+                return UiAction::Follow(next).apply(s);
+            }
+            UiAction::Follow(f) => {
+                s.follow = f;
+                s.framing = Framing::Fit;
+            }
+            UiAction::Orbit(yaw, pitch) => s.orbit(yaw, pitch),
+            UiAction::Look(yaw, pitch) => s.look(yaw, pitch),
+            UiAction::Zoom(factor) => s.zoom_by(factor),
+            UiAction::CycleView => {
+                let next = match (&s.panes, s.view) {
+                    (Some(_), _) => ViewMode::Seen,
+                    (None, ViewMode::Seen) => ViewMode::Truth,
+                    (None, ViewMode::Truth) => ViewMode::Split,
+                    (None, ViewMode::Split) => ViewMode::Seen,
+                };
+                s.set_view(next);
+            }
+            UiAction::SetView(mode) => s.set_view(mode),
+            UiAction::SetObserver(o) => s.observer = o,
+            UiAction::TimeScale(x) => s.time_scale = x,
+            UiAction::ReplayTo(t) => s.replay_to(t),
+            UiAction::RestartWithC(c) => s.restart_with_c(c),
+            UiAction::SceneMenu => s.scene_menu.open = !s.scene_menu.open,
+            UiAction::CycleCaveEye | UiAction::ReloadLesson | UiAction::Answer(_) => {
+                return Some(self);
+            }
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn game() -> GameState {
+        GameState::new(crate::assets::default_scene().unwrap())
+    }
+
+    #[test]
+    fn every_key_has_one_action_and_toggles_undo_themselves() {
+        for (i, (k, _)) in KEYS.iter().enumerate() {
+            assert!(
+                KEYS[..i].iter().all(|(q, _)| q != k),
+                "{k:?} is in the table twice"
+            );
+        }
+        let mut g = game();
+        let (show, effects) = (g.show, g.effects);
+        for code in [
+            KeyCode::Digit1,
+            KeyCode::Digit4,
+            KeyCode::Digit7,
+            KeyCode::Digit8,
+            KeyCode::Digit9,
+            KeyCode::KeyY,
+        ] {
+            let a = for_key(code).unwrap();
+            assert_eq!(a.apply(&mut g), None);
+            assert_ne!((g.show, g.effects), (show, effects), "{code:?}");
+            a.apply(&mut g);
+            assert_eq!((g.show, g.effects), (show, effects), "{code:?}");
+        }
+        // The window's own actions come back to it.
+        assert_eq!(
+            for_key(KeyCode::KeyE).unwrap().apply(&mut g),
+            Some(UiAction::CycleCaveEye)
+        );
+    }
+
+    #[test]
+    fn g_cycles_the_followed_puck_through_every_puck_then_the_table() {
+        let mut g = game();
+        let n = g.physics().len();
+        let mut seen = Vec::new();
+        for _ in 0..=n {
+            UiAction::CycleFollow.apply(&mut g);
+            seen.push(g.follow);
+        }
+        let want: Vec<Option<usize>> = (0..n).map(Some).chain([None]).collect();
+        assert_eq!(seen, want);
+        assert_eq!(g.framing, Framing::Fit);
+    }
+
+    #[test]
+    fn t_cycles_seen_truth_split_and_ends_views() {
+        let mut g = game();
+        let mut modes = Vec::new();
+        for _ in 0..3 {
+            UiAction::CycleView.apply(&mut g);
+            modes.push(g.view);
+        }
+        assert_eq!(modes, [ViewMode::Truth, ViewMode::Split, ViewMode::Seen]);
+        g.panes = Some(crate::model::Pane::parse_list("seen,truth", &g.scene).unwrap());
+        g.view = ViewMode::Truth;
+        UiAction::CycleView.apply(&mut g);
+        assert_eq!((g.panes.is_none(), g.view), (true, ViewMode::Seen));
+    }
+}

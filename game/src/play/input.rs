@@ -1,0 +1,195 @@
+//! The player's hands: keys become [`UiAction`]s (held ones fly the eye),
+//! the mouse aims the cue, turns, orbits and zooms.
+
+use std::collections::HashSet;
+
+use glam::{DVec2, DVec3};
+use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::keyboard::{KeyCode, PhysicalKey};
+
+use super::actions::{self, UiAction};
+use super::shown::project;
+use crate::model::{GameState, Pane};
+
+/// What the keyboard and mouse hold between events.
+#[derive(Default)]
+pub struct Input {
+    /// A lesson runs (its scene is not the menu's to change).
+    lesson: bool,
+    /// Keys held down.
+    keys: HashSet<KeyCode>,
+    /// The cursor, physical px.
+    cursor: DVec2,
+    /// Right-drag turns the free eye.
+    looking: bool,
+    /// Middle-drag orbits the eye about the table (or the followed puck).
+    orbiting: bool,
+    /// Puck being aimed and where the drag started (physical px).
+    aiming: Option<(usize, DVec2)>,
+}
+
+impl Input {
+    /// No key held, no drag; `lesson` when a lesson runs.
+    pub fn new(lesson: bool) -> Self {
+        Self {
+            lesson,
+            ..Self::default()
+        }
+    }
+
+    /// An event of the main window, whose pictures are at `rects`;
+    /// `consumed` when egui took it. Keys and mouse moves that are actions
+    /// go to `actions`; the cue is aimed and struck on `state`.
+    pub fn event(
+        &mut self,
+        event: &WindowEvent,
+        consumed: bool,
+        state: &mut GameState,
+        rects: &[([f32; 4], Pane)],
+        actions: &mut Vec<UiAction>,
+    ) {
+        match event {
+            WindowEvent::KeyboardInput { event, .. } if !consumed => {
+                self.keyboard(event, state, actions);
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                let p = DVec2::new(position.x, position.y);
+                let d = p - self.cursor;
+                if self.looking {
+                    actions.push(UiAction::Look(-d.x * 0.004, -d.y * 0.004));
+                }
+                if self.orbiting {
+                    actions.push(UiAction::Orbit(-d.x * 0.006, d.y * 0.006));
+                }
+                self.cursor = p;
+                self.drag(state, rects);
+            }
+            WindowEvent::MouseWheel { delta, .. } if !consumed => {
+                let lines = match *delta {
+                    MouseScrollDelta::LineDelta(_, y) => f64::from(y),
+                    MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
+                };
+                actions.push(UiAction::Zoom(1.1f64.powf(lines)));
+            }
+            &WindowEvent::MouseInput {
+                state: s, button, ..
+            } if !consumed || s == ElementState::Released => match (button, s) {
+                (MouseButton::Left, ElementState::Pressed) => self.press(state, rects),
+                (MouseButton::Left, ElementState::Released) => self.release(state),
+                (MouseButton::Right, s) => self.looking = s == ElementState::Pressed,
+                (MouseButton::Middle, s) => self.orbiting = s == ElementState::Pressed,
+                _ => {}
+            },
+            _ => {}
+        }
+    }
+
+    /// A key pressed or released in any of the game's windows: the open
+    /// scene menu's keys first, then the action table.
+    pub fn keyboard(
+        &mut self,
+        event: &KeyEvent,
+        state: &mut GameState,
+        actions: &mut Vec<UiAction>,
+    ) {
+        let PhysicalKey::Code(code) = event.physical_key else {
+            return;
+        };
+        match event.state {
+            ElementState::Pressed => {
+                if !event.repeat && !super::scene_menu::key(state, code, self.lesson) {
+                    actions.extend(actions::for_key(code));
+                }
+                self.keys.insert(code);
+            }
+            ElementState::Released => {
+                self.keys.remove(&code);
+            }
+        }
+    }
+
+    /// The direction the held keys fly the eye (unit, or zero): W/S
+    /// forward and back along `forward` flattened, A/D sideways, R/F up
+    /// and down.
+    pub fn flight(&self, forward: DVec3) -> DVec3 {
+        let flat = DVec3::new(forward.x, forward.y, 0.0).normalize_or(DVec3::X);
+        let side = flat.cross(DVec3::Z);
+        let mut dir = DVec3::ZERO;
+        for (key, d) in [
+            (KeyCode::KeyW, flat),
+            (KeyCode::KeyS, -flat),
+            (KeyCode::KeyD, side),
+            (KeyCode::KeyA, -side),
+            (KeyCode::KeyR, DVec3::Z),
+            (KeyCode::KeyF, -DVec3::Z),
+        ] {
+            if self.keys.contains(&key) {
+                dir += d;
+            }
+        }
+        dir.normalize_or_zero()
+    }
+
+    /// The rectangle and picture in which the cue picks pucks: the one
+    /// under the cursor (the last one when none is).
+    fn pick_rect(&self, rects: &[([f32; 4], Pane)]) -> Option<([f32; 4], Pane)> {
+        let (x, y) = (self.cursor.x as f32, self.cursor.y as f32);
+        rects
+            .iter()
+            .copied()
+            .find(|(r, _)| x >= r[0] && x < r[0] + r[2] && y >= r[1] && y < r[1] + r[3])
+            .or_else(|| rects.last().copied())
+    }
+
+    /// Left press: the puck seen nearest the cursor (within 30 px) is aimed.
+    fn press(&mut self, state: &GameState, rects: &[([f32; 4], Pane)]) {
+        let Some((rect, pane)) = self.pick_rect(rects) else {
+            return;
+        };
+        let Some(view) = state.view_of(pane) else {
+            return;
+        };
+        let Some(camera) = state.camera(view) else {
+            return;
+        };
+        let best = state
+            .centres(view)
+            .iter()
+            .filter_map(|c| {
+                project(&camera, rect, c.seen.position).map(|p| (c.puck, p.distance(self.cursor)))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((i, d)) = best
+            && d < 30.0
+        {
+            self.aiming = Some((i, self.cursor));
+        }
+    }
+
+    /// The cursor moved while aiming: the pull so far is the stroke.
+    fn drag(&mut self, state: &mut GameState, rects: &[([f32; 4], Pane)]) {
+        let Some((puck, start)) = self.aiming else {
+            return;
+        };
+        let f = self
+            .pick_rect(rects)
+            .and_then(|(_, p)| state.view_of(p))
+            .and_then(|v| state.camera(v))
+            .map_or_else(|| state.forward(), |c| c.forward);
+        let flat = DVec3::new(f.x, f.y, 0.0).normalize_or(DVec3::Y);
+        let right = flat.cross(DVec3::Z);
+        let d = self.cursor - start;
+        // 60 px of pull = 1 m/s of proper velocity γv.
+        let pull = (right * d.x - flat * d.y) / 60.0;
+        state.aim(puck, pull.truncate());
+    }
+
+    /// Left release: the aimed stroke is struck.
+    fn release(&mut self, state: &mut GameState) {
+        if self.aiming.take().is_some()
+            && let Err(e) = state.strike()
+        {
+            state.message = e;
+        }
+    }
+}

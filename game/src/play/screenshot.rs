@@ -1,0 +1,183 @@
+//! `--screenshot`: the window's frame read back into a PNG, and beside it
+//! the layout sidecar (`shot.json`) saying where the views, pucks and CAVE
+//! walls are, for tests and for marking up slides.
+
+use std::path::Path;
+
+use lightcone_render::frame::ViewKind;
+use lightcone_render::gpu::Gpu;
+use lightcone_tracker::cave::CaveConfig;
+
+use super::layout::{Plan, SceneArea, tiled_walls, wall_tiles};
+use super::overlay::{caption, markers};
+use super::shown::ring_colour;
+use crate::model::GameState;
+
+/// Beside a screenshot, where its views and pucks are (for tests and
+/// for marking up slides): `{"views": [{"rect": [x, y, w, h], "kind"}],
+/// "pucks": [{"name", "view", "centre": [x, y], "ring_px", "ring_colour":
+/// [r, g, b], "clock_s"}]}`, physical px from the top left.
+pub fn save_layout(
+    state: &GameState,
+    cave: Option<&CaveConfig>,
+    area: SceneArea,
+    path: &Path,
+    (w, h): (f32, f32),
+) -> Result<(), String> {
+    if let Some(c) = cave {
+        return save_cave_layout(state, c, area, path, (w, h));
+    }
+    let rects = area.rects(&state.pane_list(), w, h);
+    let views: Vec<serde_json::Value> = rects
+        .iter()
+        .map(|(r, p)| {
+            serde_json::json!({
+                "rect": r,
+                "kind": match p.kind { ViewKind::Seen => "seen", ViewKind::Truth => "truth" },
+                "caption": caption(&state, *p),
+            })
+        })
+        .collect();
+    let pucks: Vec<serde_json::Value> = markers(&state, &rects)
+        .iter()
+        .map(|m| {
+            let c = ring_colour(state.scene.pucks[m.puck].color);
+            serde_json::json!({
+                "name": state.scene.pucks[m.puck].name,
+                "view": m.view,
+                "centre": [m.centre.x, m.centre.y],
+                "ring_px": 2.0 * m.ring,
+                "ring_colour": [c.r(), c.g(), c.b()],
+                "clock_s": m.clock,
+            })
+        })
+        .collect();
+    let text = serde_json::json!({
+        "views": views,
+        "pucks": pucks,
+        "scene_pucks": state.physics().len(),
+    })
+    .to_string();
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// In a CAVE, beside the main window's screenshot: the walls tiled
+/// there (`{"walls": [{"rect": [x, y, w, h], "wall": name}], "outputs":
+/// [name], "scene_pucks": n}`, physical px from the top left; the
+/// walls no output shows, or all of them when every wall has one), and
+/// the outputs saved beside it as `<shot>.<name>.png`.
+fn save_cave_layout(
+    state: &GameState,
+    cave: &CaveConfig,
+    area: SceneArea,
+    path: &Path,
+    (w, h): (f32, f32),
+) -> Result<(), String> {
+    let (left, width) = area.span(w);
+    let tiles: Vec<serde_json::Value> = wall_tiles(cave, &tiled_walls(cave), left, width, h)
+        .iter()
+        .filter_map(|(r, plan)| match plan {
+            Plan::Wall(i) => Some(serde_json::json!({
+                "rect": r,
+                "wall": cave.walls[*i].name,
+            })),
+            Plan::Desktop(_) => None,
+        })
+        .collect();
+    let outputs: Vec<&str> = cave.outputs.iter().map(|o| o.name.as_str()).collect();
+    let text = serde_json::json!({
+        "walls": tiles,
+        "outputs": outputs,
+        "scene_pucks": state.physics().len(),
+    })
+    .to_string();
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Saves the surface's frame `texture` (configured as `config`) as a PNG at
+/// `path`, once what was drawn into it is done.
+pub fn save_frame(
+    gpu: &Gpu,
+    config: &wgpu::SurfaceConfiguration,
+    texture: &wgpu::Texture,
+    path: &Path,
+) -> Result<(), String> {
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("screenshot"),
+        });
+    let (buffer, padded) = copy_out(gpu, config, texture, &mut encoder);
+    gpu.queue.submit([encoder.finish()]);
+    save(gpu, config, &buffer, padded, path)
+}
+
+/// Records a copy of a surface's frame (configured as `config`) into a
+/// readable buffer (for `--screenshot`).
+fn copy_out(
+    gpu: &Gpu,
+    config: &wgpu::SurfaceConfiguration,
+    texture: &wgpu::Texture,
+    encoder: &mut wgpu::CommandEncoder,
+) -> (wgpu::Buffer, u32) {
+    let (w, h) = (config.width, config.height);
+    let padded =
+        (4 * w).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("screenshot"),
+        size: u64::from(padded) * u64::from(h),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    (buffer, padded)
+}
+
+/// Reads the screenshot buffer back and writes it as PNG (RGBA; BGRA
+/// surfaces are swizzled).
+fn save(
+    gpu: &Gpu,
+    config: &wgpu::SurfaceConfiguration,
+    buffer: &wgpu::Buffer,
+    padded: u32,
+    path: &Path,
+) -> Result<(), String> {
+    let (w, h) = (config.width, config.height);
+    let mut rgba = lightcone_render::headless::read_rows(gpu, buffer, padded, w, h)?;
+    let bgra = matches!(
+        config.format,
+        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+    );
+    for px in rgba.chunks_mut(4) {
+        if bgra {
+            px.swap(0, 2);
+        }
+        px[3] = 255;
+    }
+    lightcone_render::headless::Image {
+        width: w,
+        height: h,
+        rgba,
+    }
+    .save_png(path)
+}

@@ -1,0 +1,312 @@
+//! The window framework, with no game in it: winit's event loop, the wgpu
+//! surface of the main window and egui's plumbing (input in, shapes
+//! painted over the frame), as wgpu's examples keep their `framework.rs`
+//! apart from each example. A [`Game`] says what a frame draws and what
+//! the input does. Nothing here is desktop-only (no files, no threads, no
+//! second window), so a browser build (winit on the web) starts from it.
+
+use std::sync::Arc;
+
+use lightcone_render::gpu::{self, Gpu};
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::window::{Window, WindowId};
+
+/// What a game run in the window tells the framework after a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flow {
+    /// Go on: the next frame is requested.
+    Continue,
+    /// Close the window and end the event loop.
+    Exit,
+}
+
+/// A game the framework runs: its frames, its input, and the windows it
+/// opens besides the main one.
+pub trait Game {
+    /// The main window's title.
+    fn title(&self) -> String;
+
+    /// Called once the GPU instance exists, before the adapter is chosen
+    /// (the game's own windows, whose surfaces the adapter must serve).
+    fn open_windows(
+        &mut self,
+        _event_loop: &ActiveEventLoop,
+        _instance: &wgpu::Instance,
+    ) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Called once the main window and the GPU are ready.
+    fn ready(&mut self, gfx: &Gfx) -> Result<(), String>;
+
+    /// Whether the main window's input reaches egui and [`Game::input`]
+    /// (a render node shows frames and takes none).
+    fn takes_input(&self) -> bool {
+        true
+    }
+
+    /// An event of the main window (not close, resize or redraw);
+    /// `consumed` when egui took it (a click on a panel, typing in a
+    /// field).
+    fn input(&mut self, gfx: &Gfx, event: &WindowEvent, consumed: bool);
+
+    /// An event of another window the game opened. Returns `None` when
+    /// `id` is none of its windows.
+    fn other_window(
+        &mut self,
+        gfx: &Gfx,
+        id: WindowId,
+        event: &WindowEvent,
+    ) -> Option<Result<Flow, String>>;
+
+    /// One frame: the game's time, its views, its panels (through
+    /// [`Gfx::run_ui`]) and the pictures drawn into the surface.
+    fn frame(&mut self, gfx: &mut Gfx) -> Result<Flow, String>;
+}
+
+/// The main window, its surface on the GPU, and egui.
+pub struct Gfx {
+    /// The window.
+    pub window: Arc<Window>,
+    /// Its surface.
+    pub surface: wgpu::Surface<'static>,
+    /// The GPU.
+    pub gpu: Gpu,
+    /// The surface's configuration (size in physical px, format).
+    pub config: wgpu::SurfaceConfiguration,
+    egui: egui::Context,
+    egui_state: egui_winit::State,
+    egui_renderer: egui_wgpu::Renderer,
+}
+
+/// The panels of one frame, run but not yet painted.
+pub struct Ui(egui::FullOutput);
+
+impl Gfx {
+    /// Opens the main window titled `title`, the GPU, and egui on it.
+    fn open(event_loop: &ActiveEventLoop, game: &mut impl Game) -> Result<Self, String> {
+        let attributes = Window::default_attributes()
+            .with_title(game.title())
+            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| format!("cannot open a window: {e}"))?,
+        );
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+            backends: wgpu::Backends::VULKAN | wgpu::Backends::GL,
+            ..wgpu::InstanceDescriptor::new_without_display_handle()
+        });
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| format!("cannot draw into the window: {e}"))?;
+        game.open_windows(event_loop, &instance)?;
+        let gpu = gpu::open(instance, Some(&surface))?;
+        let size = window.inner_size();
+        let mut config = surface
+            .get_default_config(&gpu.handle, size.width.max(1), size.height.max(1))
+            .ok_or_else(|| format!("the adapter {} cannot draw into this window", gpu.adapter))?;
+        config.usage |=
+            wgpu::TextureUsages::COPY_SRC & surface.get_capabilities(&gpu.handle).usages;
+        surface.configure(&gpu.device, &config);
+        let egui = egui::Context::default();
+        let egui_state = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            &*window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(gpu.device.limits().max_texture_dimension_2d as usize),
+        );
+        let egui_renderer =
+            egui_wgpu::Renderer::new(&gpu.device, config.format, Default::default());
+        Ok(Self {
+            window,
+            surface,
+            gpu,
+            config,
+            egui,
+            egui_state,
+            egui_renderer,
+        })
+    }
+
+    /// The window's new size.
+    fn resize(&mut self, size: winit::dpi::PhysicalSize<u32>) {
+        self.config.width = size.width.max(1);
+        self.config.height = size.height.max(1);
+        self.surface.configure(&self.gpu.device, &self.config);
+    }
+
+    /// The surface's size, physical px.
+    pub fn size(&self) -> (u32, u32) {
+        (self.config.width, self.config.height)
+    }
+
+    /// Runs this frame's panels: `panels` gets egui's root `Ui` (with the
+    /// input since the last frame).
+    pub fn run_ui(&mut self, panels: impl FnMut(&mut egui::Ui)) -> Ui {
+        let raw = self.egui_state.take_egui_input(&self.window);
+        Ui(self.egui.run_ui(raw, panels))
+    }
+
+    /// The next picture of the surface to draw into; `None` when there is
+    /// none this frame (the surface was outdated or lost: it is configured
+    /// again, and the next frame draws).
+    pub fn next_texture(&mut self) -> Option<wgpu::SurfaceTexture> {
+        match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(f)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => Some(f),
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                self.surface.configure(&self.gpu.device, &self.config);
+                None
+            }
+            _ => None,
+        }
+    }
+
+    /// Paints the panels `ui` over what `target` holds (none: a frame
+    /// the surface could not give; egui's textures are still brought up
+    /// to date), and hands egui's requests (cursor, clipboard) to the
+    /// window.
+    pub fn paint_ui(&mut self, ui: Ui, target: Option<&wgpu::TextureView>) {
+        let Ui(output) = ui;
+        self.egui_state
+            .handle_platform_output(&self.window, output.platform_output);
+        let jobs = self.egui.tessellate(output.shapes, output.pixels_per_point);
+        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
+        for (id, deltas) in &output.textures_delta.set {
+            for delta in deltas {
+                self.egui_renderer.update_texture(device, queue, *id, delta);
+            }
+        }
+        let Some(target) = target else {
+            return;
+        };
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [self.config.width, self.config.height],
+            pixels_per_point: output.pixels_per_point,
+        };
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("egui"),
+        });
+        self.egui_renderer
+            .update_buffers(device, queue, &mut encoder, &jobs, &screen);
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: target,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            self.egui_renderer
+                .render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        queue.submit([encoder.finish()]);
+        for id in &output.textures_delta.free {
+            self.egui_renderer.free_texture(id);
+        }
+    }
+}
+
+/// Opens the event loop, or says how to do without a display.
+fn open_event_loop() -> Result<EventLoop<()>, String> {
+    EventLoop::new().map_err(|e| {
+        format!("cannot open a window ({e}); on a machine without a display, use `lightcone render`, or run under Xvfb")
+    })
+}
+
+/// Opens the window and runs `game` until it exits or the window is
+/// closed.
+pub fn run(game: &mut impl Game) -> Result<(), String> {
+    let event_loop = open_event_loop()?;
+    let mut runner = Runner {
+        game,
+        gfx: None,
+        result: Ok(()),
+    };
+    event_loop
+        .run_app(&mut runner)
+        .map_err(|e| format!("the window's event loop failed: {e}"))?;
+    runner.result
+}
+
+/// The event loop's handler: the window once open, and the first error.
+struct Runner<'a, G: Game> {
+    game: &'a mut G,
+    gfx: Option<Gfx>,
+    result: Result<(), String>,
+}
+
+impl<G: Game> Runner<'_, G> {
+    /// Acts on what the game said: an error ends the loop (kept for
+    /// [`run`] to return), as does [`Flow::Exit`].
+    fn obey(&mut self, event_loop: &ActiveEventLoop, flow: Result<Flow, String>) {
+        match flow {
+            Ok(Flow::Continue) => {}
+            Ok(Flow::Exit) => event_loop.exit(),
+            Err(e) => {
+                self.result = Err(e);
+                event_loop.exit();
+            }
+        }
+    }
+}
+
+impl<G: Game> ApplicationHandler for Runner<'_, G> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.gfx.is_some() {
+            return;
+        }
+        let opened = Gfx::open(event_loop, self.game).and_then(|gfx| {
+            self.game.ready(&gfx)?;
+            Ok(gfx)
+        });
+        match opened {
+            Ok(gfx) => self.gfx = Some(gfx),
+            Err(e) => self.obey(event_loop, Err(e)),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, id: WindowId, event: WindowEvent) {
+        let Some(gfx) = self.gfx.as_mut() else { return };
+        if id != gfx.window.id() {
+            if let Some(flow) = self.game.other_window(gfx, id, &event) {
+                self.obey(event_loop, flow);
+            }
+            return;
+        }
+        // egui sees every event of the main window (a resize too), unless
+        // the game takes no input.
+        let takes_input = self.game.takes_input();
+        let consumed = takes_input && gfx.egui_state.on_window_event(&gfx.window, &event).consumed;
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => gfx.resize(size),
+            WindowEvent::RedrawRequested => {
+                let flow = self.game.frame(gfx);
+                self.obey(event_loop, flow);
+            }
+            event if takes_input => self.game.input(gfx, &event, consumed),
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(gfx) = &self.gfx {
+            gfx.window.request_redraw();
+        }
+    }
+}
