@@ -219,27 +219,18 @@ impl Scene {
     }
 
     /// Sets the speed of light, m/s: from 1e-6 to 1e9, as in a scene file,
-    /// and, on a table with friction, fast enough that every puck fits
-    /// inside the braking's Rindler horizon c²/(μg) (`SceneError`
-    /// otherwise, naming `Scene.c`).
+    /// each puck and observer keeping its proper velocity in m/s (`γ v`,
+    /// its momentum per unit mass), so a large c is Newton's scene (the
+    /// engine's `Scene::with_c`, as the game's c slider). On a table with
+    /// friction, c must be fast enough that every puck fits inside the
+    /// braking's Rindler horizon c²/(μg). `SceneError` otherwise, naming
+    /// `Scene.c`; the scene is unchanged.
     #[setter]
     fn set_c(&mut self, c: f64) -> PyResult<()> {
-        let range = scene::C_RANGE;
-        if !range.contains(&c) {
-            return Err(SceneError::new_err(format!(
-                "Scene.c: {} must be a positive finite number from {} to {} m/s",
-                scene::number(c),
-                scene::number(*range.start()),
-                scene::number(*range.end())
-            )));
-        }
-        let t = &self.inner.table;
-        if let Some((_, why)) =
-            scene::braking_horizon_error(c, t.friction, t.gravity, &self.inner.pucks)
-        {
-            return Err(SceneError::new_err(format!("Scene.c: {why}")));
-        }
-        self.inner.c = c;
+        self.inner = self
+            .inner
+            .with_c(c)
+            .map_err(|e| SceneError::new_err(format!("Scene.c: {e}")))?;
         Ok(())
     }
 

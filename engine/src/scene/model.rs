@@ -812,10 +812,18 @@ impl Scene {
     /// body keeping its proper velocity in m/s (`γ v`, its momentum per unit
     /// mass): its `u = γβ` scales by `c_old / c`. Raising `c` thus tends to
     /// the Newtonian scene with velocities `γ v`; lowering it never brings a
-    /// body to `c`. Errors on a `c` that is not a positive finite number.
+    /// body to `c`. Errors on a `c` outside [`C_RANGE`] (as a scene file's),
+    /// on a body whose `u` would leave what the engine holds ([`MAX_U`]),
+    /// and on a puck that would not fit inside the braking's Rindler
+    /// horizon; the scene is then unchanged.
     pub fn with_c(&self, c: f64) -> Result<Self, String> {
-        if !(c.is_finite() && c > 0.0) {
-            return Err(format!("c = {c} must be a positive finite number of m/s"));
+        if !C_RANGE.contains(&c) {
+            return Err(format!(
+                "{} must be a positive finite number from {} to {} m/s",
+                number(c),
+                number(*C_RANGE.start()),
+                number(*C_RANGE.end())
+            ));
         }
         // On a cloth, slower light brings the braking's Rindler horizon
         // closer: refused (the scene kept) once a puck would not fit.
@@ -833,6 +841,22 @@ impl Scene {
             ));
         }
         let k = self.c / c;
+        let fastest = self
+            .pucks
+            .iter()
+            .map(|p| magnitude(p.u.0))
+            .chain(self.observers.iter().map(|o| magnitude(o.u.0)))
+            .fold(0.0, f64::max);
+        if fastest * k > MAX_U {
+            return Err(format!(
+                "c = {} m/s would take a body to |u| = {}, beyond what the engine holds \
+                 (at most {}): c must be at least {} m/s",
+                number(c),
+                number(fastest * k),
+                number(MAX_U),
+                number(fastest * self.c / MAX_U)
+            ));
+        }
         let mut scene = self.clone();
         scene.c = c;
         for p in &mut scene.pucks {
