@@ -17,9 +17,12 @@ JSON objects that `lightcone simulate` and `lightcone observe` print
 
 from . import records
 from ._lightcone import (
+    BrakingHorizonError,
     Frame,
     NoAdapterError,
     NotComputedError,
+    OutOfRangeError,
+    OverlapError,
     Scene,
     SceneError,
     Simulation,
@@ -29,11 +32,14 @@ from ._lightcone import (
 from .records import Collision, Observation, Record, State
 
 __all__ = [
+    "BrakingHorizonError",
     "Collision",
     "Frame",
     "NoAdapterError",
     "NotComputedError",
     "Observation",
+    "OutOfRangeError",
+    "OverlapError",
     "Record",
     "Scene",
     "SceneError",

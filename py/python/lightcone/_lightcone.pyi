@@ -12,8 +12,11 @@ from lightcone.records import Collision, Observation, Simultaneity, State
 
 __all__ = [
     "Frame",
+    "BrakingHorizonError",
     "NoAdapterError",
     "NotComputedError",
+    "OutOfRangeError",
+    "OverlapError",
     "Scene",
     "SceneError",
     "Simulation",
@@ -34,6 +37,15 @@ class SceneError(ValueError):
 
 class SpeedOfLightError(SceneError):
     """A speed at or above c was given (β ≥ 1); no body reaches c."""
+
+class OverlapError(SceneError):
+    """Two pucks overlap at board time 0 (their rest-frame discs; touching is allowed)."""
+
+class OutOfRangeError(SceneError):
+    """A number lies outside what the engine holds (a length, mass, c, friction, gravity, restitution or |u|)."""
+
+class BrakingHorizonError(SceneError):
+    """A puck cannot brake rigidly on the cloth: its radius reaches the braking's Rindler horizon c²/(μg)."""
 
 class NoAdapterError(RuntimeError):
     """Rendering needs a graphics adapter and none was found (install mesa-vulkan-drivers)."""
@@ -97,7 +109,8 @@ class Scene:
         velocity: Optional[_Vector] = None,
     ) -> None:
         """Adds a puck at `position` (x, y) m; at most one of `beta` (v/c), `velocity` (m/s), `u` (γβ).
-        `radius`, `height` in m, `mass` in kg. Raises SpeedOfLightError, SceneError."""
+        `radius`, `height` in m, `mass` in kg. Raises SpeedOfLightError, OverlapError, OutOfRangeError,
+        BrakingHorizonError or SceneError (each a SceneError)."""
     def add_observer(
         self,
         name: str,
