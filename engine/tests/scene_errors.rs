@@ -651,6 +651,10 @@ fn friction_set_in_code_is_checked_as_in_a_file() {
         s.set_friction(f64::NAN, 9.81).unwrap_err(),
         Quantity::Friction,
     );
+    out_of_range(
+        s.set_friction(5e-324, 9.81).unwrap_err(),
+        Quantity::Friction,
+    );
     // c = 0.1 m/s, μg ≈ 1.96 m/s²: the Rindler horizon c²/(μg) ≈ 5 mm, so a
     // 30 mm puck cannot brake rigidly, whichever comes first.
     s.set_friction(0.2, 9.81).unwrap();

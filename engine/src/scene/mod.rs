@@ -24,7 +24,7 @@ pub use overlap::{first_overlaps, overlap};
 pub use rules::{
     BuildError, C_RANGE, GRAVITY_RANGE, LENGTH_RANGE, MASS_RANGE, MAX_DICHOTOMY_STEPS,
     MAX_FRICTION, MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS, MAX_U,
-    Quantity, braking_horizon,
+    MIN_FRICTION, Quantity, braking_horizon,
 };
 pub use validate::MAX_ERRORS_PER_KIND;
 

@@ -353,8 +353,8 @@ impl Scene {
         Ok(())
     }
 
-    /// Sets the table's sliding friction `friction` (μ: 0 to
-    /// [`rules::MAX_FRICTION`]) and `gravity` (m/s², in
+    /// Sets the table's sliding friction `friction` (μ: 0, or
+    /// [`rules::MIN_FRICTION`] to [`rules::MAX_FRICTION`]) and `gravity` (m/s², in
     /// [`rules::GRAVITY_RANGE`]), after the checks a scene file's `[table]
     /// friction`/`gravity` get, including that every puck is smaller than
     /// the braking's Rindler horizon `c²/(μg)`. Nothing changes if it fails.

@@ -32,6 +32,15 @@ pub const MASS_RANGE: RangeInclusive<f64> = 1e-9..=1e9;
 pub const C_RANGE: RangeInclusive<f64> = 1e-6..=1e9;
 /// Largest coefficient of sliding friction a scene may give (`table.friction`).
 pub const MAX_FRICTION: f64 = 100.0;
+/// Smallest non-zero coefficient of sliding friction (`table.friction` is
+/// 0 or from here to [`MAX_FRICTION`]). With the slowest gravity
+/// ([`GRAVITY_RANGE`]) the braking deceleration μg is then at least
+/// 10⁻¹² m/s², so the braking's Rindler length c²/(μg) is at most 10³⁰ m
+/// and a stopping distance (c²/μg)(γ − 1) at most 10⁴² m at the fastest c
+/// and |u| a scene holds: finite, as every figure `check` prints. (The
+/// smallest double, 5e-324, gives c²/(μg) = ∞.) Below it, braking on any
+/// table the engine holds is uniform motion to every printed digit.
+pub const MIN_FRICTION: f64 = 1e-6;
 /// Range of the gravitational acceleration a scene may give
 /// (`table.gravity`), m/s².
 pub const GRAVITY_RANGE: RangeInclusive<f64> = 1e-6..=1e6;
@@ -70,7 +79,7 @@ pub enum Quantity {
     Mass,
     /// `table.gravity`, m/s² ([`GRAVITY_RANGE`]).
     Gravity,
-    /// `table.friction`: 0 to [`MAX_FRICTION`].
+    /// `table.friction`: 0, or [`MIN_FRICTION`] to [`MAX_FRICTION`].
     Friction,
     /// A restitution (puck or cushion), [0, 1].
     Restitution,
@@ -90,7 +99,7 @@ impl Quantity {
             Quantity::Length => LENGTH_RANGE.contains(&x),
             Quantity::Mass => MASS_RANGE.contains(&x),
             Quantity::Gravity => GRAVITY_RANGE.contains(&x),
-            Quantity::Friction => (0.0..=MAX_FRICTION).contains(&x),
+            Quantity::Friction => x == 0.0 || (MIN_FRICTION..=MAX_FRICTION).contains(&x),
             Quantity::Restitution => (0.0..=1.0).contains(&x),
             Quantity::ProperSpeed => (0.0..=MAX_U).contains(&x),
             Quantity::HistoryFrames => (2.0..=MAX_HISTORY_FRAMES as f64).contains(&x),
@@ -125,6 +134,12 @@ impl Quantity {
             Quantity::Length => between(&LENGTH_RANGE, "m"),
             Quantity::Mass => between(&MASS_RANGE, "kg"),
             Quantity::Gravity => between(&GRAVITY_RANGE, "m/s²"),
+            Quantity::Friction if x > 0.0 && x < MIN_FRICTION => format!(
+                "{} is too small a friction to brake with: give 0 (frictionless) or from {} \
+                 to {MAX_FRICTION} (a carom cloth slides at about 0.2)",
+                number(x),
+                number(MIN_FRICTION)
+            ),
             Quantity::Friction => format!(
                 "{} must be a finite number from 0 (frictionless) to {MAX_FRICTION} \
                  (a carom cloth slides at about 0.2)",
