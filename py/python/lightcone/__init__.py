@@ -28,6 +28,7 @@ from ._lightcone import (
     Simulation,
     SpeedOfLightError,
     World,
+    __version__,
 )
 from .records import Collision, Observation, Record, State
 
@@ -47,5 +48,6 @@ __all__ = [
     "SpeedOfLightError",
     "State",
     "World",
+    "__version__",
     "records",
 ]

@@ -6,9 +6,12 @@ goes, any sequence of numbers is accepted: a tuple, a list, a numpy array.
 """
 
 from os import PathLike
-from typing import Iterator, Optional, Protocol, Sequence, SupportsFloat, Union, final
+from typing import Any, Iterator, Optional, Protocol, Sequence, SupportsFloat, Union, final
 
 from lightcone.records import Collision, Observation, Simultaneity, State
+
+__version__: str
+"""The package's version (the workspace's, as `pip show lightcone` gives it)."""
 
 __all__ = [
     "Frame",
@@ -22,6 +25,7 @@ __all__ = [
     "Simulation",
     "SpeedOfLightError",
     "World",
+    "__version__",
 ]
 
 class _Numbers(Protocol):
@@ -71,6 +75,9 @@ class Frame:
         """The PNG file's bytes."""
     def save(self, path: Union[str, PathLike[str]]) -> None:
         """Saves the picture as a PNG file."""
+    def to_numpy(self) -> Any:
+        """The pixels as a numpy array of shape (height, width, 4), dtype uint8, RGBA, row 0 at the top.
+        Needs numpy (ImportError otherwise)."""
     def _repr_png_(self) -> bytes: ...
 
 @final
@@ -176,6 +183,12 @@ class Simulation:
         at: Optional[float] = None,
     ) -> Observation:
         """What `observer` sees at board time `at` s (default: now)."""
+    def positions(self, at: Optional[float] = None) -> Any:
+        """Every puck's board position (m) at board time `at` (default: now) as a numpy array of
+        shape (N, 2), float64, in scene order. Needs numpy."""
+    def velocities(self, at: Optional[float] = None) -> Any:
+        """Every puck's proper velocity u = γβ at board time `at` (default: now) as a numpy array of
+        shape (N, 2), float64, in scene order. Needs numpy."""
     def velocity(self, name: str) -> tuple[float, float]:
         """Proper velocity γβ of puck `name` now, (x, y)."""
     def render(
