@@ -119,16 +119,39 @@ fn the_seen_fast_puck_lags_behind_the_truth() {
     let (sx, _, sn) = red_centroid(&seen);
     assert!(tn > 20 && sn > 20, "{tn} {sn}");
     assert!(sx < tx - 50.0, "seen at x = {sx}, truth at x = {tx}");
-    // How far behind: where the optics puts the centre, projected.
+    // How far behind, in closed form: the puck's centre moves uniformly,
+    // P(t') = P(t) − v (t − t'), and the light reaching the eye E at t left
+    // it τ = t − t' earlier with c τ = |E − P(t')|. With D = P(t) − E:
+    // (c² − v²) τ² + 2 (D·v) τ − D² = 0, whose positive root, in the form
+    // without cancellation, is τ = D² / (D·v + √((D·v)² + (c² − v²) D²)).
+    let c = scene.c;
+    let v = u.velocity(c);
+    let now = DVec3::new(0.6 + v.x * t, 0.5, 0.0);
+    let d = now - eye;
+    let (dv, cv2) = (d.dot(v), (c - v.length()) * (c + v.length()));
+    let tau = d.length_squared() / (dv + (dv * dv + cv2 * d.length_squared()).sqrt());
+    assert!(t - tau > 0.0, "emitted after the start: {tau}");
     let mut b = Billiard::from_scene(&scene);
     b.advance_to(t);
+    assert!((b.worldline(0).position_at(t) - now).length() < 1e-12);
     let (e, _) = frame::eye_of(&scene, 0, t);
     let w = b.worldline(0);
     let contracted = lightcone_engine::worldline::ContractedShape::of(w);
     let delayed = lightcone_engine::optics::emission::solve(w, DVec3::ZERO, &contracted, e.event);
-    // About 1.2 m behind (light takes ≈ 1.2 s from where it was).
-    let behind = b.worldline(0).position_at(t).x - delayed.event.position.x;
-    assert!((0.9..1.5).contains(&behind), "{behind}");
+    // The engine's emission event is the closed form's, to 1e-12 of the
+    // light delay: seen v τ = 1.2 m behind where it is.
+    assert!(
+        (delayed.event.t - (t - tau)).abs() < 1e-12 * tau,
+        "emitted at {} s, closed form {} s",
+        delayed.event.t,
+        t - tau
+    );
+    let behind = now.x - delayed.event.position.x;
+    assert!(
+        (behind - v.x * tau).abs() < 1e-12,
+        "{behind} vs {}",
+        v.x * tau
+    );
 }
 
 /// Mean absolute difference per channel (0–255) and the share of pixels

@@ -79,7 +79,10 @@ fn frame(head: &mut TrackedHead, game: &mut GameState) {
     head.poll(Instant::now());
     head.drive(game, DVec3::ZERO, DVec3::ZERO);
     assert!(game.eye.position.is_finite(), "eye {:?}", game.eye.position);
-    assert!(game.eye.u.is_finite() && game.eye.u.speed_deficit() > 0.0);
+    // Below c: 1 − |β| as the engine keeps it, against the textbook form
+    // (exact to an ulp of 1 at the speeds a head moves).
+    let beta = game.eye.u.beta().length();
+    assert!(beta < 1.0 && (game.eye.u.speed_deficit() - (1.0 - beta)).abs() < 1e-15);
 }
 
 /// Runs frames (every 200 µs) until `cond` holds or `timeout` passes.

@@ -410,7 +410,7 @@ fn slower_light_on_a_cloth_keeps_every_puck_inside_the_rindler_horizon() {
     let ok = scene.with_c(floor * 1.01).expect("just above the floor");
     let r = ok.pucks[0].radius;
     assert!(r < ok.c * ok.c / ok.table.deceleration());
-    let err = scene.with_c(0.2).expect_err("below the floor");
+    let err = scene.with_c(0.2).expect_err("below the floor").to_string();
     assert!(
         err.contains("cannot brake rigidly") && err.contains("c must be above 0.24"),
         "{err}"
@@ -425,6 +425,9 @@ fn slower_light_on_a_cloth_keeps_every_puck_inside_the_rindler_horizon() {
     big.name = "big".into();
     big.position = glam::DVec2::new(1.5, 0.3);
     big.radius = 0.06;
-    let err = slow.add_puck(big).expect_err("beyond the horizon");
+    let err = slow
+        .add_puck(big)
+        .expect_err("beyond the horizon")
+        .to_string();
     assert!(err.contains("\"big\"") && err.contains("c²/(μg)"), "{err}");
 }

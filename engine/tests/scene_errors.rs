@@ -1,7 +1,7 @@
 //! Every bad input a scene file can hold gets a message that names the
 //! file, the line and the field.
 
-use lightcone_engine::scene::{self, SceneError, TableSpec};
+use lightcone_engine::scene::{self, BuildError, Quantity, SceneError, TableSpec};
 
 const GOOD_PUCK: &str = "[[puck]]\nname = \"a\"\nposition = [0.5, 0.5]\n";
 
@@ -240,7 +240,13 @@ fn u_states_speeds_beyond_what_beta_can() {
     .unwrap();
     let u = s.pucks[0].u;
     assert!((u.gamma() / 1e8 - 1.0).abs() < 1e-15);
-    assert!(u.speed_deficit() > 0.0);
+    // 1 − |β| = 1/(2u²) (1 − 3/(4u²) + …) = 5e-17 at u = 10⁸, where β
+    // itself rounds to 1.
+    assert!(
+        (u.speed_deficit() / 5e-17 - 1.0).abs() < 1e-15,
+        "{}",
+        u.speed_deficit()
+    );
 }
 
 #[test]
@@ -289,24 +295,56 @@ fn scenes_built_in_code_get_the_same_checks() {
         color: Color::default_for(0),
     };
     s.add_puck(puck("a", 0.5)).unwrap();
-    assert!(s.add_puck(puck("a", 1.5)).unwrap_err().contains("unique"));
+    // The rule broken, told apart by variant; the message names the body.
+    let e = s.add_puck(puck("a", 1.5)).unwrap_err();
+    assert_eq!(e.rule(), &BuildError::DuplicateName("a".into()));
+    assert!(e.to_string().contains("unique"), "{e}");
+    let e = s.add_puck(puck("b", 0.55)).unwrap_err();
     assert!(
-        s.add_puck(puck("b", 0.55))
-            .unwrap_err()
-            .contains("overlaps puck \"a\"")
+        matches!(
+            &e,
+            BuildError::Overlap { puck, other, other_line: None, distance, reach: 0.1 }
+                if puck == "b" && other == "a" && (distance - 0.05).abs() < 1e-15
+        ),
+        "{e:?}"
     );
     assert!(
-        s.add_puck(puck("c", 1.99))
-            .unwrap_err()
-            .contains("outside the table")
+        e.to_string()
+            .starts_with("puck \"b\" overlaps puck \"a\": centres 0.05"),
+        "{e}"
     );
-    assert!(
-        s.add_puck(PuckSpec {
+    let e = s.add_puck(puck("c", 1.99)).unwrap_err();
+    assert!(matches!(e, BuildError::OffTable { .. }), "{e}");
+    assert!(e.to_string().contains("outside the table"), "{e}");
+    let e = s
+        .add_puck(PuckSpec {
             radius: -1.0,
             ..puck("d", 1.0)
         })
-        .unwrap_err()
-        .contains("radius")
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "puck \"d\" radius: -1 must be a positive finite number from 1e-6 to 1e6 m"
+    );
+    assert_eq!(
+        e.rule(),
+        &BuildError::OutOfRange {
+            quantity: Quantity::Length,
+            value: -1.0
+        }
+    );
+    let e = s
+        .add_puck(PuckSpec {
+            u: ProperVelocity(DVec3::new(0.0, 2e12, 0.0)),
+            ..puck("e", 1.0)
+        })
+        .unwrap_err();
+    assert_eq!(
+        e.rule(),
+        &BuildError::OutOfRange {
+            quantity: Quantity::ProperSpeed,
+            value: 2e12
+        }
     );
     assert_eq!(s.pucks.len(), 1);
     let eye = ObserverSpec {
@@ -317,9 +355,22 @@ fn scenes_built_in_code_get_the_same_checks() {
     };
     s.add_observer(eye.clone()).unwrap();
     assert_eq!(s.observers.len(), 1);
-    assert!(s.add_observer(eye).is_err());
-    assert!(Scene::empty(DVec2::new(-1.0, 1.0), None).is_err());
-    assert!(Scene::empty(DVec2::new(1.0, 1.0), Some(0.0)).is_err());
+    assert_eq!(
+        s.add_observer(eye).unwrap_err().rule(),
+        &BuildError::DuplicateName("me".into())
+    );
+    assert_eq!(
+        Scene::empty(DVec2::new(-1.0, 1.0), None)
+            .unwrap_err()
+            .rule(),
+        &BuildError::TableSize(DVec2::new(-1.0, 1.0))
+    );
+    assert_eq!(
+        Scene::empty(DVec2::new(1.0, 1.0), Some(0.0))
+            .unwrap_err()
+            .to_string(),
+        "c: 0 must be a positive finite number from 1e-6 to 1e9 m/s"
+    );
 }
 
 /// Every error of `text`, shown.
@@ -591,15 +642,42 @@ fn friction_set_in_code_is_checked_as_in_a_file() {
         mass: 0.2,
         color: scene::Color::default_for(0),
     };
-    assert!(s.set_friction(-0.1, 9.81).unwrap_err().contains("friction"));
-    assert!(s.set_friction(0.2, 0.0).unwrap_err().contains("gravity"));
-    assert!(s.set_friction(f64::NAN, 9.81).is_err());
+    let out_of_range = |e: BuildError, q: Quantity| {
+        assert!(
+            matches!(e.rule(), BuildError::OutOfRange { quantity, .. } if *quantity == q),
+            "{e}"
+        );
+        e.to_string()
+    };
+    let friction = s.set_friction(-0.1, 9.81).unwrap_err();
+    assert!(out_of_range(friction, Quantity::Friction).starts_with("friction: -0.1 must be"));
+    let gravity = s.set_friction(0.2, 0.0).unwrap_err();
+    assert!(out_of_range(gravity, Quantity::Gravity).starts_with("gravity: 0 must be"));
+    out_of_range(
+        s.set_friction(f64::NAN, 9.81).unwrap_err(),
+        Quantity::Friction,
+    );
+    out_of_range(
+        s.set_friction(5e-324, 9.81).unwrap_err(),
+        Quantity::Friction,
+    );
     // c = 0.1 m/s, μg ≈ 1.96 m/s²: the Rindler horizon c²/(μg) ≈ 5 mm, so a
     // 30 mm puck cannot brake rigidly, whichever comes first.
     s.set_friction(0.2, 9.81).unwrap();
-    assert!(s.add_puck(puck.clone()).unwrap_err().contains("c²/(μg)"));
+    let horizon = |e: BuildError| {
+        assert!(
+            matches!(e, BuildError::BeyondHorizon { ref puck, radius: 0.03, .. } if puck == "a"),
+            "{e}"
+        );
+        // 0.1² / (0.2 · 9.81) m, as the message prints it.
+        assert!(
+            e.to_string().contains("c²/(μg) = 0.00509683995922528"),
+            "{e}"
+        );
+    };
+    horizon(s.add_puck(puck.clone()).unwrap_err());
     s.set_friction(0.0, 9.81).unwrap();
     s.add_puck(puck).unwrap();
-    assert!(s.set_friction(0.2, 9.81).unwrap_err().contains("c²/(μg)"));
+    horizon(s.set_friction(0.2, 9.81).unwrap_err());
     assert_eq!(s.table.friction, 0.0, "unchanged by the refused value");
 }

@@ -347,7 +347,7 @@ impl GameState {
         match self.scene.with_c(c) {
             Ok(scene) => self.scene = scene,
             Err(e) => {
-                self.message = e;
+                self.message = e.to_string();
                 return;
             }
         }

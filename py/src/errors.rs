@@ -2,6 +2,7 @@
 //! one place, one class per kind of error. Each is a subclass of the
 //! built-in exception an older caller may already catch.
 
+use lightcone_engine::scene::{BuildError, SceneErrors};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -17,6 +18,27 @@ pyo3::create_exception!(
     SpeedOfLightError,
     SceneError,
     "A speed at or above the speed of light c was given (β = v/c ≥ 1); no body reaches c."
+);
+
+pyo3::create_exception!(
+    _lightcone,
+    OverlapError,
+    SceneError,
+    "Two pucks overlap at board time 0 (their rest-frame discs; touching is allowed)."
+);
+
+pyo3::create_exception!(
+    _lightcone,
+    OutOfRangeError,
+    SceneError,
+    "A number lies outside what the engine holds (README, \"What the engine holds\"): a length, mass, c, friction, gravity, restitution or |u|."
+);
+
+pyo3::create_exception!(
+    _lightcone,
+    BrakingHorizonError,
+    SceneError,
+    "A puck cannot brake rigidly on the cloth: its radius reaches the braking's Rindler horizon c²/(μg)."
 );
 
 pyo3::create_exception!(
@@ -38,18 +60,62 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("SpeedOfLightError", py.get_type::<SpeedOfLightError>())?;
+    m.add("OverlapError", py.get_type::<OverlapError>())?;
+    m.add("OutOfRangeError", py.get_type::<OutOfRangeError>())?;
+    m.add("BrakingHorizonError", py.get_type::<BrakingHorizonError>())?;
     m.add("NoAdapterError", py.get_type::<NoAdapterError>())?;
     m.add("NotComputedError", py.get_type::<NotComputedError>())?;
     Ok(())
 }
 
-/// A scene error: [`SpeedOfLightError`] when the engine's message is about
-/// a speed at or above c, else [`SceneError`].
-pub fn scene_error(message: impl Into<String>) -> PyErr {
-    let message = message.into();
-    if message.contains("not below the speed of light") {
-        SpeedOfLightError::new_err(message)
-    } else {
-        SceneError::new_err(message)
+/// A scene the engine refused, on its way to Python: a broken rule
+/// ([`BuildError`], from a scene built in code) or a scene file's located
+/// errors ([`SceneErrors`]). `From<BuildError> for PyErr` itself is out of
+/// reach (the orphan rule: neither type is this crate's), so this is the
+/// bridge, as polars' `PyPolarsErr` is: `.map_err(ScenePyErr::from)?`.
+pub enum ScenePyErr {
+    /// A rule broken by a scene built in code.
+    Rule(BuildError),
+    /// Every located problem of a scene file or text.
+    File(SceneErrors),
+}
+
+impl From<BuildError> for ScenePyErr {
+    fn from(e: BuildError) -> Self {
+        Self::Rule(e)
+    }
+}
+
+impl From<SceneErrors> for ScenePyErr {
+    fn from(e: SceneErrors) -> Self {
+        Self::File(e)
+    }
+}
+
+/// The exception class for `rule`, by its variant (never by its text).
+fn raise(rule: Option<&BuildError>, message: String) -> PyErr {
+    match rule.map(BuildError::rule) {
+        Some(BuildError::TooFast { .. }) => SpeedOfLightError::new_err(message),
+        Some(BuildError::Overlap { .. }) => OverlapError::new_err(message),
+        Some(BuildError::OutOfRange { .. } | BuildError::TableSize(_)) => {
+            OutOfRangeError::new_err(message)
+        }
+        Some(BuildError::BeyondHorizon { .. }) => BrakingHorizonError::new_err(message),
+        _ => SceneError::new_err(message),
+    }
+}
+
+impl From<ScenePyErr> for PyErr {
+    /// A file's errors take the class of the first one that breaks a rule
+    /// (`SceneError` when none does: syntax, types, unknown keys); every
+    /// class is a `SceneError`.
+    fn from(e: ScenePyErr) -> Self {
+        match e {
+            ScenePyErr::Rule(rule) => raise(Some(&rule), rule.to_string()),
+            ScenePyErr::File(errors) => {
+                let rule = errors.0.iter().find_map(|e| e.rule.as_ref());
+                raise(rule, errors.to_string())
+            }
+        }
     }
 }

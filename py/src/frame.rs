@@ -1,5 +1,5 @@
 //! `lightcone.Frame`: a rendered picture, as PNG bytes (shown inline in
-//! Jupyter through `_repr_png_`).
+//! Jupyter through `_repr_png_`) or, with numpy, as an array of pixels.
 
 use std::path::PathBuf;
 
@@ -42,6 +42,31 @@ impl Frame {
         })
     }
 
+    /// The pixels, RGBA 8 bits, row by row from the top: decoded from the
+    /// PNG (a frame received from the game holds only that).
+    fn rgba(&self) -> PyResult<Vec<u8>> {
+        let bad = |e: png::DecodingError| PyRuntimeError::new_err(format!("the frame's PNG: {e}"));
+        let mut reader = png::Decoder::new(std::io::Cursor::new(&self.png))
+            .read_info()
+            .map_err(bad)?;
+        let size = reader
+            .output_buffer_size()
+            .ok_or_else(|| PyRuntimeError::new_err("the frame's PNG is too large to decode"))?;
+        let mut pixels = vec![0; size];
+        let info = reader.next_frame(&mut pixels).map_err(bad)?;
+        if (info.width, info.height) != (self.width, self.height)
+            || info.color_type != png::ColorType::Rgba
+            || info.bit_depth != png::BitDepth::Eight
+        {
+            return Err(PyRuntimeError::new_err(format!(
+                "the frame's PNG is {}×{} {:?} {:?}, not {}×{} RGBA 8 bits",
+                info.width, info.height, info.color_type, info.bit_depth, self.width, self.height
+            )));
+        }
+        pixels.truncate(info.buffer_size());
+        Ok(pixels)
+    }
+
     /// Writes the PNG to `path`.
     pub(crate) fn save(&self, path: PathBuf) -> PyResult<()> {
         std::fs::write(&path, &self.png)
@@ -73,6 +98,19 @@ impl Frame {
     #[getter]
     fn png<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
         PyBytes::new(py, &self.png)
+    }
+
+    /// The picture as a numpy array of shape (height, width, 4), dtype
+    /// uint8: RGBA, row 0 at the top (as `matplotlib.pyplot.imshow` takes
+    /// it). Needs numpy (`ImportError` naming it otherwise); the rest of
+    /// the module does not.
+    fn to_numpy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let numpy = super::numpy(py, "Frame.to_numpy")?;
+        let pixels = PyBytes::new(py, &self.rgba()?);
+        numpy
+            .call_method1("frombuffer", (pixels, "uint8"))?
+            .call_method1("reshape", (self.height, self.width, 4))?
+            .call_method0("copy")
     }
 
     /// Saves the picture as a PNG file.

@@ -44,7 +44,32 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// The Lightcone engine from Python (`import lightcone`).
 #[pymodule]
 fn _lightcone(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     register(m)
+}
+
+/// numpy, imported for `what` (numpy is optional: only the calls that
+/// return arrays need it), or an `ImportError` saying so.
+fn numpy<'py>(py: Python<'py>, what: &str) -> PyResult<Bound<'py, PyModule>> {
+    py.import("numpy").map_err(|e| {
+        pyo3::exceptions::PyImportError::new_err(format!(
+            "{what} returns a numpy array and needs numpy: pip install numpy ({})",
+            e.value(py)
+        ))
+    })
+}
+
+/// `rows` as a numpy array of shape (len, N), dtype float64.
+fn array<'py, const N: usize>(
+    py: Python<'py>,
+    what: &str,
+    rows: Vec<[f64; N]>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let numpy = numpy(py, what)?;
+    let n = rows.len();
+    numpy
+        .call_method1("array", (rows, "float64"))?
+        .call_method1("reshape", (n, N))
 }
 
 /// Turns a serialisable report into the record class `class` of

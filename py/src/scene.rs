@@ -1,24 +1,17 @@
 //! `lightcone.Scene`: a validated scene, loaded or built in code.
 
 use glam::DVec3;
-use lightcone_engine::scene::{self, Effect};
-use lightcone_engine::spacetime::ProperVelocity;
+use lightcone_engine::scene::{self, BuildError, Effect, rules};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::convert::{Vector, optional};
 use super::effect;
-use super::errors::{SceneError, scene_error};
+use super::errors::ScenePyErr;
 
-/// `name` for a puck or observer (`kind`), refused when empty or padded
-/// with spaces (" a " would sit beside "a" and confuse every look-up).
-fn checked_name(kind: &str, name: &str) -> PyResult<String> {
-    if name.is_empty() || name.trim() != name || name.chars().any(char::is_control) {
-        return Err(SceneError::new_err(format!(
-            "{kind} name {name:?}: give a non-empty name without spaces or control characters at its ends"
-        )));
-    }
-    Ok(name.to_owned())
+/// An optional pair as a board-plane vector (z = 0).
+fn planar(v: Option<Vector<2>>) -> Option<DVec3> {
+    v.map(|v| DVec3::new(v.0[0], v.0[1], 0.0))
 }
 
 /// A validated scene (see the README's "Scene files").
@@ -34,18 +27,18 @@ impl Scene {
     /// file, line and field of every problem.
     #[staticmethod]
     fn load(path: std::path::PathBuf) -> PyResult<Self> {
-        scene::load(&path)
-            .map(|inner| Self { inner })
-            .map_err(|e| scene_error(e.to_string()))
+        Ok(Self {
+            inner: scene::load(&path).map_err(ScenePyErr::from)?,
+        })
     }
 
     /// Parses and validates scene TOML text; `name` is used in messages.
     #[staticmethod]
     #[pyo3(signature = (text, name = "<string>"))]
     fn from_toml(text: &str, name: &str) -> PyResult<Self> {
-        scene::parse(text, name)
-            .map(|inner| Self { inner })
-            .map_err(|e| scene_error(e.to_string()))
+        Ok(Self {
+            inner: scene::parse(text, name).map_err(ScenePyErr::from)?,
+        })
     }
 
     /// An empty scene on a table of `size` = (x, y) metres (default: a
@@ -64,12 +57,12 @@ impl Scene {
         gravity: f64,
     ) -> PyResult<Self> {
         let size = size.pair();
-        let mut inner = scene::Scene::empty(glam::DVec2::new(size.0, size.1), c)
-            .map_err(SceneError::new_err)?;
+        let mut inner =
+            scene::Scene::empty(glam::DVec2::new(size.0, size.1), c).map_err(ScenePyErr::from)?;
         inner.title = title.to_owned();
         inner
             .set_friction(friction, gravity)
-            .map_err(SceneError::new_err)?;
+            .map_err(ScenePyErr::from)?;
         Ok(Self { inner })
     }
 
@@ -84,9 +77,10 @@ impl Scene {
     #[setter]
     fn set_friction(&mut self, friction: f64) -> PyResult<()> {
         let gravity = self.inner.table.gravity;
-        self.inner
+        Ok(self
+            .inner
             .set_friction(friction, gravity)
-            .map_err(SceneError::new_err)
+            .map_err(ScenePyErr::from)?)
     }
 
     /// Gravity under the table, m/s² (with `friction`, the braking
@@ -99,17 +93,19 @@ impl Scene {
     #[setter]
     fn set_gravity(&mut self, gravity: f64) -> PyResult<()> {
         let friction = self.inner.table.friction;
-        self.inner
+        Ok(self
+            .inner
             .set_friction(friction, gravity)
-            .map_err(SceneError::new_err)
+            .map_err(ScenePyErr::from)?)
     }
 
     /// Adds a puck centred at `position` (x, y) m at board time 0; give at
     /// most one of `beta` (v/c), `velocity` (m/s) or `u` (proper velocity
     /// γβ), each any two numbers (tuple, list, array); `radius`, `height`
-    /// in m, `mass` in kg. Raises SpeedOfLightError for a speed ≥ c and
-    /// SceneError for anything else invalid (off the table, overlapping,
-    /// duplicate or padded name …).
+    /// in m, `mass` in kg. Raises SpeedOfLightError for a speed ≥ c,
+    /// OverlapError, OutOfRangeError, BrakingHorizonError, and SceneError
+    /// for anything else invalid (off the table, duplicate or padded
+    /// name …): the class by the rule broken (`errors::ScenePyErr`).
     #[pyo3(signature = (name, position, beta = None, u = None, radius = 0.0305, height = 0.02, mass = 0.21, color = None, velocity = None))]
     #[allow(clippy::too_many_arguments)]
     fn add_puck(
@@ -124,46 +120,20 @@ impl Scene {
         color: Option<&str>,
         velocity: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let name = checked_name("puck", name)?;
-        let beta = optional::<2>("beta", beta)?;
-        let u = optional::<2>("u", u)?;
-        let velocity = optional::<2>("velocity", velocity)?;
-        let position = position.pair();
-        let speed =
-            |e: lightcone_engine::spacetime::SpeedError| scene_error(format!("puck {name:?}: {e}"));
-        let u = match (beta, velocity, u) {
-            (Some(b), None, None) => {
-                ProperVelocity::try_from_beta(DVec3::new(b.0[0], b.0[1], 0.0)).map_err(speed)?
-            }
-            (None, Some(v), None) => {
-                ProperVelocity::try_from_velocity(DVec3::new(v.0[0], v.0[1], 0.0), self.inner.c)
-                    .map_err(speed)?
-            }
-            (None, None, Some(u)) => {
-                if !(u.0[0].is_finite() && u.0[1].is_finite()) {
-                    return Err(SceneError::new_err(format!(
-                        "puck {name:?}: u = {:?}: give finite numbers",
-                        u.0
-                    )));
-                }
-                ProperVelocity(DVec3::new(u.0[0], u.0[1], 0.0))
-            }
-            (None, None, None) => ProperVelocity::ZERO,
-            _ => {
-                return Err(SceneError::new_err(format!(
-                    "puck {name:?}: give at most one of beta, velocity and u"
-                )));
-            }
-        };
+        let beta = planar(optional::<2>("beta", beta)?);
+        let u = planar(optional::<2>("u", u)?);
+        let velocity = planar(optional::<2>("velocity", velocity)?);
+        let u = rules::motion(beta, velocity, u, self.inner.c)
+            .map_err(|e| ScenePyErr::from(e.of(format!("puck {name:?}"))))?;
         let color = match color {
             None => scene::Color::default_for(self.inner.pucks.len()),
-            Some(c) => scene::Color::parse(c).ok_or_else(|| {
-                SceneError::new_err(format!("{c:?} is not a colour: use \"#rrggbb\" or a name"))
-            })?,
+            Some(c) => rules::color(c).map_err(ScenePyErr::from)?,
         };
-        self.inner
+        let position = position.pair();
+        Ok(self
+            .inner
             .add_puck(scene::PuckSpec {
-                name,
+                name: name.to_owned(),
                 position: glam::DVec2::new(position.0, position.1),
                 u,
                 radius,
@@ -171,7 +141,7 @@ impl Scene {
                 mass,
                 color,
             })
-            .map_err(scene_error)
+            .map_err(ScenePyErr::from)?)
     }
 
     /// Adds an observer with its eye at `position` (x, y, z) m, looking at
@@ -186,23 +156,22 @@ impl Scene {
         look_at: Option<&Bound<'_, PyAny>>,
         beta: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let name = checked_name("observer", name)?;
         let look_at = optional::<3>("look_at", look_at)?;
         let beta = optional::<3>("beta", beta)?;
-        let look_at = look_at.map(|v| DVec3::from(v.triple()));
         let u = match beta {
-            None => ProperVelocity::ZERO,
-            Some(b) => ProperVelocity::try_from_beta(DVec3::from(b.triple()))
-                .map_err(|e| scene_error(format!("observer {name:?}: {e}")))?,
+            None => lightcone_engine::spacetime::ProperVelocity::ZERO,
+            Some(b) => rules::from_beta(DVec3::from(b.triple()))
+                .map_err(|e| ScenePyErr::from(e.of(format!("observer {name:?} beta"))))?,
         };
-        self.inner
+        Ok(self
+            .inner
             .add_observer(scene::ObserverSpec {
-                name,
+                name: name.to_owned(),
                 position: DVec3::from(position.triple()),
-                look_at,
+                look_at: look_at.map(|v| DVec3::from(v.triple())),
                 u,
             })
-            .map_err(scene_error)
+            .map_err(ScenePyErr::from)?)
     }
 
     /// Turns an effect on or off (`contraction`, `light_delay`,
@@ -219,27 +188,18 @@ impl Scene {
     }
 
     /// Sets the speed of light, m/s: from 1e-6 to 1e9, as in a scene file,
-    /// and, on a table with friction, fast enough that every puck fits
-    /// inside the braking's Rindler horizon c²/(μg) (`SceneError`
-    /// otherwise, naming `Scene.c`).
+    /// each puck and observer keeping its proper velocity in m/s (`γ v`,
+    /// its momentum per unit mass), so a large c is Newton's scene (the
+    /// engine's `Scene::with_c`, as the game's c slider). On a table with
+    /// friction, c must be fast enough that every puck fits inside the
+    /// braking's Rindler horizon c²/(μg). `SceneError` otherwise, naming
+    /// `Scene.c`; the scene is unchanged.
     #[setter]
     fn set_c(&mut self, c: f64) -> PyResult<()> {
-        let range = scene::C_RANGE;
-        if !range.contains(&c) {
-            return Err(SceneError::new_err(format!(
-                "Scene.c: {} must be a positive finite number from {} to {} m/s",
-                scene::number(c),
-                scene::number(*range.start()),
-                scene::number(*range.end())
-            )));
-        }
-        let t = &self.inner.table;
-        if let Some((_, why)) =
-            scene::braking_horizon_error(c, t.friction, t.gravity, &self.inner.pucks)
-        {
-            return Err(SceneError::new_err(format!("Scene.c: {why}")));
-        }
-        self.inner.c = c;
+        self.inner = self
+            .inner
+            .with_c(c)
+            .map_err(|e: BuildError| ScenePyErr::from(e.of("Scene.c")))?;
         Ok(())
     }
 
@@ -287,11 +247,14 @@ impl Scene {
     /// lesson's process sends.
     #[staticmethod]
     fn _from_json(text: &str) -> PyResult<Self> {
-        let raw: scene::Scene = serde_json::from_str(text)
-            .map_err(|e| scene_error(format!("a scene sent as JSON: {e}")))?;
-        raw.rebuilt()
-            .map(|inner| Self { inner })
-            .map_err(scene_error)
+        let raw: scene::Scene = serde_json::from_str(text).map_err(|e| {
+            super::errors::SceneError::new_err(format!("a scene sent as JSON: {e}"))
+        })?;
+        Ok(Self {
+            inner: raw
+                .rebuilt()
+                .map_err(|e| ScenePyErr::from(e.of("a scene sent as JSON")))?,
+        })
     }
 
     fn __repr__(&self) -> String {

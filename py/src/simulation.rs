@@ -186,6 +186,44 @@ impl Simulation {
         super::velocity(&s.billiard, name, s.billiard.time())
     }
 
+    /// Every puck's centre on the board at board time `at` (default: now;
+    /// any time already computed), m, as a numpy array of shape (N, 2),
+    /// dtype float64, in scene order (`scene.pucks`): the positions of
+    /// `state()` as one array, for plotting. Needs numpy.
+    #[pyo3(signature = (at = None))]
+    fn positions<'py>(&self, py: Python<'py>, at: Option<f64>) -> PyResult<Bound<'py, PyAny>> {
+        let rows = {
+            let s = self.lock(py);
+            let t = super::past_time(at, s.billiard.time())?;
+            (0..s.billiard.len())
+                .map(|i| {
+                    let p = s.billiard.worldline(i).position_at(t);
+                    [p.x, p.y]
+                })
+                .collect()
+        };
+        super::array(py, "Simulation.positions", rows)
+    }
+
+    /// Every puck's proper velocity u = γβ (dimensionless) at board time
+    /// `at` (default: now), as a numpy array of shape (N, 2), dtype
+    /// float64, in scene order: `velocity(name)` for all at once. Needs
+    /// numpy.
+    #[pyo3(signature = (at = None))]
+    fn velocities<'py>(&self, py: Python<'py>, at: Option<f64>) -> PyResult<Bound<'py, PyAny>> {
+        let rows = {
+            let s = self.lock(py);
+            let t = super::past_time(at, s.billiard.time())?;
+            (0..s.billiard.len())
+                .map(|i| {
+                    let u = s.billiard.worldline(i).proper_velocity_at(t);
+                    [u.0.x, u.0.y]
+                })
+                .collect()
+        };
+        super::array(py, "Simulation.velocities", rows)
+    }
+
     /// Renders what `observer` (default: the first) sees at board time `at`
     /// (default: now) headless, and returns the frame (shown inline in
     /// Jupyter); with `path`, also saves it as a PNG. `view` is "seen" or

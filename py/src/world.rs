@@ -224,7 +224,7 @@ impl World {
         };
         lightcone_engine::scene::load(&path)
             .map(|inner| Scene { inner })
-            .map_err(|e| super::errors::scene_error(e.to_string()))
+            .map_err(|e| super::errors::ScenePyErr::from(e).into())
     }
 
     /// A copy of the scene being played.

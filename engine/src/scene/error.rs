@@ -2,8 +2,10 @@
 
 use std::fmt;
 
+use super::rules::BuildError;
+
 /// One problem in a scene file.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SceneError {
     /// File name as given by the user.
     pub file: String,
@@ -15,6 +17,10 @@ pub struct SceneError {
     pub field: String,
     /// What is wrong and what would be right.
     pub message: String,
+    /// The scene rule broken, when it is one (`None` for syntax, types,
+    /// unknown keys and the file as a whole): what a caller tells kinds
+    /// apart by (Python's exception class).
+    pub rule: Option<BuildError>,
 }
 
 impl SceneError {
@@ -27,6 +33,15 @@ impl SceneError {
             column,
             field: one_line(field),
             message: one_line(&message),
+            rule: None,
+        }
+    }
+
+    /// This error as the breaking of `rule`.
+    pub fn breaking(self, rule: BuildError) -> Self {
+        Self {
+            rule: Some(rule),
+            ..self
         }
     }
 
@@ -38,6 +53,7 @@ impl SceneError {
             column: 0,
             field: String::new(),
             message: one_line(&message),
+            rule: None,
         }
     }
 }
@@ -57,7 +73,7 @@ impl fmt::Display for SceneError {
 }
 
 /// Every problem found in one scene file (never empty).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SceneErrors(pub Vec<SceneError>);
 
 impl SceneErrors {

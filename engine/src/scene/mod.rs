@@ -4,19 +4,27 @@
 //! See the README section "Scene files" for the format. A scene is read in
 //! two steps: the private `raw` module mirrors the file with the position of every value,
 //! then `validate` checks the physics (speed below `c`, pucks on the table
-//! and apart, finite numbers) and builds the engine's [`Scene`].
+//! and apart, finite numbers) and builds the engine's [`Scene`]. The rules
+//! themselves are stated once, in [`rules`], for the file loader and for
+//! scenes built in code ([`Scene::add_puck`] …) alike; a broken one is a
+//! [`BuildError`].
 
+mod effects;
 mod error;
 mod model;
+mod overlap;
 mod raw;
+pub mod rules;
 mod validate;
 
+pub use effects::{Effect, Effects};
 pub use error::{SceneError, SceneErrors, number};
-pub use model::{
-    BeforeStart, C_RANGE, Color, Effect, Effects, GRAVITY_RANGE, LENGTH_RANGE, MASS_RANGE,
-    MAX_DICHOTOMY_STEPS, MAX_FRICTION, MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS,
-    MAX_PUCKS, MAX_U, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec, braking_horizon_error,
-    first_overlaps, overlap,
+pub use model::{BeforeStart, Color, ObserverSpec, OpticsSpec, PuckSpec, Scene, TableSpec};
+pub use overlap::{first_overlaps, overlap};
+pub use rules::{
+    BuildError, C_RANGE, GRAVITY_RANGE, LENGTH_RANGE, MASS_RANGE, MAX_DICHOTOMY_STEPS,
+    MAX_FRICTION, MAX_HISTORY_FRAMES, MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS, MAX_U,
+    MIN_FRICTION, Quantity, braking_horizon,
 };
 pub use validate::MAX_ERRORS_PER_KIND;
 

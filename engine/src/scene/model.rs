@@ -3,7 +3,9 @@
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
-use super::error::number;
+use super::effects::Effects;
+use super::overlap::overlap;
+use super::rules::{self, BuildError, MAX_OBSERVERS, MAX_PUCKS, Quantity};
 use crate::spacetime::ProperVelocity;
 
 /// Default puck radius, m: a carom ball's 61.5 mm diameter.
@@ -14,50 +16,6 @@ pub const DEFAULT_HEIGHT: f64 = 0.02;
 pub const DEFAULT_MASS: f64 = 0.21;
 /// Default playing area of a match carom table, m.
 pub const DEFAULT_TABLE: [f64; 2] = [2.84, 1.42];
-
-// The range the engine holds. Everything a scene gives must lie inside it;
-// outside it f64 loses the digits the physics and optics need (or a run
-// cannot finish), so scenes beyond it are refused with a located error.
-// README, "What the engine holds", gives the reasons.
-
-/// Largest proper speed |u| = γ|β| a puck or observer may have. β itself
-/// rounds to 1 in f64 from |u| ≈ 10⁸ on; the engine works with u, never
-/// with 1 − β², so it holds far beyond that, and γ = √(1 + u²) stays exact
-/// to the last digit up to here.
-pub const MAX_U: f64 = 1e12;
-/// |v| without overflow: finite for every finite `v` (10²⁰⁰ squared is
-/// not).
-pub fn magnitude(v: DVec3) -> f64 {
-    let m = v.abs().max_element();
-    if m == 0.0 || !m.is_finite() {
-        m
-    } else {
-        m * (v / m).length()
-    }
-}
-
-/// Lengths (table sides, puck radius and height), m.
-pub const LENGTH_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
-/// Puck rest mass, kg.
-pub const MASS_RANGE: std::ops::RangeInclusive<f64> = 1e-9..=1e9;
-/// Speed of light, m/s (the real one, 299 792 458, included).
-pub const C_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e9;
-/// Largest coefficient of sliding friction a scene may give (`table.friction`).
-pub const MAX_FRICTION: f64 = 100.0;
-/// Range of the gravitational acceleration a scene may give
-/// (`table.gravity`), m/s².
-pub const GRAVITY_RANGE: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
-/// Largest coordinate of an observer's eye or `look_at`, m.
-pub const MAX_OBSERVER_DISTANCE: f64 = 1e9;
-/// Most pucks in one scene.
-pub const MAX_PUCKS: usize = 1_000_000;
-/// Most observers in one scene.
-pub const MAX_OBSERVERS: usize = 1000;
-/// Most frames of sampled history (`[optics] history_frames`).
-pub const MAX_HISTORY_FRAMES: usize = 100_000;
-/// Most dichotomy steps (`[optics] dichotomy_steps`): 64 halvings exhaust
-/// an f64 interval.
-pub const MAX_DICHOTOMY_STEPS: u32 = 64;
 
 /// A validated scene. Every number is finite, every speed below `c`, every
 /// puck on the table and clear of the others.
@@ -286,126 +244,6 @@ impl Color {
     }
 }
 
-/// A relativistic effect a view can show. Physics (collisions, contraction
-/// of the colliding shapes) is always relativistic; these select what the
-/// *views* show, and each is implemented by systems that run only when it
-/// is on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Effect {
-    /// Bodies drawn contracted along their motion (§3.2.2).
-    Contraction,
-    /// Bodies seen where they were when the light left them (§3.2.1).
-    LightDelay,
-    /// Directions transformed into the moving observer's frame.
-    Aberration,
-    /// Colours shifted by the Doppler factor.
-    Doppler,
-    /// Brightness scaled by the Doppler factor (searchlight / beaming).
-    Searchlight,
-    /// Clocks on bodies show proper time.
-    TimeDilation,
-}
-
-impl Effect {
-    /// Every effect, in the order of the `[effects]` table.
-    pub const ALL: [Effect; 6] = [
-        Effect::Contraction,
-        Effect::LightDelay,
-        Effect::Aberration,
-        Effect::Doppler,
-        Effect::Searchlight,
-        Effect::TimeDilation,
-    ];
-
-    /// The key in the scene file.
-    pub fn key(self) -> &'static str {
-        match self {
-            Effect::Contraction => "contraction",
-            Effect::LightDelay => "light_delay",
-            Effect::Aberration => "aberration",
-            Effect::Doppler => "doppler",
-            Effect::Searchlight => "searchlight",
-            Effect::TimeDilation => "time_dilation",
-        }
-    }
-}
-
-/// The `[effects]` flags: a scene's effect set (in the ECS each view
-/// carries it as one marker component per effect, see `crate::ecs`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Effects {
-    /// See [`Effect::Contraction`]. Default on.
-    pub contraction: bool,
-    /// See [`Effect::LightDelay`]. Default on.
-    pub light_delay: bool,
-    /// See [`Effect::Aberration`]. Default on.
-    pub aberration: bool,
-    /// See [`Effect::Doppler`]. Default off.
-    pub doppler: bool,
-    /// See [`Effect::Searchlight`]. Default off.
-    pub searchlight: bool,
-    /// See [`Effect::TimeDilation`]. Default on.
-    pub time_dilation: bool,
-}
-
-impl Default for Effects {
-    fn default() -> Self {
-        Self {
-            contraction: true,
-            light_delay: true,
-            aberration: true,
-            doppler: false,
-            searchlight: false,
-            time_dilation: true,
-        }
-    }
-}
-
-impl Effects {
-    /// Every effect off: the Newtonian picture (for comparison views).
-    pub const NONE: Self = Self {
-        contraction: false,
-        light_delay: false,
-        aberration: false,
-        doppler: false,
-        searchlight: false,
-        time_dilation: false,
-    };
-
-    /// Whether `effect` is on.
-    pub fn is_on(&self, effect: Effect) -> bool {
-        *self.flag(effect)
-    }
-
-    /// Turns `effect` on or off.
-    pub fn set(&mut self, effect: Effect, on: bool) {
-        *self.flag_mut(effect) = on;
-    }
-
-    fn flag(&self, effect: Effect) -> &bool {
-        match effect {
-            Effect::Contraction => &self.contraction,
-            Effect::LightDelay => &self.light_delay,
-            Effect::Aberration => &self.aberration,
-            Effect::Doppler => &self.doppler,
-            Effect::Searchlight => &self.searchlight,
-            Effect::TimeDilation => &self.time_dilation,
-        }
-    }
-
-    fn flag_mut(&mut self, effect: Effect) -> &mut bool {
-        match effect {
-            Effect::Contraction => &mut self.contraction,
-            Effect::LightDelay => &mut self.light_delay,
-            Effect::Aberration => &mut self.aberration,
-            Effect::Doppler => &mut self.doppler,
-            Effect::Searchlight => &mut self.searchlight,
-            Effect::TimeDilation => &mut self.time_dilation,
-        }
-    }
-}
-
 impl PuckSpec {
     /// Half-width of the contracted puck along the unit axis `axis`, m:
     /// the support of an ellipse of semi-axes `R/γ` (along the motion) and
@@ -442,169 +280,20 @@ impl TableSpec {
     pub fn deceleration(&self) -> f64 {
         self.friction * self.gravity
     }
-
-    /// Why the puck does not fit on the table at t = 0, if it does not.
-    /// Touching a cushion is allowed.
-    pub fn misplaced(&self, puck: &PuckSpec) -> Option<String> {
-        let hx = puck.half_extent_along(DVec2::X);
-        let hy = puck.half_extent_along(DVec2::Y);
-        let p = puck.position;
-        let (lo, hi) = (DVec2::new(hx, hy), self.size - DVec2::new(hx, hy));
-        if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
-            Some(format!(
-                "puck \"{}\" at ({}, {}) m reaches outside the table [0, {}] × [0, {}] m \
-                 (its half-extents are {} × {} m)",
-                puck.name,
-                number(p.x),
-                number(p.y),
-                number(self.size.x),
-                number(self.size.y),
-                number(hx),
-                number(hy)
-            ))
-        } else {
-            None
-        }
-    }
 }
 
-/// Whether the rest-frame discs of `a` and `b` overlap at t = 0 (touching,
-/// to a relative 10⁻¹², is allowed: pucks placed in contact to the digits of
-/// the file are not called overlapping).
-pub fn overlap(a: &PuckSpec, b: &PuckSpec) -> bool {
-    let reach = a.radius + b.radius;
-    a.position.distance(b.position) < reach * (1.0 - 1e-12)
-}
-
-/// For each puck `j` whose rest-frame disc overlaps that of an earlier puck
-/// at t = 0, one pair `(i, j)` with `i < j` (the first such `i` the search
-/// meets; touching is allowed), in increasing `j`. At most one pair per
-/// puck, so 10⁵ pucks at one point give 10⁵ − 1 pairs, not 5·10⁹.
-///
-/// A uniform grid of cells twice the median radius: each puck is filed
-/// under the cells its bounding square covers and compared only with the
-/// pucks filed there, so the cost is O(N) for pucks of similar size
-/// however they are laid out (on a line, in a crowd, all at one point). A
-/// puck covering more than 16 cells (much larger than the median) is kept
-/// on a short list compared with every puck.
-///
-/// The rest-frame disc is conservative: a contracted puck lies inside it.
-pub fn first_overlaps(pucks: &[PuckSpec]) -> Vec<(usize, usize)> {
-    use std::collections::HashMap;
-    if pucks.len() < 2 {
-        return Vec::new();
-    }
-    let mut radii: Vec<f64> = pucks.iter().map(|p| p.radius).collect();
-    let mid = radii.len() / 2;
-    let (_, median, _) = radii.select_nth_unstable_by(mid, f64::total_cmp);
-    let cell = 2.0 * *median;
-    let index = |x: f64| (x / cell).floor() as i64;
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-    let mut big: Vec<usize> = Vec::new();
-    let mut pairs = Vec::new();
-    for (j, p) in pucks.iter().enumerate() {
-        let (x0, x1) = (
-            index(p.position.x - p.radius),
-            index(p.position.x + p.radius),
-        );
-        let (y0, y1) = (
-            index(p.position.y - p.radius),
-            index(p.position.y + p.radius),
-        );
-        let cells = (x1 - x0 + 1).saturating_mul(y1 - y0 + 1);
-        let found = if cells > 16 {
-            (0..j).find(|&i| overlap(&pucks[i], p))
-        } else {
-            let mut found = big.iter().copied().find(|&i| overlap(&pucks[i], p));
-            'cells: for cx in x0..=x1 {
-                for cy in y0..=y1 {
-                    if found.is_some() {
-                        break 'cells;
-                    }
-                    if let Some(list) = grid.get(&(cx, cy)) {
-                        found = list.iter().copied().find(|&i| overlap(&pucks[i], p));
-                    }
-                }
-            }
-            found
-        };
-        if let Some(i) = found {
-            pairs.push((i, j));
-        }
-        if cells > 16 {
-            big.push(j);
-        } else {
-            for cx in x0..=x1 {
-                for cy in y0..=y1 {
-                    grid.entry((cx, cy)).or_default().push(j);
-                }
-            }
-        }
-    }
-    pairs
-}
-
-/// Why a puck of `pucks` cannot brake rigidly on a table of sliding
-/// friction `friction` under `gravity` m/s² with light at `c` m/s: a
-/// Born-rigid body must be shorter than the braking's Rindler horizon
-/// `c²/(μg)` (see [`crate::worldline::sliding`]). The index of the first
-/// such puck and the reason; `None` when every puck can (or μ = 0).
-pub fn braking_horizon_error(
-    c: f64,
-    friction: f64,
-    gravity: f64,
-    pucks: &[PuckSpec],
-) -> Option<(usize, String)> {
-    if friction <= 0.0 {
-        return None;
-    }
-    let horizon = c * c / (friction * gravity);
-    let k = pucks.iter().position(|p| p.radius >= horizon)?;
-    let p = &pucks[k];
-    Some((
-        k,
-        format!(
-            "puck \"{}\" (radius {} m) cannot brake rigidly: with friction {}, gravity {} m/s² \
-             and c = {} m/s a puck must be smaller than c²/(μg) = {} m",
-            p.name,
-            number(p.radius),
-            number(friction),
-            number(gravity),
-            number(c),
-            number(horizon)
-        ),
-    ))
-}
-
+/// Building a scene in code (Python lessons, the game's placeholders): the
+/// checks a scene file gets, from [`super::rules`], each refusal a typed
+/// [`BuildError`] naming the body or field.
 impl Scene {
     /// An empty scene on a table of `size` metres, with `c` (default: light
     /// crosses the long side in 2 s), default effects and no pucks; one
-    /// default observer until one is added. For scenes built in code
-    /// (Python lessons).
-    pub fn empty(size: DVec2, c: Option<f64>) -> Result<Self, String> {
-        if !(size.is_finite() && size.x > 0.0 && size.y > 0.0) {
-            return Err(format!(
-                "table size {size} must be two positive finite numbers"
-            ));
-        }
-        if !(LENGTH_RANGE.contains(&size.x) && LENGTH_RANGE.contains(&size.y)) {
-            return Err(format!(
-                "table size ({}, {}) m: both sides must be from {} to {} m",
-                number(size.x),
-                number(size.y),
-                number(*LENGTH_RANGE.start()),
-                number(*LENGTH_RANGE.end())
-            ));
-        }
-        let c = c.unwrap_or(Self::default_c(size));
-        if !C_RANGE.contains(&c) {
-            return Err(format!(
-                "c = {} m/s must be from {} to {} m/s",
-                number(c),
-                number(*C_RANGE.start()),
-                number(*C_RANGE.end())
-            ));
-        }
+    /// default observer until one is added.
+    pub fn empty(size: DVec2, c: Option<f64>) -> Result<Self, BuildError> {
+        rules::table_size(size).map_err(|e| e.of("table size"))?;
+        let c = Quantity::C
+            .check(c.unwrap_or(Self::default_c(size)))
+            .map_err(|e| e.of("c"))?;
         Ok(Self {
             title: "scene".to_owned(),
             description: String::new(),
@@ -619,143 +308,97 @@ impl Scene {
         })
     }
 
-    /// Adds a puck after the same checks a scene file gets (unique name,
-    /// finite numbers, positive radius, height and mass, on the table, clear
-    /// of the other pucks). Nothing changes if it fails.
-    pub fn add_puck(&mut self, puck: PuckSpec) -> Result<(), String> {
-        let name = puck.name.clone();
-        if name.trim().is_empty() || self.puck(&name).is_some() {
-            return Err(format!("puck name \"{name}\" must be unique and not empty"));
-        }
-        if !(puck.position.is_finite() && puck.u.is_finite()) {
-            return Err(format!(
-                "puck \"{name}\": position and velocity must be finite"
-            ));
-        }
-        if magnitude(puck.u.0) > MAX_U {
-            return Err(format!(
-                "puck \"{name}\": |u| = {} is beyond what the engine holds (at most {})",
-                number(magnitude(puck.u.0)),
-                number(MAX_U)
-            ));
-        }
-        for (what, v, range, unit) in [
-            ("radius", puck.radius, LENGTH_RANGE, "m"),
-            ("height", puck.height, LENGTH_RANGE, "m"),
-            ("mass", puck.mass, MASS_RANGE, "kg"),
+    /// Adds a puck after the same checks a scene file gets (a unique name
+    /// without padding, finite numbers, |u| ≤ [`rules::MAX_U`], radius, height and
+    /// mass in range, on the table, inside the braking's Rindler horizon,
+    /// clear of the other pucks). Nothing changes if it fails.
+    pub fn add_puck(&mut self, puck: PuckSpec) -> Result<(), BuildError> {
+        let name = puck.name.as_str();
+        rules::name(name, |n| self.puck(n).is_some()).map_err(|e| e.of("puck"))?;
+        let of = |what: &str| format!("puck \"{name}\" {what}");
+        rules::finite(&puck.position.to_array()).map_err(|e| e.of(of("position")))?;
+        rules::proper_velocity(puck.u.0).map_err(|e| e.of(of("u")))?;
+        for (what, v, quantity) in [
+            ("radius", puck.radius, Quantity::Length),
+            ("height", puck.height, Quantity::Length),
+            ("mass", puck.mass, Quantity::Mass),
         ] {
-            if !range.contains(&v) {
-                return Err(format!(
-                    "puck \"{name}\": {what} {} must be a number from {} to {} {unit}",
-                    number(v),
-                    number(*range.start()),
-                    number(*range.end())
-                ));
-            }
+            quantity.check(v).map_err(|e| e.of(of(what)))?;
         }
         if self.pucks.len() >= MAX_PUCKS {
-            return Err(format!("a scene holds at most {MAX_PUCKS} pucks"));
+            return Err(BuildError::TooMany {
+                what: "pucks",
+                count: self.pucks.len() + 1,
+                max: MAX_PUCKS,
+            });
         }
-        if let Some(why) = self.table.misplaced(&puck) {
-            return Err(why);
-        }
-        if self.table.deceleration() > 0.0
-            && puck.radius >= self.c * self.c / self.table.deceleration()
+        rules::on_table(&self.table, &puck)?;
+        let t = &self.table;
+        if let Some((_, e)) =
+            rules::braking_horizon(self.c, t.friction, t.gravity, std::slice::from_ref(&puck))
         {
-            return Err(format!(
-                "puck \"{name}\" (radius {} m) cannot brake rigidly on this table: it must be \
-                 smaller than c²/(μg) = {} m",
-                number(puck.radius),
-                number(self.c * self.c / self.table.deceleration())
-            ));
+            return Err(e);
         }
         // One pass over the others: O(N) per puck added.
         if let Some(other) = self.pucks.iter().find(|o| overlap(o, &puck)) {
-            return Err(format!("puck \"{name}\" overlaps puck \"{}\"", other.name));
-        }
-        if let Some((_, why)) = braking_horizon_error(
-            self.c,
-            self.table.friction,
-            self.table.gravity,
-            std::slice::from_ref(&puck),
-        ) {
-            return Err(why);
+            return Err(BuildError::Overlap {
+                puck: puck.name.clone(),
+                other: other.name.clone(),
+                other_line: None,
+                distance: other.position.distance(puck.position),
+                reach: other.radius + puck.radius,
+            });
         }
         self.pucks.push(puck);
         Ok(())
     }
 
-    /// Sets the table's sliding friction `friction` (μ, 0 to
-    /// [`MAX_FRICTION`]) and `gravity` (m/s², in [`GRAVITY_RANGE`]), after
-    /// the checks a scene file's `[table] friction`/`gravity` get, including
-    /// that every puck is smaller than the braking's Rindler horizon
-    /// `c²/(μg)`. Nothing changes if it fails.
-    pub fn set_friction(&mut self, friction: f64, gravity: f64) -> Result<(), String> {
-        if !(0.0..=MAX_FRICTION).contains(&friction) {
-            return Err(format!(
-                "friction {} must be a finite number from 0 (frictionless) to {MAX_FRICTION} \
-                 (a carom cloth slides at about 0.2)",
-                number(friction)
-            ));
-        }
-        if !GRAVITY_RANGE.contains(&gravity) {
-            return Err(format!(
-                "gravity {} must be a number from {} to {} m/s²",
-                number(gravity),
-                number(*GRAVITY_RANGE.start()),
-                number(*GRAVITY_RANGE.end())
-            ));
-        }
-        if let Some((_, why)) = braking_horizon_error(self.c, friction, gravity, &self.pucks) {
-            return Err(why);
+    /// Sets the table's sliding friction `friction` (μ: 0, or
+    /// [`rules::MIN_FRICTION`] to [`rules::MAX_FRICTION`]) and `gravity` (m/s², in
+    /// [`rules::GRAVITY_RANGE`]), after the checks a scene file's `[table]
+    /// friction`/`gravity` get, including that every puck is smaller than
+    /// the braking's Rindler horizon `c²/(μg)`. Nothing changes if it fails.
+    pub fn set_friction(&mut self, friction: f64, gravity: f64) -> Result<(), BuildError> {
+        Quantity::Friction
+            .check(friction)
+            .map_err(|e| e.of("friction"))?;
+        Quantity::Gravity
+            .check(gravity)
+            .map_err(|e| e.of("gravity"))?;
+        if let Some((_, e)) = rules::braking_horizon(self.c, friction, gravity, &self.pucks) {
+            return Err(e);
         }
         self.table.friction = friction;
         self.table.gravity = gravity;
         Ok(())
     }
 
-    /// Adds an observer (the first one added replaces the default eye).
-    pub fn add_observer(&mut self, observer: ObserverSpec) -> Result<(), String> {
-        let name = &observer.name;
+    /// Adds an observer (the first one added replaces the default eye)
+    /// after the checks a scene file's `[[observer]]` gets. Nothing changes
+    /// if it fails.
+    pub fn add_observer(&mut self, observer: ObserverSpec) -> Result<(), BuildError> {
+        let name = observer.name.as_str();
         let default_only = self.observers.len() == 1
             && self.observers[0] == Self::default_observer(self.table.size);
-        if name.trim().is_empty() || (!default_only && self.observer(name).is_some()) {
-            return Err(format!(
-                "observer name \"{name}\" must be unique and not empty"
-            ));
+        rules::name(name, |n| !default_only && self.observer(n).is_some())
+            .map_err(|e| e.of("observer"))?;
+        let of = |what: &str| format!("observer \"{name}\" {what}");
+        rules::finite(&observer.position.to_array()).map_err(|e| e.of(of("position")))?;
+        rules::near(observer.position).map_err(|e| e.of(of("position")))?;
+        if let Some(p) = observer.look_at {
+            rules::finite(&p.to_array()).map_err(|e| e.of(of("look_at")))?;
+            rules::near(p).map_err(|e| e.of(of("look_at")))?;
+            if p == observer.position {
+                return Err(BuildError::LookAtEye.of(of("look_at")));
+            }
         }
-        if !(observer.position.is_finite()
-            && observer.look_at.is_none_or(|p| p.is_finite())
-            && observer.u.is_finite())
-        {
-            return Err(format!(
-                "observer \"{name}\": position, look_at and velocity must be finite"
-            ));
-        }
-        if observer.position.abs().max_element() > MAX_OBSERVER_DISTANCE
-            || observer
-                .look_at
-                .is_some_and(|p| p.abs().max_element() > MAX_OBSERVER_DISTANCE)
-        {
-            return Err(format!(
-                "observer \"{name}\": keep position and look_at within ±{} m",
-                number(MAX_OBSERVER_DISTANCE)
-            ));
-        }
-        if magnitude(observer.u.0) > MAX_U {
-            return Err(format!(
-                "observer \"{name}\": |u| = {} is beyond what the engine holds (at most {})",
-                number(magnitude(observer.u.0)),
-                number(MAX_U)
-            ));
-        }
+        rules::proper_velocity(observer.u.0).map_err(|e| e.of(of("u")))?;
         if !default_only && self.observers.len() >= MAX_OBSERVERS {
-            return Err(format!("a scene holds at most {MAX_OBSERVERS} observers"));
-        }
-        if observer.look_at == Some(observer.position) {
-            return Err(format!(
-                "observer \"{name}\": look_at must differ from position"
-            ));
+            return Err(BuildError::TooMany {
+                what: "observers",
+                count: self.observers.len() + 1,
+                max: MAX_OBSERVERS,
+            });
         }
         if default_only {
             self.observers.clear();
@@ -771,14 +414,14 @@ impl Scene {
     /// arrives as data from a process the game does not trust (a lesson
     /// run in its own process sends `world.start(scene)` as JSON). Errors
     /// name the first problem.
-    pub fn rebuilt(&self) -> Result<Self, String> {
+    pub fn rebuilt(&self) -> Result<Self, BuildError> {
         let mut scene = Self::empty(self.table.size, Some(self.c))?;
         for p in &self.pucks {
             scene.add_puck(p.clone())?;
         }
         scene.set_friction(self.table.friction, self.table.gravity)?;
         if self.observers.is_empty() {
-            return Err("a scene has at least one observer".to_owned());
+            return Err(BuildError::NoObserver);
         }
         for o in &self.observers {
             scene.add_observer(o.clone())?;
@@ -787,17 +430,14 @@ impl Scene {
             ("restitution", self.restitution),
             ("cushion_restitution", self.table.cushion_restitution),
         ] {
-            if !(0.0..=1.0).contains(&r) {
-                return Err(format!("{what} {} must be from 0 to 1", number(r)));
-            }
+            Quantity::Restitution.check(r).map_err(|e| e.of(what))?;
         }
-        if self.optics.history_frames > MAX_HISTORY_FRAMES
-            || self.optics.dichotomy_steps > MAX_DICHOTOMY_STEPS
-        {
-            return Err(format!(
-                "optics: history_frames at most {MAX_HISTORY_FRAMES}, dichotomy_steps at most {MAX_DICHOTOMY_STEPS}"
-            ));
-        }
+        Quantity::HistoryFrames
+            .check(self.optics.history_frames as f64)
+            .map_err(|e| e.of("optics.history_frames"))?;
+        Quantity::DichotomySteps
+            .check(f64::from(self.optics.dichotomy_steps))
+            .map_err(|e| e.of("optics.dichotomy_steps"))?;
         scene.title = self.title.clone();
         scene.description = self.description.clone();
         scene.restitution = self.restitution;
@@ -812,34 +452,40 @@ impl Scene {
     /// body keeping its proper velocity in m/s (`γ v`, its momentum per unit
     /// mass): its `u = γβ` scales by `c_old / c`. Raising `c` thus tends to
     /// the Newtonian scene with velocities `γ v`; lowering it never brings a
-    /// body to `c`. Errors on a `c` that is not a positive finite number.
-    pub fn with_c(&self, c: f64) -> Result<Self, String> {
-        if !(c.is_finite() && c > 0.0) {
-            return Err(format!("c = {c} must be a positive finite number of m/s"));
-        }
-        // On a cloth, slower light brings the braking's Rindler horizon
-        // closer: refused (the scene kept) once a puck would not fit.
-        if let Some((_, why)) =
-            braking_horizon_error(c, self.table.friction, self.table.gravity, &self.pucks)
-        {
-            let slowest = self
-                .pucks
-                .iter()
-                .map(|p| (p.radius * self.table.deceleration()).sqrt())
-                .fold(0.0, f64::max);
-            return Err(format!(
-                "{why}: on this cloth c must be above {} m/s (or the table frictionless)",
-                number(slowest)
-            ));
+    /// body to `c`. Errors on a `c` outside [`rules::C_RANGE`] (as a scene file's),
+    /// on a body whose `u` would leave what the engine holds ([`rules::MAX_U`]),
+    /// and, on a cloth, on a puck that would not fit inside the braking's
+    /// Rindler horizon ([`BuildError::BeyondHorizon`], saying how slow `c`
+    /// may go); the scene is then unchanged.
+    pub fn with_c(&self, c: f64) -> Result<Self, BuildError> {
+        Quantity::C.check(c)?;
+        let t = &self.table;
+        if let Some((_, mut e)) = rules::braking_horizon(c, t.friction, t.gravity, &self.pucks) {
+            if let BuildError::BeyondHorizon { min_c, .. } = &mut e {
+                let slowest = self
+                    .pucks
+                    .iter()
+                    .map(|p| (p.radius * t.deceleration()).sqrt())
+                    .fold(0.0, f64::max);
+                *min_c = Some(slowest);
+            }
+            return Err(e);
         }
         let k = self.c / c;
         let mut scene = self.clone();
         scene.c = c;
-        for p in &mut scene.pucks {
-            p.u = ProperVelocity(p.u.0 * k);
-        }
-        for o in &mut scene.observers {
-            o.u = ProperVelocity(o.u.0 * k);
+        let bodies = scene
+            .pucks
+            .iter_mut()
+            .map(|p| (format!("puck \"{}\" u", p.name), &mut p.u))
+            .chain(
+                scene
+                    .observers
+                    .iter_mut()
+                    .map(|o| (format!("observer \"{}\" u", o.name), &mut o.u)),
+            );
+        for (subject, u) in bodies {
+            *u = rules::proper_velocity(u.0 * k).map_err(|e| e.of(subject))?;
         }
         Ok(scene)
     }
@@ -915,25 +561,29 @@ mod tests {
         // What a scene sent as data can hold and a built one cannot.
         let mut overlapping = scene.clone();
         overlapping.pucks.push(puck("b", 0.55));
-        assert!(overlapping.rebuilt().unwrap_err().contains("overlaps"));
+        assert!(matches!(
+            overlapping.rebuilt(),
+            Err(BuildError::Overlap { ref puck, ref other, .. }) if puck == "b" && other == "a"
+        ));
         let mut fast = scene.clone();
         fast.pucks[0].u = ProperVelocity(DVec3::new(f64::INFINITY, 0.0, 0.0));
-        assert!(fast.rebuilt().is_err());
+        assert!(matches!(
+            fast.rebuilt().unwrap_err().rule(),
+            BuildError::NotFinite(_)
+        ));
         let mut bouncy = scene.clone();
         bouncy.restitution = 1.5;
-        assert!(bouncy.rebuilt().unwrap_err().contains("restitution"));
+        let e = bouncy.rebuilt().unwrap_err();
+        assert_eq!(e.to_string(), "restitution: 1.5 must lie in [0, 1]");
+        assert!(matches!(
+            e.rule(),
+            BuildError::OutOfRange {
+                quantity: Quantity::Restitution,
+                ..
+            }
+        ));
         let mut blind = scene;
         blind.observers.clear();
-        assert!(blind.rebuilt().is_err());
-    }
-
-    #[test]
-    fn effects_flags_round_trip() {
-        let mut e = Effects::NONE;
-        for effect in Effect::ALL {
-            assert!(!e.is_on(effect));
-            e.set(effect, true);
-            assert!(e.is_on(effect));
-        }
+        assert_eq!(blind.rebuilt(), Err(BuildError::NoObserver));
     }
 }

@@ -1,17 +1,15 @@
-//! From the file as written to a [`Scene`]: every physical check, each
-//! failure located at its value.
+//! From the file as written to a [`Scene`]: every rule of [`super::rules`]
+//! applied to the file's values, each failure located at its value.
 
 use glam::{DVec2, DVec3};
 
 use std::collections::{BTreeMap, HashSet};
 
 use super::error::number;
-use super::model::{
-    C_RANGE, DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE, GRAVITY_RANGE,
-    LENGTH_RANGE, MASS_RANGE, MAX_DICHOTOMY_STEPS, MAX_FRICTION, MAX_HISTORY_FRAMES,
-    MAX_OBSERVER_DISTANCE, MAX_OBSERVERS, MAX_PUCKS, MAX_U, first_overlaps, magnitude,
-};
+use super::model::{DEFAULT_HEIGHT, DEFAULT_MASS, DEFAULT_RADIUS, DEFAULT_TABLE};
+use super::overlap::first_overlaps;
 use super::raw::{At, RawObserver, RawPuck, RawScene};
+use super::rules::{self, BuildError, MAX_OBSERVERS, MAX_PUCKS, Quantity};
 use super::{Color, Effects, ObserverSpec, PuckSpec, Scene, SceneError, SceneErrors, TableSpec};
 use crate::spacetime::ProperVelocity;
 
@@ -32,27 +30,33 @@ struct Checker<'a> {
 }
 
 impl Checker<'_> {
+    /// An error at `at` that is no scene rule (a word not allowed, …).
     fn error<T>(&mut self, at: &At<T>, field: &str, message: String) {
-        let kind: String = field
-            .split('[')
-            .map(|part| part.split_once(']').map_or(part, |(_, rest)| rest))
-            .collect::<Vec<_>>()
-            .join("[]");
-        self.error_of_kind(at, field, message, kind);
+        self.error_of_kind(at, field, message, None, kind_of(field));
     }
 
-    fn error_of_kind<T>(&mut self, at: &At<T>, field: &str, message: String, kind: String) {
+    /// `rule` broken at `at`: its message, and the rule kept.
+    fn broke<T>(&mut self, at: &At<T>, field: &str, rule: BuildError) {
+        self.error_of_kind(at, field, rule.to_string(), Some(rule), kind_of(field));
+    }
+
+    fn error_of_kind<T>(
+        &mut self,
+        at: &At<T>,
+        field: &str,
+        message: String,
+        rule: Option<BuildError>,
+        kind: String,
+    ) {
         self.count += 1;
         let seen = self.seen.entry(kind).or_insert(0);
         *seen += 1;
         if *seen <= MAX_ERRORS_PER_KIND {
-            self.errors.push(SceneError::at(
-                self.file,
-                self.text,
-                at.span().start,
-                field,
-                message,
-            ));
+            let e = SceneError::at(self.file, self.text, at.span().start, field, message);
+            self.errors.push(match rule {
+                Some(rule) => e.breaking(rule),
+                None => e,
+            });
         }
     }
 
@@ -79,33 +83,21 @@ impl Checker<'_> {
         SceneErrors(self.errors)
     }
 
-    /// A finite number in `range` (or `default` when absent), with `unit`
-    /// for the message.
+    /// The value of `quantity` at `v`, `default` when absent, `refused`
+    /// (and an error) when out of range.
     fn in_range(
         &mut self,
         v: Option<&At<f64>>,
         field: &str,
         default: f64,
-        range: std::ops::RangeInclusive<f64>,
-        unit: &str,
+        quantity: Quantity,
+        refused: f64,
     ) -> f64 {
         let Some(v) = v else { return default };
-        let x = *v.get_ref();
-        if range.contains(&x) {
-            x
-        } else {
-            self.error(
-                v,
-                field,
-                format!(
-                    "{} must be a positive finite number from {} to {} {unit}",
-                    number(x),
-                    number(*range.start()),
-                    number(*range.end())
-                ),
-            );
-            default
-        }
+        quantity.check(*v.get_ref()).unwrap_or_else(|e| {
+            self.broke(v, field, e);
+            refused
+        })
     }
 
     /// An array of `N` finite numbers, else an error and `None`.
@@ -119,27 +111,12 @@ impl Checker<'_> {
             );
             return None;
         };
-        if a.iter().all(|c| c.is_finite()) {
-            Some(a)
-        } else {
-            self.error(
-                v,
-                field,
-                format!("{} has a component that is not a finite number", list(x)),
-            );
-            None
-        }
-    }
-
-    /// A number in [0, 1] (or `default` when absent).
-    fn unit_interval(&mut self, v: Option<&At<f64>>, field: &str, default: f64) -> f64 {
-        let Some(v) = v else { return default };
-        let x = *v.get_ref();
-        if (0.0..=1.0).contains(&x) {
-            x
-        } else {
-            self.error(v, field, format!("{} must lie in [0, 1]", number(x)));
-            default
+        match rules::finite(&a) {
+            Ok(()) => Some(a),
+            Err(e) => {
+                self.broke(v, field, e);
+                None
+            }
         }
     }
 
@@ -156,77 +133,26 @@ impl Checker<'_> {
     ) -> ProperVelocity {
         let given = [beta.is_some(), velocity.is_some(), u.is_some()];
         if given.iter().filter(|g| **g).count() > 1 {
-            self.error(
-                at,
-                &format!("{prefix}.beta"),
-                "give at most one of `beta`, `velocity` and `u`".to_owned(),
-            );
+            self.broke(at, &format!("{prefix}.beta"), BuildError::TwoSpeeds);
             return ProperVelocity::ZERO;
         }
         let to3 = |x: [f64; N]| DVec3::from_slice(&[x.as_slice(), &[0.0; 3]].concat()[..3]);
-        if let Some(b) = beta {
-            let field = format!("{prefix}.beta");
-            let Some(x) = self.finite::<N>(b, &field) else {
-                return ProperVelocity::ZERO;
-            };
-            match ProperVelocity::try_from_beta(to3(x)) {
-                Ok(u) => u,
-                Err(_) => {
-                    self.error(
-                        b,
-                        &field,
-                        format!(
-                            "speed |β| = {} is not below the speed of light (|β| must be < 1); \
-                             to state γ beyond ~10⁷ give `u` = γβ instead",
-                            number(magnitude(to3(x)))
-                        ),
-                    );
-                    ProperVelocity::ZERO
-                }
-            }
-        } else if let Some(v) = velocity {
-            let field = format!("{prefix}.velocity");
-            let Some(x) = self.finite::<N>(v, &field) else {
-                return ProperVelocity::ZERO;
-            };
-            let speed = magnitude(to3(x));
-            match ProperVelocity::try_from_velocity(to3(x), c) {
-                Ok(u) => u,
-                Err(_) => {
-                    self.error(
-                        v,
-                        &field,
-                        format!(
-                            "speed {} m/s is not below c = {} m/s",
-                            number(speed),
-                            number(c)
-                        ),
-                    );
-                    ProperVelocity::ZERO
-                }
-            }
-        } else if let Some(v) = u {
-            let field = format!("{prefix}.u");
-            let Some(x) = self.finite::<N>(v, &field) else {
-                return ProperVelocity::ZERO;
-            };
-            let u = ProperVelocity(to3(x));
-            if magnitude(u.0) > MAX_U {
-                self.error(
-                    v,
-                    &field,
-                    format!(
-                        "|u| = {} is beyond what the engine holds: give |u| = γ|β| ≤ {}",
-                        number(magnitude(u.0)),
-                        number(MAX_U)
-                    ),
-                );
-                return ProperVelocity::ZERO;
-            }
-            u
-        } else {
+        let (given, field) = match (beta, velocity, u) {
+            (Some(b), _, _) => (b, "beta"),
+            (_, Some(v), _) => (v, "velocity"),
+            (_, _, Some(u)) => (u, "u"),
+            _ => return ProperVelocity::ZERO,
+        };
+        let field = format!("{prefix}.{field}");
+        let Some(x) = self.finite::<N>(given, &field) else {
+            return ProperVelocity::ZERO;
+        };
+        let x = Some(to3(x));
+        let pick = |g: Option<&At<Vec<f64>>>| if g.is_some() { x } else { None };
+        rules::motion(pick(beta), pick(velocity), pick(u), c).unwrap_or_else(|e| {
+            self.broke(given, &field, e);
             ProperVelocity::ZERO
-        }
+        })
     }
 
     /// A unique name, or `fallback` when absent.
@@ -242,18 +168,17 @@ impl Checker<'_> {
             return fallback;
         };
         let s = n.get_ref().trim().to_owned();
-        if s.is_empty() {
-            self.error(n, field, "a name must not be empty".to_owned());
-            return fallback;
+        match rules::name(&s, |s| taken.contains(s)) {
+            Ok(()) => {
+                taken.insert(s.clone());
+                s
+            }
+            Err(e) => {
+                let empty = e == BuildError::EmptyName;
+                self.broke(n, field, e);
+                if empty { fallback } else { s }
+            }
         }
-        if !taken.insert(s.clone()) {
-            self.error(
-                n,
-                field,
-                format!("duplicate name \"{s}\": names must be unique"),
-            );
-        }
-        s
     }
 }
 
@@ -266,87 +191,66 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         seen: BTreeMap::new(),
         count: 0,
     };
-    if raw.puck.len() > MAX_PUCKS {
-        return Err(SceneErrors::single(SceneError::at(
-            file,
-            text,
-            raw.puck[MAX_PUCKS].span().start,
-            &format!("puck[{MAX_PUCKS}]"),
-            format!(
-                "{} pucks: a scene holds at most {MAX_PUCKS}",
-                raw.puck.len()
-            ),
-        )));
-    }
-    if raw.observer.len() > MAX_OBSERVERS {
-        return Err(SceneErrors::single(SceneError::at(
-            file,
-            text,
-            raw.observer[MAX_OBSERVERS].span().start,
-            &format!("observer[{MAX_OBSERVERS}]"),
-            format!(
-                "{} observers: a scene holds at most {MAX_OBSERVERS}",
-                raw.observer.len()
-            ),
-        )));
+    for (what, spans, max) in [
+        (
+            "puck",
+            raw.puck.iter().map(At::span).collect::<Vec<_>>(),
+            MAX_PUCKS,
+        ),
+        (
+            "observer",
+            raw.observer.iter().map(At::span).collect(),
+            MAX_OBSERVERS,
+        ),
+    ] {
+        if spans.len() > max {
+            let rule = BuildError::TooMany {
+                what: if what == "puck" { "pucks" } else { "observers" },
+                count: spans.len(),
+                max,
+            };
+            let e = SceneError::at(
+                file,
+                text,
+                spans[max].start,
+                &format!("{what}[{max}]"),
+                rule.to_string(),
+            );
+            return Err(SceneErrors::single(e.breaking(rule)));
+        }
     }
 
     let size = match raw.table.as_ref().and_then(|t| t.size.as_ref()) {
         Some(s) => match ck.finite::<2>(s, "table.size") {
-            Some([x, y]) if LENGTH_RANGE.contains(&x) && LENGTH_RANGE.contains(&y) => {
-                DVec2::new(x, y)
-            }
-            Some(x) => {
-                ck.error(
-                    s,
-                    "table.size",
-                    format!(
-                        "{}: both sides must be positive, from {} to {} m",
-                        list(&x),
-                        number(*LENGTH_RANGE.start()),
-                        number(*LENGTH_RANGE.end())
-                    ),
-                );
+            Some(x) => rules::table_size(DVec2::from(x)).unwrap_or_else(|e| {
+                ck.broke(s, "table.size", e);
                 DVec2::from(DEFAULT_TABLE)
-            }
+            }),
             None => DVec2::from(DEFAULT_TABLE),
         },
         None => DVec2::from(DEFAULT_TABLE),
     };
-    let cushion_restitution = ck.unit_interval(
-        raw.table
-            .as_ref()
-            .and_then(|t| t.cushion_restitution.as_ref()),
+    let table_raw = raw.table.as_ref();
+    let cushion_restitution = ck.in_range(
+        table_raw.and_then(|t| t.cushion_restitution.as_ref()),
         "table.cushion_restitution",
         1.0,
+        Quantity::Restitution,
+        1.0,
     );
-    let table_raw = raw.table.as_ref();
-    let friction = match table_raw.and_then(|t| t.friction.as_ref()) {
-        None => TableSpec::CAROM_CLOTH_FRICTION,
-        Some(v) => {
-            let x = *v.get_ref();
-            if (0.0..=MAX_FRICTION).contains(&x) {
-                x
-            } else {
-                ck.error(
-                    v,
-                    "table.friction",
-                    format!(
-                        "{} must be a finite number from 0 (frictionless) to {MAX_FRICTION} \
-                         (a carom cloth slides at about 0.2)",
-                        number(x)
-                    ),
-                );
-                0.0
-            }
-        }
-    };
+    let friction = ck.in_range(
+        table_raw.and_then(|t| t.friction.as_ref()),
+        "table.friction",
+        TableSpec::CAROM_CLOTH_FRICTION,
+        Quantity::Friction,
+        0.0,
+    );
     let gravity = ck.in_range(
         table_raw.and_then(|t| t.gravity.as_ref()),
         "table.gravity",
         TableSpec::STANDARD_GRAVITY,
-        GRAVITY_RANGE,
-        "m/s²",
+        Quantity::Gravity,
+        TableSpec::STANDARD_GRAVITY,
     );
     let table = TableSpec {
         size,
@@ -354,10 +258,13 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         friction,
         gravity,
     };
-    let c = ck.in_range(raw.c.as_ref(), "c", Scene::default_c(size), C_RANGE, "m/s");
-    let restitution = ck.unit_interval(
+    let default_c = Scene::default_c(size);
+    let c = ck.in_range(raw.c.as_ref(), "c", default_c, Quantity::C, default_c);
+    let restitution = ck.in_range(
         raw.physics.as_ref().and_then(|p| p.restitution.as_ref()),
         "physics.restitution",
+        1.0,
+        Quantity::Restitution,
         1.0,
     );
     let before_start = match &raw.before_start {
@@ -387,8 +294,8 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
         if ck.count > errors_before {
             continue; // a puck with a bad field is not placed
         }
-        if let Some(why) = table.misplaced(&p) {
-            ck.error(&at.get_ref().position, &format!("puck[{i}].position"), why);
+        if let Err(e) = rules::on_table(&table, &p) {
+            ck.broke(&at.get_ref().position, &format!("puck[{i}].position"), e);
         }
         pucks.push(p);
         puck_spans.push((i, at));
@@ -397,39 +304,44 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
     // braking's Rindler horizon; see worldline::sliding). Located at the
     // table's `friction` when the file gives it, else at the puck's radius
     // (or position), naming the default.
-    if let Some((k, why)) =
-        super::model::braking_horizon_error(c, table.friction, table.gravity, &pucks)
-    {
+    if let Some((k, rule)) = rules::braking_horizon(c, table.friction, table.gravity, &pucks) {
         match table_raw.and_then(|t| t.friction.as_ref()) {
-            Some(v) => ck.error(v, "table.friction", why),
+            Some(v) => ck.broke(v, "table.friction", rule),
             None => {
                 let (i, at) = puck_spans[k];
                 let puck = at.get_ref();
                 let why = format!(
-                    "{why} (friction {} is the default, a carom cloth: write \
+                    "{rule} (friction {} is the default, a carom cloth: write \
                      [table] friction = 0 for a frictionless table)",
                     number(table.friction)
                 );
                 match &puck.radius {
-                    Some(r) => ck.error(r, &format!("puck[{i}].radius"), why),
-                    None => ck.error(&puck.position, &format!("puck[{i}].position"), why),
+                    Some(r) => {
+                        let field = format!("puck[{i}].radius");
+                        ck.error_of_kind(r, &field, why, Some(rule), kind_of(&field));
+                    }
+                    None => {
+                        let field = format!("puck[{i}].position");
+                        ck.error_of_kind(&puck.position, &field, why, Some(rule), kind_of(&field));
+                    }
                 }
             }
         }
     }
     for (i, j) in first_overlaps(&pucks) {
         let (a, b) = (&pucks[i], &pucks[j]);
+        let rule = BuildError::Overlap {
+            puck: b.name.clone(),
+            other: a.name.clone(),
+            other_line: Some(super::error::line_column(text, puck_spans[i].1.span().start).0),
+            distance: a.position.distance(b.position),
+            reach: a.radius + b.radius,
+        };
         ck.error_of_kind(
             &puck_spans[j].1.get_ref().position,
             &format!("puck[{}].position", puck_spans[j].0),
-            format!(
-                "puck \"{}\" overlaps puck \"{}\" (line {}): centres {} m apart, radii add to {} m",
-                b.name,
-                a.name,
-                super::error::line_column(text, puck_spans[i].1.span().start).0,
-                number(a.position.distance(b.position)),
-                number(a.radius + b.radius)
-            ),
+            rule.to_string(),
+            Some(rule),
             "overlaps".to_owned(),
         );
     }
@@ -464,28 +376,27 @@ pub fn validate(raw: RawScene, text: &str, file: &str) -> Result<Scene, SceneErr
 
 impl Checker<'_> {
     /// An error unless every component of `p` is within
-    /// [`MAX_OBSERVER_DISTANCE`] of the board's origin.
+    /// [`rules::MAX_OBSERVER_DISTANCE`] of the board's origin.
     fn near<T>(&mut self, at: &At<T>, field: &str, p: DVec3) {
-        if p.abs().max_element() > MAX_OBSERVER_DISTANCE {
-            self.error(
-                at,
-                field,
-                format!(
-                    "({}, {}, {}) m is too far: keep each coordinate within ±{} m",
-                    number(p.x),
-                    number(p.y),
-                    number(p.z),
-                    number(MAX_OBSERVER_DISTANCE)
-                ),
-            );
+        if let Err(e) = rules::near(p) {
+            self.broke(at, field, e);
         }
     }
 }
 
+/// The kind an error of `field` is counted under: the field with its
+/// indices removed (`puck[].mass`).
+fn kind_of(field: &str) -> String {
+    field
+        .split('[')
+        .map(|part| part.split_once(']').map_or(part, |(_, rest)| rest))
+        .collect::<Vec<_>>()
+        .join("[]")
+}
+
 /// `[a, b, …]` with each number as [`number`] writes it.
 fn list(x: &[f64]) -> String {
-    let parts: Vec<String> = x.iter().map(|v| number(*v)).collect();
-    format!("[{}]", parts.join(", "))
+    rules::list(x)
 }
 
 fn effects(raw: super::raw::RawEffects) -> Effects {
@@ -513,30 +424,17 @@ fn optics(ck: &mut Checker, raw: super::raw::RawOptics) -> super::model::OpticsS
             ),
         }
     }
+    // Counts: exact as f64 up to 2⁵³, far beyond both bounds.
     if let Some(f) = &raw.history_frames {
-        match usize::try_from(*f.get_ref()) {
-            Ok(n) if (2..=MAX_HISTORY_FRAMES).contains(&n) => o.history_frames = n,
-            _ => ck.error(
-                f,
-                "optics.history_frames",
-                format!(
-                    "{} must be at least 2 and at most {MAX_HISTORY_FRAMES}",
-                    f.get_ref()
-                ),
-            ),
+        match Quantity::HistoryFrames.check(*f.get_ref() as f64) {
+            Ok(n) => o.history_frames = n as usize,
+            Err(e) => ck.broke(f, "optics.history_frames", e),
         }
     }
     if let Some(d) = &raw.dichotomy_steps {
-        match u32::try_from(*d.get_ref()) {
-            Ok(n) if n <= MAX_DICHOTOMY_STEPS => o.dichotomy_steps = n,
-            _ => ck.error(
-                d,
-                "optics.dichotomy_steps",
-                format!(
-                    "{} must be 0 (full) or more, at most {MAX_DICHOTOMY_STEPS}",
-                    d.get_ref()
-                ),
-            ),
+        match Quantity::DichotomySteps.check(*d.get_ref() as f64) {
+            Ok(n) => o.dichotomy_steps = n as u32,
+            Err(e) => ck.broke(d, "optics.dichotomy_steps", e),
         }
     }
     if let Some(i) = raw.interpolate {
@@ -575,34 +473,27 @@ fn puck(
         p.radius.as_ref(),
         &format!("{prefix}.radius"),
         DEFAULT_RADIUS,
-        LENGTH_RANGE,
-        "m",
+        Quantity::Length,
+        DEFAULT_RADIUS,
     );
     let height = ck.in_range(
         p.height.as_ref(),
         &format!("{prefix}.height"),
         DEFAULT_HEIGHT,
-        LENGTH_RANGE,
-        "m",
+        Quantity::Length,
+        DEFAULT_HEIGHT,
     );
     let mass = ck.in_range(
         p.mass.as_ref(),
         &format!("{prefix}.mass"),
         DEFAULT_MASS,
-        MASS_RANGE,
-        "kg",
+        Quantity::Mass,
+        DEFAULT_MASS,
     );
     let color = match &p.color {
         None => Color::default_for(i),
-        Some(s) => Color::parse(s.get_ref()).unwrap_or_else(|| {
-            ck.error(
-                s,
-                &format!("{prefix}.color"),
-                format!(
-                    "\"{}\" is not a colour: use \"#rrggbb\" or a name such as \"red\"",
-                    s.get_ref()
-                ),
-            );
+        Some(s) => rules::color(s.get_ref()).unwrap_or_else(|e| {
+            ck.broke(s, &format!("{prefix}.color"), e);
             Color::default_for(i)
         }),
     };
@@ -647,11 +538,7 @@ fn observer(
                 Some(p)
             }
             Some(_) => {
-                ck.error(
-                    l,
-                    &format!("{prefix}.look_at"),
-                    "must differ from `position`".to_owned(),
-                );
+                ck.broke(l, &format!("{prefix}.look_at"), BuildError::LookAtEye);
                 None
             }
             None => None,

@@ -36,7 +36,10 @@ fn time_runs_pauses_and_replays() {
 fn no_stroke_reaches_c_and_replays_refuse_strokes() {
     let mut g = game();
     let after = g.aim(1, DVec2::new(-1e9, 0.0));
-    assert!(after.speed_deficit() > 0.0);
+    assert!(
+        (after.speed_deficit() * 2.0 * after.0.length_squared() - 1.0).abs()
+            < 1.0 / after.0.length_squared()
+    ); // 1 − |β| ≈ 1/(2u²), to 3/(4u²)
     assert!((after.0.x - MAX_STROKE).abs() < 1e-12);
     g.strike().unwrap();
     g.step(0.1);
@@ -52,7 +55,10 @@ fn thrust_never_reaches_c_and_flies_the_eye() {
     for _ in 0..1000 {
         g.thrust(DVec3::new(1e6, 0.0, 0.0), DVec3::ZERO);
     }
-    assert!(g.eye.u.speed_deficit() > 0.0);
+    assert!(
+        (g.eye.u.speed_deficit() * 2.0 * g.eye.u.0.length_squared() - 1.0).abs()
+            < 1.0 / g.eye.u.0.length_squared()
+    ); // 1 − |β| ≈ 1/(2u²), to 3/(4u²)
     let x0 = g.eye.position.x;
     g.step(0.01);
     assert!((g.eye.position.x - x0 - g.eye.u.velocity(g.scene.c).x * 0.01).abs() < 1e-12);
@@ -77,7 +83,10 @@ fn changing_c_keeps_each_pucks_proper_velocity_in_metres_per_second() {
     // Frictionless, slow light: the same momentum, never c.
     g.scene.table.friction = 0.0;
     g.restart_with_c(0.01);
-    assert!(g.scene.pucks[0].u.speed_deficit() > 0.0);
+    assert!(
+        (g.scene.pucks[0].u.speed_deficit() * 2.0 * g.scene.pucks[0].u.0.length_squared() - 1.0).abs()
+            < 1.0 / g.scene.pucks[0].u.0.length_squared()
+    ); // 1 − |β| ≈ 1/(2u²), to 3/(4u²)
     assert!((g.scene.pucks[0].u.0 * 0.01 - before[0]).length() < 1e-12);
 }
 

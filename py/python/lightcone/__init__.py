@@ -17,23 +17,30 @@ JSON objects that `lightcone simulate` and `lightcone observe` print
 
 from . import records
 from ._lightcone import (
+    BrakingHorizonError,
     Frame,
     NoAdapterError,
     NotComputedError,
+    OutOfRangeError,
+    OverlapError,
     Scene,
     SceneError,
     Simulation,
     SpeedOfLightError,
     World,
+    __version__,
 )
 from .records import Collision, Observation, Record, State
 
 __all__ = [
+    "BrakingHorizonError",
     "Collision",
     "Frame",
     "NoAdapterError",
     "NotComputedError",
     "Observation",
+    "OutOfRangeError",
+    "OverlapError",
     "Record",
     "Scene",
     "SceneError",
@@ -41,5 +48,6 @@ __all__ = [
     "SpeedOfLightError",
     "State",
     "World",
+    "__version__",
     "records",
 ]

@@ -6,19 +6,26 @@ goes, any sequence of numbers is accepted: a tuple, a list, a numpy array.
 """
 
 from os import PathLike
-from typing import Iterator, Optional, Protocol, Sequence, SupportsFloat, Union, final
+from typing import Any, Iterator, Optional, Protocol, Sequence, SupportsFloat, Union, final
 
 from lightcone.records import Collision, Observation, Simultaneity, State
 
+__version__: str
+"""The package's version (the workspace's, as `pip show lightcone` gives it)."""
+
 __all__ = [
     "Frame",
+    "BrakingHorizonError",
     "NoAdapterError",
     "NotComputedError",
+    "OutOfRangeError",
+    "OverlapError",
     "Scene",
     "SceneError",
     "Simulation",
     "SpeedOfLightError",
     "World",
+    "__version__",
 ]
 
 class _Numbers(Protocol):
@@ -34,6 +41,15 @@ class SceneError(ValueError):
 
 class SpeedOfLightError(SceneError):
     """A speed at or above c was given (β ≥ 1); no body reaches c."""
+
+class OverlapError(SceneError):
+    """Two pucks overlap at board time 0 (their rest-frame discs; touching is allowed)."""
+
+class OutOfRangeError(SceneError):
+    """A number lies outside what the engine holds (a length, mass, c, friction, gravity, restitution or |u|)."""
+
+class BrakingHorizonError(SceneError):
+    """A puck cannot brake rigidly on the cloth: its radius reaches the braking's Rindler horizon c²/(μg)."""
 
 class NoAdapterError(RuntimeError):
     """Rendering needs a graphics adapter and none was found (install mesa-vulkan-drivers)."""
@@ -59,6 +75,9 @@ class Frame:
         """The PNG file's bytes."""
     def save(self, path: Union[str, PathLike[str]]) -> None:
         """Saves the picture as a PNG file."""
+    def to_numpy(self) -> Any:
+        """The pixels as a numpy array of shape (height, width, 4), dtype uint8, RGBA, row 0 at the top.
+        Needs numpy (ImportError otherwise)."""
     def _repr_png_(self) -> bytes: ...
 
 @final
@@ -97,7 +116,8 @@ class Scene:
         velocity: Optional[_Vector] = None,
     ) -> None:
         """Adds a puck at `position` (x, y) m; at most one of `beta` (v/c), `velocity` (m/s), `u` (γβ).
-        `radius`, `height` in m, `mass` in kg. Raises SpeedOfLightError, SceneError."""
+        `radius`, `height` in m, `mass` in kg. Raises SpeedOfLightError, OverlapError, OutOfRangeError,
+        BrakingHorizonError or SceneError (each a SceneError)."""
     def add_observer(
         self,
         name: str,
@@ -163,6 +183,12 @@ class Simulation:
         at: Optional[float] = None,
     ) -> Observation:
         """What `observer` sees at board time `at` s (default: now)."""
+    def positions(self, at: Optional[float] = None) -> Any:
+        """Every puck's board position (m) at board time `at` (default: now) as a numpy array of
+        shape (N, 2), float64, in scene order. Needs numpy."""
+    def velocities(self, at: Optional[float] = None) -> Any:
+        """Every puck's proper velocity u = γβ at board time `at` (default: now) as a numpy array of
+        shape (N, 2), float64, in scene order. Needs numpy."""
     def velocity(self, name: str) -> tuple[float, float]:
         """Proper velocity γβ of puck `name` now, (x, y)."""
     def render(
