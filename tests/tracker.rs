@@ -78,11 +78,16 @@ fn game() -> GameState {
 fn frame(head: &mut TrackedHead, game: &mut GameState) {
     head.poll(Instant::now());
     head.drive(game, DVec3::ZERO, DVec3::ZERO);
-    assert!(game.eye.position.is_finite(), "eye {:?}", game.eye.position);
+    assert!(
+        game.eye_position().is_finite(),
+        "eye {:?}",
+        game.eye_position()
+    );
     // Below c: 1 − |β| as the engine keeps it, against the textbook form
     // (exact to an ulp of 1 at the speeds a head moves).
-    let beta = game.eye.u.beta().length();
-    assert!(beta < 1.0 && (game.eye.u.speed_deficit() - (1.0 - beta)).abs() < 1e-15);
+    let u = game.eye_velocity();
+    let beta = u.beta().length();
+    assert!(beta < 1.0 && (u.speed_deficit() - (1.0 - beta)).abs() < 1e-15);
 }
 
 /// Runs frames (every 200 µs) until `cond` holds or `timeout` passes.
@@ -116,7 +121,7 @@ fn the_tracked_head_drives_the_observer_across_two_processes() {
     let name = service("drive");
     let mut head = tracked(&name);
     let mut g = game();
-    let start = g.eye.position;
+    let start = g.eye_position();
     let _publisher = Publisher::spawn(&name, &["--path", "circle", "--noise", "0.0005"]);
     assert!(
         until(&mut head, &mut g, Duration::from_secs(20), |h, _| {
@@ -128,10 +133,10 @@ fn the_tracked_head_drives_the_observer_across_two_processes() {
     assert_eq!(status(&head), Some(TrackerStatus::Live));
     let pose = head.output().and_then(|o| o.pose).expect("a pose");
     // The eye is the mapped (filtered) head position.
-    assert!((g.eye.position - head.map.point(pose.position)).length() < 1e-12);
-    assert_ne!(g.eye.position, start);
+    assert!((g.eye_position() - head.map.point(pose.position)).length() < 1e-12);
+    assert_ne!(g.eye_position(), start);
     // A walking head: well below c.
-    assert!(g.eye.u.beta().length() < 0.9);
+    assert!(g.eye_velocity().beta().length() < 0.9);
     let mut l = head.latencies().to_vec();
     assert!(l.len() > 50, "{} latencies", l.len());
     l.sort_unstable();
@@ -195,7 +200,7 @@ fn a_lost_fix_holds_the_last_pose_then_resumes() {
     assert!(
         until(&mut head, &mut g, Duration::from_secs(20), |h, g| {
             matches!(status(h), Some(TrackerStatus::Rejecting { .. }))
-                .then(|| held = Some(g.eye.position));
+                .then(|| held = Some(g.eye_position()));
             held.is_some()
         }),
         "{}",
@@ -205,7 +210,7 @@ fn a_lost_fix_holds_the_last_pose_then_resumes() {
     // Still rejecting a little later: the eye has not moved.
     frame(&mut head, &mut g);
     if matches!(status(&head), Some(TrackerStatus::Rejecting { .. })) {
-        assert_eq!(g.eye.position, held);
+        assert_eq!(g.eye_position(), held);
     }
     assert!(
         until(&mut head, &mut g, Duration::from_secs(20), |h, _| status(h)
@@ -225,7 +230,7 @@ fn a_stalled_tracker_goes_stale_holds_the_pose_and_resumes() {
     assert!(
         until(&mut head, &mut g, Duration::from_secs(20), |h, g| {
             if status(h) == Some(TrackerStatus::Stale) {
-                held = Some(g.eye.position);
+                held = Some(g.eye_position());
             }
             held.is_some()
         }),
@@ -237,14 +242,14 @@ fn a_stalled_tracker_goes_stale_holds_the_pose_and_resumes() {
         "{}",
         head.status_line()
     );
-    assert_eq!(g.eye.u.0, DVec3::ZERO, "no velocity while stale");
+    assert_eq!(g.eye_velocity().0, DVec3::ZERO, "no velocity while stale");
     assert!(
         until(&mut head, &mut g, Duration::from_secs(20), |h, _| status(h)
             == Some(TrackerStatus::Live)),
         "{}",
         head.status_line()
     );
-    assert_ne!(Some(g.eye.position), held);
+    assert_ne!(Some(g.eye_position()), held);
 }
 
 #[test]
@@ -270,11 +275,11 @@ fn a_dead_tracker_is_lost_and_a_restarted_one_resumes() {
     // Lost comes a second after the last sample, which came at most a poll
     // before the kill.
     assert!(killed.elapsed() >= Duration::from_millis(800));
-    let held = g.eye.position;
+    let held = g.eye_position();
     for _ in 0..20 {
         frame(&mut head, &mut g);
     }
-    assert_eq!(g.eye.position, held, "the last good pose is held");
+    assert_eq!(g.eye_position(), held, "the last good pose is held");
     assert!(
         head.status_line().contains("LOST"),
         "{}",
@@ -288,7 +293,7 @@ fn a_dead_tracker_is_lost_and_a_restarted_one_resumes() {
         "{}",
         head.status_line()
     );
-    assert_ne!(g.eye.position, held);
+    assert_ne!(g.eye_position(), held);
 }
 
 /// Random bytes written, as a crashed or hostile peer could, into every
@@ -421,11 +426,11 @@ fn no_tracker_at_all_leaves_the_eye_alone() {
     let name = service("nobody");
     let mut head = tracked(&name);
     let mut g = game();
-    let start = g.eye.position;
+    let start = g.eye_position();
     for _ in 0..50 {
         frame(&mut head, &mut g);
     }
-    assert_eq!(g.eye.position, start);
+    assert_eq!(g.eye_position(), start);
     assert!(
         head.status_line().contains("waiting"),
         "{}",

@@ -225,8 +225,10 @@ impl TrackedHead {
     }
 }
 
-/// Sets the eye at `position` with velocity `v` (board frame), capped at
-/// `MAX_BETA` (0.99) c; returns whether it had to be capped.
+/// Puts the eye at `position` with velocity `v` (board frame), capped at
+/// `MAX_BETA` (0.99) c, on its worldline at the live board time (a jump
+/// to the pose: see [`GameState::move_eye`]); returns whether it had to be
+/// capped.
 pub fn set_eye(game: &mut GameState, position: DVec3, v: DVec3) -> bool {
     let c = game.scene.c;
     let mut v = if v.is_finite() { v } else { DVec3::ZERO };
@@ -234,8 +236,8 @@ pub fn set_eye(game: &mut GameState, position: DVec3, v: DVec3) -> bool {
     if capped {
         v = v.normalize() * MAX_BETA * c;
     }
-    game.eye.position = position;
-    game.eye.u = ProperVelocity::try_from_velocity(v, c).unwrap_or(ProperVelocity::ZERO);
+    let u = ProperVelocity::try_from_velocity(v, c).unwrap_or(ProperVelocity::ZERO);
+    game.move_eye(position, u);
     capped
 }
 
@@ -244,9 +246,7 @@ pub fn set_eye(game: &mut GameState, position: DVec3, v: DVec3) -> bool {
 fn aim(game: &mut GameState, map: &TrackerToBoard, q: DQuat) {
     let forward = map.rotation() * (q * DVec3::NEG_Z);
     if forward.is_finite() && forward.length() > 0.5 {
-        let f = forward.normalize();
-        game.eye.yaw = f.y.atan2(f.x);
-        game.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
+        game.eye = crate::model::FlyingEye::along(forward);
     }
 }
 

@@ -149,7 +149,8 @@ pub struct GameState {
     /// Pictures side by side chosen with `--views`, instead of [`Self::view`]
     /// (until the player or a lesson chooses a view mode).
     pub panes: Option<Vec<Pane>>,
-    /// The free eye now (at the live board time).
+    /// Where the free eye looks (where it is and how it moves are its
+    /// observer's worldline: [`Self::eye_position`], [`Self::eye_velocity`]).
     pub eye: FlyingEye,
     /// `Some(i)`: look through the scene's observer `i` instead.
     pub observer: Option<usize>,
@@ -192,9 +193,15 @@ pub const MAX_STROKE: f64 = 10.0;
 
 /// The simulation of `scene` for the game: the physics keeping
 /// [`REPLAY_WINDOW`] of history, the scene's observers (without their
-/// default views: the game makes its own) and the free eye `eye`, whose
-/// worldline starts at board time `t`.
-fn simulation(scene: &Scene, eye: &FlyingEye, t: f64) -> (Simulation, Entity, Vec<Entity>) {
+/// default views: the game makes its own) and the free eye, whose
+/// worldline starts at board time `t` at `position` with proper velocity
+/// `u`, looking along `eye`.
+fn simulation(
+    scene: &Scene,
+    (position, u): (DVec3, ProperVelocity),
+    eye: &FlyingEye,
+    t: f64,
+) -> (Simulation, Entity, Vec<Entity>) {
     let mut sim = Simulation::new(scene);
     sim.physics_mut().set_history(Some(REPLAY_WINDOW));
     let defaults: Vec<Entity> = sim.views().to_vec();
@@ -207,7 +214,7 @@ fn simulation(scene: &Scene, eye: &FlyingEye, t: f64) -> (Simulation, Entity, Ve
     }
     let you = sim.add_observer(
         "you",
-        Worldline::new(Event::new(t, eye.position), eye.u, scene.c),
+        Worldline::new(Event::new(t, position), u, scene.c),
         eye.forward(),
     );
     (sim, you, observers)
@@ -217,8 +224,9 @@ impl GameState {
     /// A game on `scene`, starting at board time 0 looking through its first
     /// observer's eye (which the player may then fly).
     pub fn new(scene: Scene) -> Self {
-        let eye = Self::eye_at_observer(&scene, 0);
-        let (mut sim, you, observers) = simulation(&scene, &eye, 0.0);
+        let (position, eye) = eye::at_observer(&scene, 0);
+        let start = (position, ProperVelocity::ZERO);
+        let (mut sim, you, observers) = simulation(&scene, start, &eye, 0.0);
         Self {
             meshes: ViewMeshes::new(&mut sim),
             sim,
@@ -272,9 +280,8 @@ impl GameState {
     }
 
     /// Advances by `real_dt` seconds of wall-clock time: the board clock by
-    /// `real_dt × time_scale` unless paused or replaying, the flying eye with
-    /// its velocity over the same board time (a replay plays the past
-    /// forward; the eye's own now stays at the live time).
+    /// `real_dt × time_scale` unless paused or replaying (a replay plays
+    /// the past forward); the free eye moves on its worldline by itself.
     pub fn step(&mut self, real_dt: f64) {
         if self.paused || !real_dt.is_finite() || real_dt <= 0.0 {
             return;
@@ -287,7 +294,6 @@ impl GameState {
             let t = self.live_time;
             self.physics_mut().advance_to(t);
             self.view_time = self.live_time;
-            self.eye.position += self.eye.u.velocity(self.scene.c) * dt;
         }
     }
 
@@ -351,7 +357,8 @@ impl GameState {
                 return;
             }
         }
-        let (sim, you, observers) = simulation(&self.scene, &self.eye, 0.0);
+        let start = (self.eye_position(), self.eye_velocity());
+        let (sim, you, observers) = simulation(&self.scene, start, &self.eye, 0.0);
         self.sim = sim;
         self.generation = next_generation();
         self.you = you;

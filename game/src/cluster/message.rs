@@ -64,8 +64,8 @@ impl ViewState {
             view_time: game.view_time,
             paused: game.paused,
             replay_and_move: game.replay_and_move,
-            eye_position: game.eye.position,
-            eye_u: game.eye.u.0,
+            eye_position: game.eye_position(),
+            eye_u: game.eye_velocity().0,
             eye_yaw: game.eye.yaw,
             eye_pitch: game.eye.pitch,
             effects: game.effects,
@@ -83,13 +83,14 @@ impl ViewState {
         game.live_time = self.live_time;
         game.view_time = self.view_time;
         game.paused = self.paused;
-        game.replay_and_move = self.replay_and_move;
         game.eye = FlyingEye {
-            position: self.eye_position,
-            u: ProperVelocity(self.eye_u),
             yaw: self.eye_yaw,
             pitch: self.eye_pitch,
         };
+        // On the node's copy of the eye's worldline, at the master's live
+        // time; the master says whether it replays and moves.
+        game.move_eye(self.eye_position, ProperVelocity(self.eye_u));
+        game.replay_and_move = self.replay_and_move;
         game.effects = self.effects;
         game.framing = if self.look {
             Framing::Look

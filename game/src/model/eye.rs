@@ -1,6 +1,8 @@
-//! The free eye ("you"): where it looks, and every move of it (thrust,
-//! halt, orbit, a view from above, taking over a scene observer) written
-//! on its observer's worldline; and the eye looked through now.
+//! The free eye ("you"): its state is its observer's worldline (where it
+//! is and how fast it moves, at every board time), and [`FlyingEye`] keeps
+//! only where it looks. Every move (thrust, halt, orbit, a view from
+//! above, taking over a scene observer, a tracked pose) is a kink or a
+//! jump written on that worldline at the live board time.
 
 use glam::DVec3;
 use lightcone_engine::ecs::Vantage;
@@ -11,14 +13,10 @@ use lightcone_engine::spacetime::{Event, ProperVelocity};
 
 use super::{EyeChoice, Framing, GameState, REPLAY_WINDOW, ViewKey};
 
-/// The eye the player flies: a position at the current board time, a
-/// proper velocity, and where it looks.
+/// Where the eye the player flies looks (where it is and how it moves is
+/// its worldline's: [`GameState::eye_position`], [`GameState::eye_velocity`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlyingEye {
-    /// Eye position now (at [`GameState::live_time`]), board frame, m.
-    pub position: DVec3,
-    /// Proper velocity.
-    pub u: ProperVelocity,
     /// Heading about z, radians (0 looks along +x).
     pub yaw: f64,
     /// Elevation, radians (negative looks down).
@@ -26,6 +24,15 @@ pub struct FlyingEye {
 }
 
 impl FlyingEye {
+    /// Looking along `f` (board axes; need not be unit).
+    pub fn along(f: DVec3) -> Self {
+        let f = f.normalize_or(DVec3::Y);
+        Self {
+            yaw: f.y.atan2(f.x),
+            pitch: f.z.clamp(-1.0, 1.0).asin(),
+        }
+    }
+
     /// Unit viewing direction, board axes.
     pub fn forward(&self) -> DVec3 {
         DVec3::new(
@@ -36,23 +43,73 @@ impl FlyingEye {
     }
 }
 
+/// Where observer `i` of `scene` stands at t = 0 (board frame, m), and
+/// where it looks.
+pub(super) fn at_observer(scene: &Scene, i: usize) -> (DVec3, FlyingEye) {
+    let o = &scene.observers[i.min(scene.observers.len() - 1)];
+    (
+        o.position,
+        FlyingEye::along(o.target(scene.table.size) - o.position),
+    )
+}
+
 impl GameState {
-    /// The free eye's proper velocity now (at the live board time).
-    pub fn eye_velocity(&self) -> ProperVelocity {
-        self.eye.u
+    /// The free eye's position at the live board time (board frame, m):
+    /// its worldline's event then.
+    pub fn eye_position(&self) -> DVec3 {
+        // The game made the free eye's observer, and never removes it.
+        self.sim
+            .observer_worldline(self.you)
+            .map_or(DVec3::ZERO, |w| w.position_at(self.live_time))
     }
 
-    /// The free eye at rest where observer `i` of `scene` stands at t = 0,
-    /// looking where it looks.
-    pub(super) fn eye_at_observer(scene: &Scene, i: usize) -> FlyingEye {
-        let o = &scene.observers[i.min(scene.observers.len() - 1)];
-        let f = (o.target(scene.table.size) - o.position).normalize_or(DVec3::Y);
-        FlyingEye {
-            position: o.position,
-            u: ProperVelocity::ZERO,
-            yaw: f.y.atan2(f.x),
-            pitch: f.z.clamp(-1.0, 1.0).asin(),
+    /// The free eye's proper velocity at the live board time (after a kink
+    /// at that time, the new one).
+    pub fn eye_velocity(&self) -> ProperVelocity {
+        self.sim
+            .observer_worldline(self.you)
+            .map_or(ProperVelocity::ZERO, |w| {
+                w.proper_velocity_at(self.live_time)
+            })
+    }
+
+    /// Puts the free eye at `position` moving with `u` from the live board
+    /// time on (a tracked pose, an orbit, a reset): a jump on its worldline
+    /// when it is put somewhere else (during a replay, its pictures then
+    /// watch the past from where it now is: "replay and move"), a kink
+    /// when only its velocity changes, nothing when neither does.
+    pub fn move_eye(&mut self, position: DVec3, u: ProperVelocity) {
+        let t = self.live_time;
+        let Some(w) = self.sim.observer_worldline(self.you) else {
+            return;
+        };
+        let st = w.state_at(t);
+        let tol = 1e-9 * (1.0 + position.length());
+        if (st.position - position).length() > tol {
+            if self.replaying() {
+                self.replay_and_move = true;
+            }
+            // Fails only for a state that is not finite (refused): the
+            // live time never goes back (a restart makes a new
+            // simulation).
+            let _ = self.sim.place_observer(self.you, t, position, u);
+        } else if st.u != u {
+            self.steer_eye(u);
         }
+    }
+
+    /// A kink on the free eye's worldline at the live time: from now on it
+    /// moves with proper velocity `u` (a velocity change, not a jump).
+    fn steer_eye(&mut self, u: ProperVelocity) {
+        let t = self.live_time;
+        let _ = self.sim.steer_observer(self.you, t, u);
+    }
+
+    /// Forgets the free eye's worldline older than the replay window, as
+    /// the physics forgets the pucks'.
+    pub(super) fn forget_old_eye(&mut self) {
+        let t = self.live_time - REPLAY_WINDOW;
+        self.sim.forget_observer_before(self.you, t);
     }
 
     /// Back to the default view: the camera fitted to the table, no zoom,
@@ -63,7 +120,9 @@ impl GameState {
         self.zoom = 1.0;
         self.follow = None;
         if self.observer.is_none() {
-            self.eye = Self::eye_at_observer(&self.scene, 0);
+            let (position, look) = at_observer(&self.scene, 0);
+            self.eye = look;
+            self.move_eye(position, ProperVelocity::ZERO);
         }
     }
 
@@ -80,13 +139,8 @@ impl GameState {
         {
             let st = w.state_at(self.view_time);
             let o = &self.scene.observers[i];
-            let f = (o.target(self.scene.table.size) - o.position).normalize_or(DVec3::Y);
-            self.eye = FlyingEye {
-                position: st.position,
-                u: st.u,
-                yaw: f.y.atan2(f.x),
-                pitch: f.z.clamp(-1.0, 1.0).asin(),
-            };
+            self.eye = FlyingEye::along(o.target(self.scene.table.size) - o.position);
+            self.move_eye(st.position, st.u);
         }
     }
 
@@ -110,7 +164,7 @@ impl GameState {
         }
         self.take_over();
         let target = self.orbit_target();
-        let d = self.eye.position - target;
+        let d = self.eye_position() - target;
         let r = d.length().max(0.1);
         let horizontal = d.truncate().length();
         let azimuth = if horizontal > 1e-9 {
@@ -120,15 +174,14 @@ impl GameState {
         } + yaw;
         let elevation = (d.z / r).clamp(-1.0, 1.0).asin() + pitch;
         let elevation = elevation.clamp(3f64.to_radians(), 89.9f64.to_radians());
-        self.eye.position = target
+        let position = target
             + r * DVec3::new(
                 elevation.cos() * azimuth.cos(),
                 elevation.cos() * azimuth.sin(),
                 elevation.sin(),
             );
-        let f = (target - self.eye.position).normalize_or(DVec3::Y);
-        self.eye.yaw = f.y.atan2(f.x);
-        self.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
+        self.eye = FlyingEye::along(target - position);
+        self.move_eye(position, self.eye_velocity());
         self.framing = Framing::Fit;
     }
 
@@ -140,11 +193,10 @@ impl GameState {
         let half = (size.x / 1.6).max(size.y) / 2.0 + 0.1;
         let height = half / (std::f64::consts::FRAC_PI_6).tan() * 1.1;
         self.eye = FlyingEye {
-            position: (size / 2.0).extend(height),
-            u: ProperVelocity::ZERO,
             yaw: std::f64::consts::FRAC_PI_2,
             pitch: -std::f64::consts::FRAC_PI_2 + 1e-6,
         };
+        self.move_eye((size / 2.0).extend(height), ProperVelocity::ZERO);
         self.framing = Framing::Fit;
         self.zoom = 1.0;
     }
@@ -156,9 +208,7 @@ impl GameState {
         self.take_over();
         if self.framing == Framing::Fit {
             // Start from where the fitted camera looks.
-            let f = start.normalize_or(DVec3::Y);
-            self.eye.yaw = f.y.atan2(f.x);
-            self.eye.pitch = f.z.clamp(-1.0, 1.0).asin();
+            self.eye = FlyingEye::along(start);
             self.framing = Framing::Look;
         }
         self.eye.yaw += dyaw;
@@ -175,60 +225,22 @@ impl GameState {
             .map_or_else(|| self.eye.forward(), |c| c.forward)
     }
 
-    /// Accelerates the flying eye: adds `du` to its proper velocity (thrust
-    /// of any size never reaches c). While paused or replaying, moves it
-    /// by `step` metres instead (a frozen picture has no board time to fly
-    /// in).
+    /// Accelerates the flying eye: a kink adding `du` to its proper
+    /// velocity (thrust of any size never reaches c). While paused or
+    /// replaying, moves it by `step` metres instead (a frozen picture has
+    /// no board time to fly in).
     pub fn thrust(&mut self, du: DVec3, step: DVec3) {
+        let u = self.eye_velocity();
         if self.paused || self.replaying() {
-            self.eye.position += step;
+            self.move_eye(self.eye_position() + step, u);
         } else if du.is_finite() {
-            self.eye.u = ProperVelocity(self.eye.u.0 + du);
-            self.steer_you();
+            self.steer_eye(ProperVelocity(u.0 + du));
         }
     }
 
     /// Stops the flying eye.
     pub fn halt(&mut self) {
-        self.eye.u = ProperVelocity::ZERO;
-        self.steer_you();
-    }
-
-    /// A kink on the free eye's worldline at the live time: from now on it
-    /// moves with its new velocity (a velocity change, not a jump).
-    fn steer_you(&mut self) {
-        let t = self.live_time;
-        let _ = self.sim.steer_observer(self.you, t, self.eye.u);
-    }
-
-    /// Writes the free eye's moves since the last frame on its worldline,
-    /// at the live board time: a kink when only its velocity changed, a
-    /// jump when it was put somewhere (orbit, reset, a tracked pose, a
-    /// step while paused). A jump during a replay switches the free eye's
-    /// pictures to "replay and move".
-    pub(super) fn sync_eye(&mut self) {
-        let t = self.live_time;
-        let Some(w) = self.sim.observer_worldline(self.you) else {
-            return;
-        };
-        let st = w.state_at(t);
-        let tol = 1e-9 * (1.0 + self.eye.position.length());
-        if (st.position - self.eye.position).length() > tol {
-            if self.replaying() {
-                self.replay_and_move = true;
-            }
-            // Never fails: the live time never goes back (a restart makes
-            // a new simulation) and the eye's state is finite.
-            let _ = self
-                .sim
-                .place_observer(self.you, t, self.eye.position, self.eye.u);
-        } else if st.u != self.eye.u {
-            let _ = self.sim.steer_observer(self.you, t, self.eye.u);
-        }
-        if let Some(w) = self.sim.observer_worldline(self.you) {
-            self.eye.position = w.position_at(t);
-        }
-        self.sim.forget_observer_before(self.you, t - REPLAY_WINDOW);
+        self.steer_eye(ProperVelocity::ZERO);
     }
 
     /// The free eye's vantage: on its worldline (live, and in a replay:
@@ -254,7 +266,8 @@ impl GameState {
     }
 
     /// The eye looked through now (a scene observer's or the free one), as
-    /// the pictures of the next frame see from.
+    /// the pictures of the next frame see from: its observer's worldline
+    /// at the board time shown.
     pub fn eye(&self) -> Eye {
         let (observer, vantage) = match self.resolve(EyeChoice::Current) {
             Some(i) => (self.observers[i], Vantage::OnWorldline),
@@ -262,9 +275,10 @@ impl GameState {
         };
         match self.sim.observer_worldline(observer) {
             Some(w) => eye_at(w, vantage, self.view_time),
+            // Never: the game made every observer it looks through.
             None => Eye {
-                event: Event::new(self.view_time, self.eye.position),
-                u: self.eye.u,
+                event: Event::new(self.view_time, self.eye_position()),
+                u: self.eye_velocity(),
             },
         }
     }

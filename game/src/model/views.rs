@@ -145,7 +145,7 @@ impl GameState {
     /// Returns each picture's view entity; read it with [`Self::apparent`]
     /// and [`Self::camera`].
     pub fn run_frame(&mut self, panes: &[(Pane, f64)]) -> Vec<Entity> {
-        self.sync_eye();
+        self.forget_old_eye();
         let keys: Vec<(ViewKey, f64)> = panes.iter().map(|&(p, a)| (self.key(p), a)).collect();
         self.drop_views(|k| matches!(k, ViewKey::Desktop(..)) && !keys.iter().any(|(q, _)| q == k));
         let mut out = Vec::with_capacity(keys.len());
@@ -163,8 +163,9 @@ impl GameState {
     /// positions `eyes` now, moving with the free eye's velocity, watching
     /// the board time shown. Returns each eye's view entity.
     pub fn run_stereo(&mut self, eyes: &[DVec3]) -> Vec<Entity> {
-        self.sync_eye();
+        self.forget_old_eye();
         let t = self.live_time;
+        let u = self.eye_velocity();
         while self.stereo.len() < eyes.len() {
             let k = self.stereo.len();
             let o = self.sim.add_observer(
@@ -183,7 +184,7 @@ impl GameState {
         let mut out = Vec::with_capacity(n);
         for (k, &p) in eyes.iter().enumerate() {
             let o = self.stereo[k];
-            let _ = self.sim.place_observer(o, t, p, self.eye.u);
+            let _ = self.sim.place_observer(o, t, p, u);
             self.sim.forget_observer_before(o, t);
             let key = ViewKey::Stereo(k);
             let v = self.view_for(key);
