@@ -109,6 +109,17 @@ pub struct Claim {
     pub detail: String,
 }
 
+/// Told of each claim as it is checked: a lesson run in its own process
+/// sends it to the game at once, so a process that dies later in the same
+/// hook keeps what it claimed. One observer per process.
+static CLAIM_OBSERVER: std::sync::OnceLock<fn(&Claim)> = std::sync::OnceLock::new();
+
+/// Registers `f` to be told of every claim checked in this process, as it
+/// is checked (the first registration holds).
+pub fn observe_claims(f: fn(&Claim)) {
+    let _ = CLAIM_OBSERVER.set(f);
+}
+
 /// A bar chart (for instance a speed histogram) with an optional expected
 /// curve drawn over it.
 #[derive(Clone, Debug, PartialEq)]
@@ -503,11 +514,15 @@ impl World {
     /// fails the headless lesson run. Returns `ok`.
     #[pyo3(signature = (claim, ok, detail = ""))]
     fn check(&mut self, claim: &str, ok: bool, detail: &str) -> bool {
-        self.ui.claims.push(Claim {
+        let made = Claim {
             claim: claim.to_owned(),
             ok,
             detail: detail.to_owned(),
-        });
+        };
+        if let Some(f) = CLAIM_OBSERVER.get() {
+            f(&made);
+        }
+        self.ui.claims.push(made);
         ok
     }
 

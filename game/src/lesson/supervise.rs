@@ -16,7 +16,9 @@
 //!   limited (`RLIMIT_AS`), and is killed with everything it started.
 //!
 //! Either way the outcome keeps what the lesson did before: board time,
-//! frames, claims and answers.
+//! frames, claims and answers. Each claim is sent as it is made (not when
+//! its hook returns), so a process killed or crashed later in the same
+//! hook keeps every claim it made.
 
 use std::io::{BufRead, BufReader, Write};
 use std::os::unix::process::{CommandExt, ExitStatusExt};
@@ -83,6 +85,14 @@ fn send(event: &Event) {
 
 fn hook_event(name: Option<&'static str>) {
     send(&Event::Hook(name.map(str::to_owned)));
+}
+
+fn claim_event(claim: &lightcone_python::Claim) {
+    send(&Event::Progress(Progress::Claim(headless::ClaimLine {
+        claim: claim.claim.clone(),
+        ok: claim.ok,
+        detail: claim.detail.clone(),
+    })));
 }
 
 /// Sets up a lesson's own process (the child of `lightcone lesson`, or of
@@ -201,12 +211,19 @@ pub fn child(path: &Path, limits: Limits) -> u8 {
     };
     *EVENTS.lock().unwrap_or_else(|e| e.into_inner()) = Some(events);
     watchdog::observe_hooks(hook_event);
+    // Each claim goes to the parent as it is made (not when its hook
+    // returns): a process that dies later in the hook keeps it.
+    lightcone_python::observe_claims(claim_event);
     let result = headless::run_reporting(path, limits.until, limits.fps, limits.hook, &mut |p| {
-        send(&Event::Progress(p))
+        if !matches!(p, Progress::Claim(_)) {
+            send(&Event::Progress(p));
+        }
     });
     match result {
-        Ok(outcome) => {
+        Ok(mut outcome) => {
             let status = outcome.status();
+            // The parent has them all already, in order.
+            outcome.claims.clear();
             send(&Event::Outcome(outcome));
             status
         }
@@ -363,7 +380,9 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
     if let Some(e) = failed {
         return Err(e);
     }
-    if let Some(o) = outcome {
+    if let Some(mut o) = outcome {
+        // Sent one by one as they were made (the outcome carries none).
+        o.claims = partial.claims;
         return Ok(o);
     }
     let place = match &hook {
