@@ -4,6 +4,9 @@
 //! their traceback, in the terminal and on screen, without a crash.
 
 mod common;
+/// Hostile lessons: claims kept, floods, the sandbox.
+#[path = "lessons/safety.rs"]
+mod safety;
 
 use std::path::Path;
 use std::process::Output;

@@ -29,7 +29,10 @@ pub use errors::{NoAdapterError, NotComputedError, SceneError, SpeedOfLightError
 pub use frame::Frame;
 pub use scene::Scene;
 pub use simulation::Simulation;
-pub use world::{Bars, Claim, LessonGame, LessonUi, Pictures, Question, World};
+pub use world::{
+    Bars, Claim, LessonGame, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS, Pictures,
+    Question, World, observe_claims,
+};
 
 /// Adds the module's classes to `m`: used by the wheel's `_lightcone` and
 /// by the module the game embeds alike.

@@ -109,6 +109,31 @@ pub struct Claim {
     pub detail: String,
 }
 
+/// Most claims a lesson may check (the shipped lessons check a few
+/// dozen): past it `check` raises, so a flood of claims cannot grow the
+/// game's memory or its panel.
+pub const MAX_CLAIMS: usize = 10_000;
+
+/// Longest claim, or claim's detail, in bytes of UTF-8.
+pub const MAX_CLAIM_BYTES: usize = 4096;
+
+/// Most bar charts (by title) a lesson may show at once, and most bins a
+/// chart may have.
+pub const MAX_CHARTS: usize = 64;
+/// See [`MAX_CHARTS`].
+pub const MAX_BINS: usize = 10_000;
+
+/// Told of each claim as it is checked: a lesson run in its own process
+/// sends it to the game at once, so a process that dies later in the same
+/// hook keeps what it claimed. One observer per process.
+static CLAIM_OBSERVER: std::sync::OnceLock<fn(&Claim)> = std::sync::OnceLock::new();
+
+/// Registers `f` to be told of every claim checked in this process, as it
+/// is checked (the first registration holds).
+pub fn observe_claims(f: fn(&Claim)) {
+    let _ = CLAIM_OBSERVER.set(f);
+}
+
 /// A bar chart (for instance a speed histogram) with an optional expected
 /// curve drawn over it.
 #[derive(Clone, Debug, PartialEq)]
@@ -502,13 +527,28 @@ impl World {
     /// Records a physics claim: shown as ✓/✗ with `detail`; a false claim
     /// fails the headless lesson run. Returns `ok`.
     #[pyo3(signature = (claim, ok, detail = ""))]
-    fn check(&mut self, claim: &str, ok: bool, detail: &str) -> bool {
-        self.ui.claims.push(Claim {
+    fn check(&mut self, claim: &str, ok: bool, detail: &str) -> PyResult<bool> {
+        if self.ui.claims.len() >= MAX_CLAIMS {
+            return Err(PyValueError::new_err(format!(
+                "world.check: a lesson may check at most {MAX_CLAIMS} claims; this is one more"
+            )));
+        }
+        if claim.len().max(detail.len()) > MAX_CLAIM_BYTES {
+            return Err(PyValueError::new_err(format!(
+                "world.check: a claim or its detail of {} bytes; give at most {MAX_CLAIM_BYTES}",
+                claim.len().max(detail.len())
+            )));
+        }
+        let made = Claim {
             claim: claim.to_owned(),
             ok,
             detail: detail.to_owned(),
-        });
-        ok
+        };
+        if let Some(f) = CLAIM_OBSERVER.get() {
+            f(&made);
+        }
+        self.ui.claims.push(made);
+        Ok(ok)
     }
 
     /// The claims checked so far, as (claim, ok, detail) tuples.
@@ -547,6 +587,23 @@ impl World {
         if all.clone().any(|x| !x.is_finite()) {
             return Err(PyValueError::new_err(format!(
                 "bars {title:?}: every number must be finite"
+            )));
+        }
+        if counts.len() > MAX_BINS {
+            return Err(PyValueError::new_err(format!(
+                "bars {title:?}: {} bins; give at most {MAX_BINS}",
+                counts.len()
+            )));
+        }
+        if title.len() > MAX_CLAIM_BYTES {
+            return Err(PyValueError::new_err(format!(
+                "bars: a title of {} bytes; give at most {MAX_CLAIM_BYTES}",
+                title.len()
+            )));
+        }
+        if self.ui.bars.len() >= MAX_CHARTS && !self.ui.bars.iter().any(|b| b.title == title) {
+            return Err(PyValueError::new_err(format!(
+                "bars {title:?}: a lesson may show at most {MAX_CHARTS} charts (one per title)"
             )));
         }
         let chart = Bars {

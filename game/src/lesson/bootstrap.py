@@ -11,16 +11,29 @@ import sys
 import types
 
 
+# Most characters `_Printed` keeps for the panel between two drains (the
+# panel shows the last 40 lines): a lesson that prints gigabytes in one
+# hook does not fill its process's memory.
+_KEEP = 1 << 20
+
+
 class _Printed:
-    """`sys.stdout` for lessons: writes through, and keeps the lines."""
+    """`sys.stdout` for lessons: writes through, and keeps the newest
+    lines (at most `_KEEP` characters)."""
 
     def __init__(self, out):
-        self.out, self.lines = out, []
+        self.out, self.lines, self._kept = out, [], 0
 
     def write(self, s):
         if self.out is not None:
             self.out.write(s)
-        self.lines.append(s)
+        if self._kept > _KEEP:
+            # Drop the oldest half (the host replaces `lines` when it drains).
+            half = len(self.lines) // 2 or 1
+            del self.lines[:half]
+            self._kept = sum(len(x) for x in self.lines)
+        self.lines.append(s[-_KEEP:])
+        self._kept += min(len(s), _KEEP)
         return len(s)
 
     def flush(self):

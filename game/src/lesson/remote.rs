@@ -473,6 +473,14 @@ impl Remote {
         // Bounded: a lesson that floods the pipe waits for the game (its
         // lines do not pile up in the game's memory).
         let (tx, up) = mpsc::sync_channel(4);
+        // What it prints goes to the game's stderr, bounded: past the
+        // bound the game stops it.
+        if let Some(printed) = child.stderr.take() {
+            let tx = tx.clone();
+            supervise::forward_printed(printed, move |why| {
+                let _ = tx.send(FromChild::Bad(why));
+            });
+        }
         std::thread::spawn(move || {
             let mut reader = BufReader::new(stdout);
             loop {

@@ -16,9 +16,11 @@
 //!   limited (`RLIMIT_AS`), and is killed with everything it started.
 //!
 //! Either way the outcome keeps what the lesson did before: board time,
-//! frames, claims and answers.
+//! frames, claims and answers. Each claim is sent as it is made (not when
+//! its hook returns), so a process killed or crashed later in the same
+//! hook keeps every claim it made.
 
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufReader, Read, Write};
 use std::os::unix::process::{CommandExt, ExitStatusExt};
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
@@ -29,7 +31,9 @@ use std::time::{Duration, Instant};
 use serde::{Deserialize, Serialize};
 
 use super::headless::{self, Outcome, Progress, Stop};
+use super::remote;
 use super::watchdog::{self, HARD_STOP_STATUS};
+use lightcone_python::{MAX_CLAIM_BYTES, MAX_CLAIMS};
 
 /// How long past its limit a hook runs before the parent kills its
 /// process (the in-process stop usually ends it within 50 ms of the limit).
@@ -37,6 +41,96 @@ pub const KILL_AFTER: Duration = Duration::from_millis(500);
 
 /// Default address-space limit of a lesson's process, MiB.
 pub const MEMORY_LIMIT_MB: u64 = 4096;
+
+/// Most questions a lesson's run may answer (each kept in its outcome).
+pub const MAX_ANSWERS: usize = 10_000;
+
+/// Longest question or choice kept of an answer, bytes.
+pub const MAX_ANSWER_BYTES: usize = 64 << 10;
+
+/// Most a lesson's process may print (to standard error, through its
+/// parent), bytes: past it the lesson is stopped.
+pub const MAX_PRINTED: u64 = 16 << 20;
+
+/// Longest error or closing message sent in an outcome, bytes (longer
+/// ones are cut, with "…").
+const MAX_MESSAGE: usize = 1 << 20;
+
+/// `text` cut to at most `max` bytes (at a character boundary), "…" added.
+fn cut(mut text: String, max: usize) -> String {
+    if text.len() > max {
+        let mut end = max;
+        while !text.is_char_boundary(end) {
+            end -= 1;
+        }
+        text.truncate(end);
+        text.push('…');
+    }
+    text
+}
+
+/// Why claim `c`, after `made` others, is beyond what a lesson may send
+/// (`World.check` refuses it; only a forged message gets here).
+fn claim_out_of_bounds(made: usize, c: &headless::ClaimLine) -> Option<String> {
+    if made >= MAX_CLAIMS {
+        Some(format!("it made more than {MAX_CLAIMS} claims"))
+    } else if c.claim.len().max(c.detail.len()) > MAX_CLAIM_BYTES {
+        Some(format!(
+            "it sent a claim longer than {MAX_CLAIM_BYTES} bytes"
+        ))
+    } else {
+        None
+    }
+}
+
+/// Why an answer, after `given` others, is beyond what a run keeps.
+fn answer_out_of_bounds(given: usize, question: &str, choice: &str) -> Option<String> {
+    if given >= MAX_ANSWERS {
+        Some(format!("it asked more than {MAX_ANSWERS} questions"))
+    } else if question.len().max(choice.len()) > MAX_ANSWER_BYTES {
+        Some(format!(
+            "it asked a question (or gave a choice) longer than {} KiB",
+            MAX_ANSWER_BYTES >> 10
+        ))
+    } else {
+        None
+    }
+}
+
+/// What the student is told of a lesson stopped for what it sent.
+pub(crate) fn misbehaved(place: &str, why: &str) -> String {
+    format!("{place}: the lesson's process misbehaved: {why}; it was stopped")
+}
+
+/// Copies what the lesson's process prints (`from`, its standard error)
+/// to ours as it comes, in chunks (a line with no newline takes no
+/// memory); past [`MAX_PRINTED`] bytes stops copying and tells `flood`.
+pub(crate) fn forward_printed(
+    mut from: std::process::ChildStderr,
+    flood: impl FnOnce(String) + Send + 'static,
+) {
+    std::thread::spawn(move || {
+        let mut buf = vec![0u8; 64 << 10];
+        let mut total = 0u64;
+        loop {
+            let n = match from.read(&mut buf) {
+                Ok(0) => return,
+                Ok(n) => n,
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                Err(_) => return,
+            };
+            total += n as u64;
+            if total > MAX_PRINTED {
+                flood(format!(
+                    "it printed more than {} MiB (what a lesson prints is bounded)",
+                    MAX_PRINTED >> 20
+                ));
+                return;
+            }
+            let _ = std::io::stderr().write_all(&buf[..n]);
+        }
+    });
+}
 
 /// What a run needs.
 #[derive(Clone, Copy, Debug)]
@@ -85,6 +179,14 @@ fn hook_event(name: Option<&'static str>) {
     send(&Event::Hook(name.map(str::to_owned)));
 }
 
+fn claim_event(claim: &lightcone_python::Claim) {
+    send(&Event::Progress(Progress::Claim(headless::ClaimLine {
+        claim: claim.claim.clone(),
+        ok: claim.ok,
+        detail: claim.detail.clone(),
+    })));
+}
+
 /// Sets up a lesson's own process (the child of `lightcone lesson`, or of
 /// the window): dies with its parent, limits its address space to
 /// `memory_mb` MiB, and moves standard output to standard error (what the
@@ -100,6 +202,7 @@ pub(crate) fn child_process(memory_mb: u64) -> Result<std::fs::File, String> {
     if std::os::unix::process::parent_id() == 1 {
         return Err("the parent is already gone".to_owned());
     }
+
     // A batch task: woken by the game's call, it does not preempt the
     // game's frame on the same core (the wake-up would otherwise cost the
     // game the hook's whole run); it runs beside it or when it waits.
@@ -127,8 +230,8 @@ pub(crate) fn child_process(memory_mb: u64) -> Result<std::fs::File, String> {
 }
 
 /// Starts `lightcone ARGS` (this binary, `exe`) as a lesson's process: its
-/// own process group, standard input and output piped, standard error
-/// inherited.
+/// own process group, standard input, output and error piped (what it
+/// prints is read through [`forward_printed`]).
 pub(crate) fn spawn(exe: &Path, args: &[std::ffi::OsString]) -> Result<Child, String> {
     let mut command = Command::new(exe);
     // Under the address-space limit, glibc's malloc arenas (64 MiB of
@@ -145,7 +248,7 @@ pub(crate) fn spawn(exe: &Path, args: &[std::ffi::OsString]) -> Result<Child, St
         // there (and gives the lesson such a pipe instead).
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
-        .stderr(Stdio::inherit())
+        .stderr(Stdio::piped())
         .process_group(0)
         .spawn()
         .map_err(|e| format!("cannot start the lesson's process: {e}"))
@@ -175,6 +278,7 @@ pub(crate) fn how_it_ended(status: std::process::ExitStatus, memory_mb: u64) -> 
         (None, Some(libc::SIGABRT)) => {
             format!("aborted (SIGABRT: out of memory? the limit is {memory_mb} MiB)")
         }
+
         (None, Some(sig)) => format!("was ended by signal {sig}"),
         (None, None) => "ended".to_owned(),
     }
@@ -201,17 +305,28 @@ pub fn child(path: &Path, limits: Limits) -> u8 {
     };
     *EVENTS.lock().unwrap_or_else(|e| e.into_inner()) = Some(events);
     watchdog::observe_hooks(hook_event);
+    // Each claim goes to the parent as it is made (not when its hook
+    // returns): a process that dies later in the hook keeps it.
+    lightcone_python::observe_claims(claim_event);
     let result = headless::run_reporting(path, limits.until, limits.fps, limits.hook, &mut |p| {
-        send(&Event::Progress(p))
+        if !matches!(p, Progress::Claim(_)) {
+            send(&Event::Progress(p));
+        }
     });
     match result {
-        Ok(outcome) => {
+        Ok(mut outcome) => {
             let status = outcome.status();
+            // The parent has them all already, in order; the texts are cut
+            // to what one line to the parent holds.
+            outcome.claims.clear();
+            outcome.answers.clear();
+            outcome.error = outcome.error.map(|e| cut(e, MAX_MESSAGE));
+            outcome.finished = outcome.finished.map(|e| cut(e, MAX_MESSAGE));
             send(&Event::Outcome(outcome));
             status
         }
         Err(e) => {
-            send(&Event::Failed(e));
+            send(&Event::Failed(cut(e, MAX_MESSAGE)));
             1
         }
     }
@@ -250,14 +365,33 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
     let mut child = spawn(&exe, &args)?;
     let pid = child.id();
     let kill_group = || kill_group(pid);
-    let (tx, rx) = mpsc::channel();
+    // Bounded both ways: a line is read to at most `MAX_LINE` bytes, and
+    // a few events wait at most (a lesson that floods waits for the
+    // parent). `Err` is a breach of the channel's bounds.
+    let (tx, rx) = mpsc::sync_channel::<Result<Event, String>>(64);
+    if let Some(printed) = child.stderr.take() {
+        let tx = tx.clone();
+        forward_printed(printed, move |why| {
+            let _ = tx.send(Err(why));
+        });
+    }
     if let Some(out) = child.stdout.take() {
         std::thread::spawn(move || {
-            for line in BufReader::new(out).lines() {
-                let Ok(line) = line else { break };
-                if let Ok(event) = serde_json::from_str::<Event>(&line)
-                    && tx.send(event).is_err()
-                {
+            let mut reader = BufReader::new(out);
+            loop {
+                let sent = match remote::read_line(&mut reader) {
+                    Ok(None) => break,
+                    Err(e) => {
+                        let _ = tx.send(Err(e));
+                        break;
+                    }
+                    // A line that is no event is skipped (the lesson goes on).
+                    Ok(Some(line)) => match serde_json::from_slice::<Event>(&line) {
+                        Ok(event) => tx.send(Ok(event)),
+                        Err(_) => Ok(()),
+                    },
+                };
+                if sent.is_err() {
                     break;
                 }
             }
@@ -271,24 +405,36 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
     let mut outcome = None;
     let mut failed = None;
     let mut killed = false;
+    let mut breach = None;
     let mut exited = None;
     let mut deadline = None;
     let started = Instant::now();
     loop {
         match rx.recv_timeout(Duration::from_millis(10)) {
-            Ok(Event::Hook(Some(name))) => hook = Some((name, Instant::now())),
-            Ok(Event::Hook(None)) => hook = None,
-            Ok(Event::Progress(Progress::Frame { t, frames })) => {
+            Ok(Ok(Event::Hook(Some(name)))) => hook = Some((name, Instant::now())),
+            Ok(Ok(Event::Hook(None))) => hook = None,
+            Ok(Ok(Event::Progress(Progress::Frame { t, frames }))) => {
                 partial.t = t;
                 partial.frames = frames;
                 progress.set_position_f64(t);
             }
-            Ok(Event::Progress(Progress::Claim(c))) => partial.claims.push(c),
-            Ok(Event::Progress(Progress::Answer(q, a))) => partial.answers.push((q, a)),
-            Ok(Event::Outcome(o)) => outcome = Some(o),
-            Ok(Event::Failed(e)) => failed = Some(e),
+            Ok(Ok(Event::Progress(Progress::Claim(c)))) => {
+                breach = claim_out_of_bounds(partial.claims.len(), &c);
+                partial.claims.push(c);
+            }
+            Ok(Ok(Event::Progress(Progress::Answer(q, a)))) => {
+                breach = answer_out_of_bounds(partial.answers.len(), &q, &a);
+                partial.answers.push((q, a));
+            }
+            Ok(Ok(Event::Outcome(o))) => outcome = Some(o),
+            Ok(Ok(Event::Failed(e))) => failed = Some(e),
+            Ok(Err(why)) => breach = Some(why),
             Err(mpsc::RecvTimeoutError::Timeout) => {}
             Err(mpsc::RecvTimeoutError::Disconnected) => break,
+        }
+        if breach.is_some() {
+            kill_group();
+            break;
         }
         if crate::interrupt::interrupted() {
             // Ctrl-C: stop the lesson; what it did so far is reported.
@@ -360,16 +506,36 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
             .wait()
             .map_err(|e| format!("cannot wait for the lesson's process: {e}"))?,
     };
-    if let Some(e) = failed {
-        return Err(e);
-    }
-    if let Some(o) = outcome {
-        return Ok(o);
-    }
     let place = match &hook {
         Some((name, _)) => format!("in {name}"),
         None => "between hooks".to_owned(),
     };
+    if let Some(why) = breach {
+        // What it sent within the bounds is kept; the rest is dropped.
+        partial.claims.truncate(MAX_CLAIMS);
+        partial.answers.truncate(MAX_ANSWERS);
+        let error = misbehaved(&place, &why);
+        crate::errln!("lesson {} stopped:\n{error}", path.display());
+        return Ok(Outcome {
+            file: path.display().to_string(),
+            t: partial.t,
+            frames: partial.frames,
+            finished: None,
+            error: Some(error),
+            stopped: Some(Stop::Died),
+            claims: partial.claims,
+            answers: partial.answers,
+        });
+    }
+    if let Some(e) = failed {
+        return Err(e);
+    }
+    if let Some(mut o) = outcome {
+        // Sent one by one as they were made (the outcome carries none).
+        o.claims = partial.claims;
+        o.answers = partial.answers;
+        return Ok(o);
+    }
     // Status 3 is the watchdog's hard stop only for a hook over its limit
     // (a lesson may end its process with 3 itself, through ctypes).
     let over = hook
