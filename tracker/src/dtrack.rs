@@ -30,6 +30,10 @@ use glam::{DMat3, DQuat, DVec3};
 /// Longest packet read, bytes (a DTrack packet is well under 10 kB; more is
 /// not DTrack).
 pub const MAX_PACKET: usize = 65_507;
+/// Most bodies a `6d` record may give (DTrack2 tracks at most a few dozen
+/// standard bodies; a larger count is not DTrack, and is refused before
+/// anything is kept for it).
+pub const MAX_BODIES: usize = 256;
 
 /// One tracked 6DOF body of a packet.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -123,8 +127,8 @@ fn finite(line: usize, record: &str, field: &str, text: &str) -> Result<f64, Pac
 /// not ASCII text, a number that does not parse or is not finite, a
 /// missing or extra bracket block, a body count that disagrees with the
 /// blocks, a rotation matrix that is not a rotation (orthonormal to 1e-3,
-/// determinant +1), a position beyond ±1 km, no `fr` line (DTrack sends
-/// one in every packet).
+/// determinant +1), a position beyond ±1 km, more than [`MAX_BODIES`]
+/// bodies, no `fr` line (DTrack sends one in every packet).
 pub fn parse(bytes: &[u8]) -> Result<Packet, PacketError> {
     let text =
         std::str::from_utf8(bytes).map_err(|e| error(0, "packet", format!("not text: {e}")))?;
@@ -211,6 +215,13 @@ fn parse_6d(line: usize, rest: &str) -> Result<Vec<Body6d>, PacketError> {
     let record = "6d";
     let (count, rest) = rest.split_once(' ').unwrap_or((rest, ""));
     let count: usize = number(line, record, "number of bodies", count)?;
+    if count > MAX_BODIES {
+        return Err(error(
+            line,
+            record,
+            format!("number of bodies: {count} is more than {MAX_BODIES}"),
+        ));
+    }
     let blocks = blocks(line, record, rest)?;
     if blocks.len() != 3 * count {
         return Err(error(
@@ -288,14 +299,8 @@ fn parse_6d(line: usize, rest: &str) -> Result<Vec<Body6d>, PacketError> {
                 format!("{}: b0 … b8 is not a rotation matrix", field("rotation")),
             ));
         }
-        let position = DVec3::from_array(s) / 1000.0;
-        if position.abs().max_element() > 1000.0 {
-            return Err(error(
-                line,
-                record,
-                format!("{}: {position} m is beyond ±1 km", field("position")),
-            ));
-        }
+        let position = crate::report::check_position(DVec3::from_array(s) / 1000.0)
+            .map_err(|e| error(line, record, format!("{}: {e}", field("position"))))?;
         bodies.push(Body6d {
             id,
             quality,
@@ -367,6 +372,14 @@ mod tests {
                 "beyond",
             ),
             (b"fr 1\n<html>\n", "line 2"),
+            (
+                b"fr 1\n6d 6148914691236517206 [0 1][0 0 0 0 0 0]\n",
+                "6148914691236517206 is more than 256",
+            ),
+            (
+                b"6d 1 [0 1.0][1e300 2 3 0 0 0][1 0 0 0 1 0 0 0 1]\n",
+                "beyond",
+            ),
             (b"6d 0\n", "no frame counter"),
         ];
         for (bytes, want) in cases {

@@ -73,9 +73,7 @@ impl Default for FollowerConfig {
     }
 }
 
-/// Largest tracker-space coordinate a sample may have, m: a tracked room,
-/// with a wide margin.
-pub const MAX_TRACKED_COORDINATE: f64 = 1000.0;
+pub use crate::report::MAX_TRACKED_COORDINATE;
 
 /// Why a sample's content was rejected.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -35,6 +35,7 @@ pub mod follow;
 pub mod latency;
 pub mod motion;
 pub mod publish;
+pub mod report;
 pub mod sample;
 pub mod transport;
 pub mod vrpn;

@@ -508,7 +508,7 @@ fn vrpn_connection(
         .map_err(|e| e.to_string())?;
     tcp.write_all(&vrpn::cookie())
         .map_err(|e| format!("cannot send the cookie: {e}"))?;
-    let mut stream = vrpn::Stream::default();
+    let mut stream = vrpn::Stream::following(&device.name);
     let mut cookie: Vec<u8> = Vec::with_capacity(vrpn::COOKIE_LEN);
     let mut buf = vec![0u8; 64 * 1024];
     let shaken = Instant::now();
@@ -585,10 +585,15 @@ fn vrpn_connection(
                 vrpn::Event::Refused(e) => {
                     counts.refused += 1;
                     if counts.refused <= REPORTED_PACKETS {
-                        eprintln!("lightcone tracker: dropped a malformed VRPN report: {e}");
+                        let what = if e.field.starts_with("description") {
+                            "description"
+                        } else {
+                            "report"
+                        };
+                        eprintln!("lightcone tracker: dropped a malformed VRPN {what}: {e}");
                     } else if counts.refused.is_multiple_of(1000) {
                         eprintln!(
-                            "lightcone tracker: {} malformed VRPN reports dropped",
+                            "lightcone tracker: {} malformed VRPN reports and descriptions dropped",
                             counts.refused
                         );
                     }

@@ -29,8 +29,11 @@
 //! A client that announces no UDP port gets every message over TCP, so
 //! this client announces none. Everything read is untrusted: a header whose
 //! length is impossible ends the connection (its framing is lost), a pose
-//! that is not finite or whose quaternion has no length is refused alone;
-//! each error names the field and shows what was there.
+//! that is not finite, lies beyond ±1 km ([`crate::report`]) or whose
+//! quaternion has no length is refused alone, as is a description whose
+//! name is longer than [`MAX_NAME_LEN`]; each error names the field and
+//! shows what was there. At most [`MAX_NAMES`] sender and type names are
+//! kept, the oldest forgotten first, so a server cannot grow the client.
 
 use glam::{DQuat, DVec3};
 
@@ -44,6 +47,13 @@ pub const MAJOR_VERSION: u32 = 7;
 pub const HEADER_LEN: usize = 24;
 /// Longest payload accepted, bytes (a tracker's are 64; a name is short).
 pub const MAX_PAYLOAD: usize = 1 << 16;
+/// Longest sender or type name kept, bytes (VRPN's own names are at most
+/// 100, `vrpn_Shared.h`'s `cName`); a longer description is refused alone.
+pub const MAX_NAME_LEN: usize = 255;
+/// Most sender names, and most type names, kept at once (VRPN's own
+/// limits, `vrpn_CONNECTION_MAX_SENDERS` and `_TYPES`): a server that
+/// describes more has its oldest descriptions forgotten first.
+pub const MAX_NAMES: usize = 2000;
 /// The type name of a tracker's position-and-orientation report.
 pub const POS_QUAT: &str = "vrpn_Tracker Pos_Quat";
 
@@ -247,6 +257,13 @@ pub fn parse_name(payload: &[u8]) -> Result<String, ProtocolError> {
         .map(|n| &payload[4..4 + n])
         .ok_or_else(|| error("description.length", format!("{n} does not fit"), payload))?;
     let name = name.strip_suffix(b"\0").unwrap_or(name);
+    if name.len() > MAX_NAME_LEN {
+        return Err(error(
+            "description.name",
+            format!("{} bytes, longer than {MAX_NAME_LEN}", name.len()),
+            payload,
+        ));
+    }
     std::str::from_utf8(name)
         .map(str::to_owned)
         .map_err(|_| error("description.name", "not UTF-8", payload))
@@ -273,26 +290,14 @@ pub fn parse_pos_quat(payload: &[u8]) -> Result<PosQuat, ProtocolError> {
         ));
     }
     let v: Vec<f64> = (0..7).map(|i| be_f64(payload, 8 + 8 * i)).collect();
-    let position = DVec3::new(v[0], v[1], v[2]);
-    if !position.is_finite() {
-        return Err(error(
-            "Pos_Quat.position",
-            format!("{position} is not finite"),
-            &payload[..64],
-        ));
-    }
-    let q = DQuat::from_xyzw(v[3], v[4], v[5], v[6]);
-    if !q.is_finite() || q.length() < 1e-6 {
-        return Err(error(
-            "Pos_Quat.quaternion",
-            format!("({}, {}, {}, {}) is not a rotation", v[3], v[4], v[5], v[6]),
-            &payload[..64],
-        ));
-    }
+    let position = crate::report::check_position(DVec3::new(v[0], v[1], v[2]))
+        .map_err(|e| error("Pos_Quat.position", e, &payload[..64]))?;
+    let orientation = crate::report::unit_quaternion(DQuat::from_xyzw(v[3], v[4], v[5], v[6]))
+        .map_err(|e| error("Pos_Quat.quaternion", e, &payload[..64]))?;
     Ok(PosQuat {
         sensor: be_i32(payload, 0),
         position,
-        orientation: q.normalize(),
+        orientation,
     })
 }
 
@@ -321,11 +326,63 @@ pub struct Stream {
     /// Where the next message starts in `buffer` (what is before it is
     /// read; dropped at the next push).
     start: usize,
-    senders: std::collections::HashMap<i32, String>,
-    types: std::collections::HashMap<i32, String>,
+    senders: Names,
+    types: Names,
+    /// The device followed ([`Stream::following`]): its sender name is
+    /// never forgotten.
+    device: Option<String>,
+}
+
+/// The names a server described, by id: at most [`MAX_NAMES`], the
+/// oldest description forgotten first, except the one `pinned` name.
+#[derive(Debug, Default)]
+struct Names {
+    by_id: std::collections::HashMap<i32, String>,
+    /// Ids from the oldest description to the newest.
+    order: std::collections::VecDeque<i32>,
+}
+
+impl Names {
+    fn insert(&mut self, id: i32, name: String, pinned: Option<&str>) {
+        if self.by_id.insert(id, name).is_some() {
+            self.order.retain(|i| *i != id);
+        }
+        self.order.push_back(id);
+        while self.order.len() > MAX_NAMES {
+            let Some(oldest) = self.order.pop_front() else {
+                break;
+            };
+            if pinned.is_some() && self.by_id.get(&oldest).map(String::as_str) == pinned {
+                // Kept, as if described last.
+                self.order.push_back(oldest);
+                continue;
+            }
+            self.by_id.remove(&oldest);
+        }
+    }
+
+    fn get(&self, id: &i32) -> Option<&String> {
+        self.by_id.get(id)
+    }
 }
 
 impl Stream {
+    /// A stream whose sender `device` (the tracker followed) is never
+    /// forgotten, however many other senders the server describes after it
+    /// (as the `Pos_Quat` type's name is not).
+    pub fn following(device: &str) -> Self {
+        Self {
+            device: Some(device.to_owned()),
+            ..Self::default()
+        }
+    }
+
+    /// How many sender and type names are kept (each at most
+    /// [`MAX_NAMES`]).
+    pub fn names_kept(&self) -> (usize, usize) {
+        (self.senders.by_id.len(), self.types.by_id.len())
+    }
+
     /// Appends bytes read from the connection (after the cookie).
     pub fn push(&mut self, bytes: &[u8]) {
         self.buffer.drain(..self.start);
@@ -349,13 +406,19 @@ impl Stream {
             let payload = rest[HEADER_LEN..HEADER_LEN + header.payload_len].to_vec();
             self.start += end;
             match header.kind {
-                SENDER_DESCRIPTION => {
-                    let name = parse_name(&payload)?;
-                    self.senders.insert(header.sender, name);
-                }
-                TYPE_DESCRIPTION => {
-                    let name = parse_name(&payload)?;
-                    self.types.insert(header.sender, name);
+                SENDER_DESCRIPTION | TYPE_DESCRIPTION => {
+                    // A description that does not parse is refused alone:
+                    // its length was in the header, so the framing holds.
+                    let name = match parse_name(&payload) {
+                        Ok(name) => name,
+                        Err(e) => return Ok(Some(Event::Refused(e))),
+                    };
+                    if header.kind == SENDER_DESCRIPTION {
+                        self.senders
+                            .insert(header.sender, name, self.device.as_deref());
+                    } else {
+                        self.types.insert(header.sender, name, Some(POS_QUAT));
+                    }
                 }
                 DISCONNECT => return Ok(Some(Event::Disconnect)),
                 kind if self.types.get(&kind).is_some_and(|t| t == POS_QUAT) => {
@@ -591,5 +654,138 @@ mod tests {
         let mut s = Stream::default();
         s.push(&encode(0, DISCONNECT, (0, 0), &[]));
         assert_eq!(s.next_event().unwrap(), Some(Event::Disconnect));
+    }
+
+    /// A server describing 10 000 senders with 32 kB names, then 10 000
+    /// with short ones: no long name is kept, at most [`MAX_NAMES`] short
+    /// ones are (the newest), and the stream goes on.
+    #[test]
+    fn a_flood_of_descriptions_keeps_the_names_bounded() {
+        let mut s = Stream::default();
+        s.push(&encode_description(TYPE_DESCRIPTION, 1, POS_QUAT));
+        let long = "x".repeat(32 * 1024);
+        let mut refused = 0;
+        for id in 0..10_000 {
+            s.push(&encode_description(SENDER_DESCRIPTION, id, &long));
+            while let Some(e) = s.next_event().unwrap() {
+                match e {
+                    Event::Refused(e) => {
+                        assert_eq!(e.field, "description.name");
+                        assert!(e.message.contains("32768 bytes, longer than 255"), "{e}");
+                        refused += 1;
+                    }
+                    e => panic!("{e:?}"),
+                }
+            }
+        }
+        assert_eq!(refused, 10_000);
+        assert_eq!(s.names_kept(), (0, 1));
+        for id in 0..10_000 {
+            s.push(&encode_description(
+                SENDER_DESCRIPTION,
+                id,
+                &format!("Body{id}"),
+            ));
+            assert_eq!(s.next_event().unwrap(), None);
+            assert!(s.names_kept().0 <= MAX_NAMES);
+        }
+        assert_eq!(s.names_kept(), (MAX_NAMES, 1));
+        // The newest are kept, the oldest forgotten; the report type stays.
+        s.push(&encode(
+            9_999,
+            1,
+            (0, 0),
+            &encode_pos_quat(0, DVec3::X, DQuat::IDENTITY),
+        ));
+        assert!(
+            matches!(s.next_event().unwrap(), Some(Event::Pose { sender, .. }) if sender == "Body9999")
+        );
+        s.push(&encode(
+            0,
+            1,
+            (0, 0),
+            &encode_pos_quat(0, DVec3::X, DQuat::IDENTITY),
+        ));
+        assert!(
+            matches!(s.next_event().unwrap(), Some(Event::Pose { sender, .. }) if sender == "?0")
+        );
+        // The buffer holds no more than the unread part of one message.
+        assert!(s.buffer.len() - s.start < HEADER_LEN + MAX_PAYLOAD);
+        // The device followed is never forgotten.
+        let mut s = Stream::following("Head");
+        s.push(&encode_description(SENDER_DESCRIPTION, 0, "Head"));
+        s.push(&encode_description(TYPE_DESCRIPTION, 1, POS_QUAT));
+        for id in 1..10_000 {
+            s.push(&encode_description(
+                SENDER_DESCRIPTION,
+                id,
+                &format!("Body{id}"),
+            ));
+            s.push(&encode_description(
+                TYPE_DESCRIPTION,
+                id + 1,
+                &format!("Type{id}"),
+            ));
+            assert_eq!(s.next_event().unwrap(), None);
+        }
+        assert_eq!(s.names_kept(), (MAX_NAMES, MAX_NAMES));
+        s.push(&encode(
+            0,
+            1,
+            (0, 0),
+            &encode_pos_quat(0, DVec3::X, DQuat::IDENTITY),
+        ));
+        assert!(
+            matches!(s.next_event().unwrap(), Some(Event::Pose { sender, .. }) if sender == "Head")
+        );
+    }
+
+    /// Every report the README says is dropped is refused, with the field
+    /// and what was there; a rotation of any finite length is normalised.
+    #[test]
+    fn reports_beyond_the_room_or_without_a_rotation_are_refused() {
+        let q = DQuat::IDENTITY;
+        for (p, q, field, says) in [
+            (
+                DVec3::new(1e300, 0.0, 0.0),
+                q,
+                "Pos_Quat.position",
+                "beyond ±1 km",
+            ),
+            (
+                DVec3::new(0.0, 1e6, 0.0),
+                q,
+                "Pos_Quat.position",
+                "beyond ±1 km",
+            ),
+            (
+                DVec3::new(0.0, 0.0, f64::INFINITY),
+                q,
+                "Pos_Quat.position",
+                "not finite",
+            ),
+            (
+                DVec3::ZERO,
+                DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0),
+                "Pos_Quat.quaternion",
+                "(0.0, 0.0, 0.0, 0.0) is not a rotation",
+            ),
+            (
+                DVec3::ZERO,
+                DQuat::from_xyzw(0.0, f64::NAN, 0.0, 1.0),
+                "Pos_Quat.quaternion",
+                "not a rotation",
+            ),
+        ] {
+            let e = parse_pos_quat(&encode_pos_quat(0, p, q)).unwrap_err();
+            assert_eq!(e.field, field);
+            assert!(e.message.contains(says), "{e}");
+        }
+        let big = DQuat::from_xyzw(0.0, 1e300, 0.0, 1e300);
+        let pose = parse_pos_quat(&encode_pos_quat(0, DVec3::splat(999.0), big)).unwrap();
+        let half = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(
+            (pose.orientation.y - half).abs() < 1e-15 && (pose.orientation.w - half).abs() < 1e-15
+        );
     }
 }

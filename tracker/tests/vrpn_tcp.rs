@@ -223,3 +223,141 @@ fn a_silent_vrpn_server_is_connected_to_again() {
         "{lines:#?}"
     );
 }
+
+/// A hostile VRPN server: reports the README says are dropped (a
+/// position of 1e300 m and of 1e6 m, a zero quaternion, a non-finite one)
+/// between good ones, then 10 000 sender descriptions with 32 kB names and
+/// 10 000 with distinct 220-byte ones, then a good report. Only the good
+/// reports reach the subscriber, each bad one is reported with its field
+/// and content, and the publisher's memory stays within a few MB of what
+/// it was before the flood (it grew by 317 MB when it kept every name).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_flooding_vrpn_server_neither_grows_the_tracker_nor_gets_bad_poses_through() {
+    lightcone_tracker::transport::quiet_iceoryx_logs();
+    let listener = TcpListener::bind("127.0.0.1:0").expect("listen");
+    let port = listener.local_addr().expect("port").port();
+    let (publisher, rx) = common::Publisher::spawn(
+        "vrpn-flood",
+        &[
+            "--vrpn",
+            &format!("Head@127.0.0.1:{port}"),
+            "--duration",
+            "60",
+        ],
+    );
+    let sub = Subscriber::open(&publisher.service).expect("open subscriber");
+    let good = |k: usize| {
+        (
+            DVec3::new(0.1 * k as f64, 1.7, -0.5),
+            DQuat::from_rotation_y(0.1 * k as f64),
+        )
+    };
+    let (go, flood) = std::sync::mpsc::channel::<()>();
+    let server = std::thread::spawn(move || {
+        let mut tcp = accept(&listener, 0, 3);
+        let report =
+            |(p, q): (DVec3, DQuat)| vrpn::encode(0, 3, (0, 0), &vrpn::encode_pos_quat(0, p, q));
+        let zero = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+        let nan = DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0);
+        let mut out = report(good(0));
+        for (k, bad) in [
+            (DVec3::new(1e300, 0.0, 0.0), DQuat::IDENTITY),
+            (DVec3::new(0.0, 1e6, 0.0), DQuat::IDENTITY),
+            (DVec3::new(0.5, 1.7, 0.0), zero),
+            (DVec3::new(0.5, 1.7, 0.0), nan),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            out.extend(report(bad));
+            out.extend(report(good(k + 1)));
+        }
+        tcp.write_all(&out).expect("reports");
+        flood.recv().expect("go");
+        let long = "n".repeat(32 * 1024);
+        for id in 0..10_000 {
+            tcp.write_all(&vrpn::encode_description(
+                SENDER_DESCRIPTION,
+                100 + id,
+                &long,
+            ))
+            .expect("long description");
+        }
+        for id in 0..10_000 {
+            let name = format!("Body{id:05}-{}", "m".repeat(210));
+            tcp.write_all(&vrpn::encode_description(
+                SENDER_DESCRIPTION,
+                20_000 + id,
+                &name,
+            ))
+            .expect("description");
+        }
+        tcp.write_all(&report(good(5))).expect("last report");
+        tcp // kept open until joined
+    });
+
+    let mut got: Vec<TrackerSample> = Vec::new();
+    let drain_until = |got: &mut Vec<TrackerSample>, n: usize| {
+        let deadline = Instant::now() + Duration::from_secs(30);
+        while got.len() < n && Instant::now() < deadline {
+            got.extend(sub.drain().expect("drain").iter().copied());
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    };
+    drain_until(&mut got, 5);
+    assert_eq!(got.len(), 5, "the good reports before the flood");
+    let before = publisher.resident_kb();
+    go.send(()).expect("flood");
+    drain_until(&mut got, 6);
+    std::thread::sleep(Duration::from_millis(200));
+    got.extend(sub.drain().expect("drain").iter().copied());
+    let after = publisher.resident_kb();
+    let _open = server.join().expect("the server ran");
+    assert!(
+        after < before + 16 * 1024,
+        "the publisher grew from {before} kB to {after} kB"
+    );
+    if got.len() != 6 {
+        drop(publisher);
+        let lines: Vec<String> = rx.try_iter().collect();
+        panic!("the good reports only: {got:?}\n{lines:#?}");
+    }
+    for (k, s) in got.iter().enumerate() {
+        let (p, q) = good(k);
+        assert!((s.position_vec() - p).length() < 1e-12, "{k}: {s:?}");
+        assert!(s.orientation_quat().dot(q).abs() > 1.0 - 1e-12, "{k}");
+    }
+
+    drop(publisher);
+    let mut lines = Vec::new();
+    while let Ok(l) = rx.recv_timeout(Duration::from_millis(500)) {
+        lines.push(l);
+    }
+    let has = |text: &str| lines.iter().filter(|l| l.contains(text)).count();
+    for says in [
+        "Pos_Quat.position: [1e300, 0.0, 0.0] m is beyond ±1 km",
+        "Pos_Quat.position: [0.0, 1000000.0, 0.0] m is beyond ±1 km",
+        "Pos_Quat.quaternion: (0.0, 0.0, 0.0, 0.0) is not a rotation",
+        "Pos_Quat.quaternion: (NaN, 0.0, 0.0, 1.0) is not a rotation",
+    ] {
+        assert_eq!(
+            has(&format!("dropped a malformed VRPN report: {says}")),
+            1,
+            "{says}: {lines:#?}"
+        );
+    }
+    // The first 20 refusals one by one (4 reports, 16 descriptions), then
+    // one line per 1000.
+    assert_eq!(
+        has("dropped a malformed VRPN description: description.name: 32768 bytes, longer than 255"),
+        16,
+        "{lines:#?}"
+    );
+    assert_eq!(
+        has("malformed VRPN reports and descriptions dropped"),
+        10,
+        "{lines:#?}"
+    );
+    assert_eq!(has("lost the framing"), 0, "{lines:#?}");
+}

@@ -41,6 +41,21 @@ impl Publisher {
     }
 }
 
+impl Publisher {
+    /// The publisher's resident memory, kB (Linux: `VmRSS` in
+    /// `/proc/PID/status`).
+    #[allow(dead_code)] // not every test binary measures it
+    pub fn resident_kb(&self) -> u64 {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id()))
+            .expect("the publisher's /proc status");
+        status
+            .lines()
+            .find_map(|l| l.strip_prefix("VmRSS:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+            .expect("VmRSS")
+    }
+}
+
 impl Drop for Publisher {
     fn drop(&mut self) {
         let _ = self.child.kill();
