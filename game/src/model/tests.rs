@@ -141,7 +141,8 @@ fn changing_c_keeps_each_pucks_proper_velocity_in_metres_per_second() {
     g.scene.table.friction = 0.0;
     g.restart_with_c(0.01);
     assert!(
-        (g.scene.pucks[0].u.speed_deficit() * 2.0 * g.scene.pucks[0].u.0.length_squared() - 1.0).abs()
+        (g.scene.pucks[0].u.speed_deficit() * 2.0 * g.scene.pucks[0].u.0.length_squared() - 1.0)
+            .abs()
             < 1.0 / g.scene.pucks[0].u.0.length_squared()
     ); // 1 − |β| ≈ 1/(2u²), to 3/(4u²)
     assert!((g.scene.pucks[0].u.0 * 0.01 - before[0]).length() < 1e-12);
