@@ -1223,8 +1223,9 @@ impl Billiard {
     /// that kick changes both pucks' contraction at once, so the new shapes
     /// can still overlap and close along a new penetration direction: the
     /// push is repeated along it, at the same instant, until they open (at
-    /// most 16 times). Each push conserves 4-momentum exactly, and the whole
-    /// is one contact.
+    /// most 16 times), elastically: the first push kept the fraction
+    /// `restitution` of the CM kinetic energy, the contact's whole loss.
+    /// Each push conserves 4-momentum exactly, and the whole is one contact.
     fn board_push(
         &self,
         a: usize,
@@ -1257,7 +1258,10 @@ impl Billiard {
                     _ => break,
                 },
             };
-            after = resolve::puck_puck_board(after[0], after[1], m, restitution);
+            // The first push took the contact's heat: the repeats, the same
+            // contact, are elastic, so the CM kinetic energy kept is `e`
+            // (each at `e` kept `e²`, `e³`, …: issue 30).
+            after = resolve::puck_puck_board(after[0], after[1], m, 1.0);
         }
         after
     }

@@ -85,13 +85,20 @@ pub fn puck_puck(
     pair_frame: ProperVelocity,
     restitution: f64,
 ) -> [Body; 2] {
-    let total_mass = FourMomentum::pair_invariant_mass(a.mass, a.u, b.mass, b.u);
-    let total = a.momentum() + b.momentum();
-    let to_cm = Boost::into_frame(total.centre_of_momentum_velocity(total_mass));
-    // The normal, a spatial vector in the pair frame, seen in the CM frame.
+    // The normal, a spatial vector in the pair frame, seen on the board.
     let n_board = Boost::into_frame(pair_frame)
         .inverse()
         .apply(FourVector::new(0.0, normal));
+    in_cm_frame(a, b, n_board, restitution)
+}
+
+/// [`puck_puck`]'s outcome with the normal given as a board-frame 4-vector
+/// `n_board` whose spatial part in the CM frame is the contact normal (its
+/// time part there is ignored; its length does not matter).
+fn in_cm_frame(a: Body, b: Body, n_board: FourVector, restitution: f64) -> [Body; 2] {
+    let total_mass = FourMomentum::pair_invariant_mass(a.mass, a.u, b.mass, b.u);
+    let total = a.momentum() + b.momentum();
+    let to_cm = Boost::into_frame(total.centre_of_momentum_velocity(total_mass));
     let n = to_cm.apply(n_board).space.normalize();
 
     let ua = to_cm.apply_velocity(a.u);
@@ -138,31 +145,33 @@ pub fn puck_puck(
 
 /// Outcome of a contact found on the board (two pucks that overlap on the
 /// board and are closing there, see `Billiard`): the impulse is along the
-/// board-frame unit direction `normal` (from `a` towards `b`).
+/// board-frame unit direction `normal` (from `a` towards `b`), and
+/// `restitution` is, as in [`puck_puck`], the fraction of the CM kinetic
+/// energy kept (README, "Outcomes").
 ///
 /// Worked in the frame that moves along `normal` with the pair's velocity
 /// component along it (`β = (P·n) / E`), where the pair's momentum along
 /// `normal` is zero. A boost along `normal` keeps the order of the two
 /// velocities' components along it (`v′ₙ = (vₙ − β)/(1 − β vₙ)` depends on
 /// `vₙ` alone), so "closing along `normal`" means the same there and on the
-/// board. There the normal momenta `±p` become `∓e p` with the energies
-/// unchanged (the lost kinetic energy stays as rest mass, as in
-/// [`puck_puck`]). Here `e` is Newton's coefficient on the normal momentum
-/// (a fraction `e²` of the normal part of the kinetic energy is kept), not
-/// the energy fraction of [`puck_puck`]; the two agree for `e = 1`. For
-/// `e = 0` this removes only the normal part of the relative motion, while
-/// [`puck_puck`] with `e = 0` removes all of it (the pair moves together):
-/// that outcome is [`together`], which the billiard uses for a board
-/// contact with restitution 0. 4-momentum is conserved exactly, and an
-/// elastic pair leaves opening along `normal` on the board. Not closing:
-/// unchanged.
+/// board. Elastic: there the normal momenta `±p` become `∓p` with the
+/// energies unchanged. That frame is a CM frame boosted across `normal`, a
+/// boost that keeps every 4-vector's component along `normal` and the sign
+/// of every velocity's: the elastic outcome is the CM normal momentum
+/// reversed, and [`puck_puck`]'s CM rule, with the board 4-vector
+/// `(β, normal)` (unit along `normal` in that frame) as its normal, gives
+/// the outcome for `e < 1` (heat `(1 − e) K` as rest mass in proportion
+/// to mass, the tangential momentum kept when the energy allows). The CM
+/// normal momenta stay opposite, so the pair leaves opening along `normal`
+/// on the board, or (all the energy taken from the tangential motion too)
+/// moving alike along it. For `e = 0` the pair moves together, as
+/// [`together`]. 4-momentum is conserved exactly. Not closing: unchanged.
 pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Body; 2] {
-    // In closed form on the board: an impulse `J n` to `a` (`−J n` to `b`)
-    // carries energy `J k`, `k = (P·n)/E`, the frame's β along `n`. The
-    // elastic root is `J = 2 E (E_a p_b·n − E_b p_a·n) / (E² − (P·n)²)`,
-    // with `E² − (P·n)² = M² + |P⊥|²` formed without cancellation (`M` the
-    // pair's invariant mass, exact); restitution `e` takes `(1 + e)/2` of
-    // it, and each rest mass grows by `J_e (J − J_e)(1 − k²)` in squares.
+    // Elastic, in closed form on the board: an impulse `J n` to `a` (`−J n`
+    // to `b`) carries energy `J k`, `k = (P·n)/E`, the frame's β along `n`.
+    // The root is `J = 2 E (E_a p_b·n − E_b p_a·n) / (E² − (P·n)²)`, with
+    // `E² − (P·n)² = M² + |P⊥|²` formed without cancellation (`M` the pair's
+    // invariant mass, exact).
     let (pa, pb) = (a.momentum(), b.momentum());
     let total = pa + pb;
     let along = total.momentum.dot(normal);
@@ -174,23 +183,20 @@ pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Bo
     if closing.is_nan() || closing >= 0.0 || denom <= 0.0 {
         return [a, b];
     }
+    if restitution < 1.0 {
+        return in_cm_frame(
+            a,
+            b,
+            FourVector::new(along / total.energy, normal),
+            restitution.max(0.0),
+        );
+    }
     let j = 2.0 * total.energy * closing / denom;
-    let e = restitution.clamp(0.0, 1.0);
-    let j_e = 0.5 * (1.0 + e) * j;
-    let one_minus_k2 = denom / (total.energy * total.energy);
-    let grow = j_e * (j - j_e) * one_minus_k2; // ≥ 0
-    let out = |body: Body, p: FourMomentum, impulse: f64| {
-        let mass = if e >= 1.0 {
-            body.mass
-        } else {
-            (body.mass * body.mass + grow).sqrt()
-        };
-        Body {
-            mass,
-            u: ProperVelocity((p.momentum + normal * impulse) / mass),
-        }
+    let out = |p: FourMomentum, impulse: f64, mass: f64| Body {
+        mass,
+        u: ProperVelocity((p.momentum + normal * impulse) / mass),
     };
-    [out(a, pa, j_e), out(b, pb, -j_e)]
+    [out(pa, j, a.mass), out(pb, -j, b.mass)]
 }
 
 /// The perfectly inelastic outcome, whatever the geometry: both bodies
@@ -368,10 +374,14 @@ mod tests {
             let out = puck_puck_board(a, b, n, e);
             conserved([a, b], out);
             let opening = (v(out[1]) - v(out[0])).dot(n);
-            if e > 0.0 {
+            // Elastic: opening. `e` is the CM kinetic-energy fraction kept:
+            // at 0.5 too little is left for the tangential motion, so the
+            // normal motion stops and the tangential shrinks (as in
+            // `puck_puck`); at 0 they move together.
+            if e == 1.0 {
                 assert!(opening > 0.0, "{e}: {opening}");
             } else {
-                assert!(opening.abs() < 1e-12, "{opening}");
+                assert!(opening.abs() < 1e-12, "{e}: {opening}");
             }
             if e == 1.0 {
                 assert_eq!((out[0].mass, out[1].mass), (a.mass, b.mass));
