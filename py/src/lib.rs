@@ -37,6 +37,7 @@ pub use world::{
 /// Adds the module's classes to `m`: used by the wheel's `_lightcone` and
 /// by the module the game embeds alike.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<Scene>()?;
     m.add_class::<Simulation>()?;
     m.add_class::<World>()?;
@@ -47,7 +48,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// The Lightcone engine from Python (`import lightcone`).
 #[pymodule]
 fn _lightcone(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     register(m)
 }
 

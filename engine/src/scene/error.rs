@@ -3,6 +3,7 @@
 use std::fmt;
 
 use super::rules::BuildError;
+pub use super::rules::number;
 
 /// One problem in a scene file.
 #[derive(Clone, Debug, PartialEq)]
@@ -140,19 +141,6 @@ pub fn one_line(text: &str) -> String {
         out = out.chars().take(MAX_MESSAGE).collect::<String>() + "…";
     }
     out
-}
-
-/// A number as messages and summaries show it: as written (`1.42`,
-/// `0.0305`, `2500`) from 10⁻⁴ to below 10⁶, else in exponent form
-/// (`1e-300`, `1e6`, `2.5e20`), never hundreds of digits; `inf` and `NaN`
-/// as such.
-pub fn number(x: f64) -> String {
-    let a = x.abs();
-    if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&a) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
 }
 
 /// 1-based line and character column of byte `offset` in `text`.

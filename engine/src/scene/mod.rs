@@ -9,6 +9,7 @@
 //! scenes built in code ([`Scene::add_puck`] …) alike; a broken one is a
 //! [`BuildError`].
 
+mod build;
 mod effects;
 mod error;
 mod model;

@@ -1,6 +1,6 @@
 //! The scene rules, stated once: the ranges the engine holds and every
 //! check a scene passes, whether it is read from a file
-//! ([`super::validate`], which locates each failure at its value) or built
+//! (`scene::validate`, which locates each failure at its value) or built
 //! in code ([`super::Scene::add_puck`] and its neighbours, Python's
 //! `Scene`). Each rule returns a typed [`BuildError`]; its message is the
 //! one the file loader prints after `file:line:column: field:`.
@@ -15,7 +15,6 @@ use std::ops::RangeInclusive;
 
 use glam::{DVec2, DVec3};
 
-use super::error::number;
 use super::model::{Color, PuckSpec, TableSpec};
 use crate::spacetime::ProperVelocity;
 
@@ -55,6 +54,19 @@ pub const MAX_HISTORY_FRAMES: usize = 100_000;
 /// Most dichotomy steps (`[optics] dichotomy_steps`): 64 halvings exhaust
 /// an f64 interval.
 pub const MAX_DICHOTOMY_STEPS: u32 = 64;
+
+/// A number as messages and summaries show it: as written (`1.42`,
+/// `0.0305`, `2500`) from 10⁻⁴ to below 10⁶, else in exponent form
+/// (`1e-300`, `1e6`, `2.5e20`), never hundreds of digits; `inf` and `NaN`
+/// as such.
+pub fn number(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
 
 /// |v| without overflow: finite for every finite `v` (10²⁰⁰ squared is
 /// not).
