@@ -5,6 +5,9 @@
 //! time and the same apparent vertices (to 1e-12) as the master's own
 //! single-process render of the walls; a node killed midway must not stop
 //! the others, and a node that joins late must catch up from a snapshot.
+//! The cluster runs with the CAVE's key (`lightcone cluster-key`): peers
+//! without it, or with another, are refused while it runs, and change
+//! nothing.
 
 mod common;
 
@@ -62,10 +65,102 @@ fn free_port() -> u16 {
         .expect("a free loopback port")
 }
 
-/// `lightcone wall --join ENDPOINT --wall WALL --headless`, logging to `log`.
-fn node(endpoint: &str, wall: &str, log: &Path) -> Proc {
+/// A copy of `assets/cave.toml` in `dir` with its cluster key beside it
+/// (`lightcone cluster-key`): the CAVE file's path and the key's.
+fn keyed_cave(dir: &Path) -> (PathBuf, PathBuf) {
+    let cave = dir.join("cave.toml");
+    std::fs::copy(repo().join("assets/cave.toml"), &cave).expect("a copy of the CAVE file");
+    let _ = std::fs::remove_file(dir.join("cave.key"));
+    let out = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+        .arg("cluster-key")
+        .arg(&cave)
+        .output()
+        .expect("lightcone cluster-key runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let key = dir.join("cave.key");
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).trim(),
+        key.to_string_lossy()
+    );
+    (cave, key)
+}
+
+/// A key file of the right form holding another secret.
+fn wrong_key(dir: &Path) -> PathBuf {
+    let path = dir.join("wrong.key");
+    std::fs::write(&path, format!("lightcone:{}\n", "5a".repeat(32))).expect("a wrong key");
+    path
+}
+
+/// Tries to join the cluster at `endpoint` as a Zenoh peer or client of
+/// its own, holding `secret` (or no key), to read its frames and forge
+/// its messages. Whatever Zenoh lets it do, it reports: `Ok` with what it
+/// received in `stay` if it got a session, `Err` with Zenoh's refusal.
+fn stranger(
+    endpoint: &str,
+    mode: &str,
+    secret: Option<&str>,
+    stay: Duration,
+) -> Result<usize, String> {
+    use zenoh::Wait;
+    let mut c = zenoh::Config::default();
+    let set = |c: &mut zenoh::Config, k: &str, v: String| c.insert_json5(k, &v).expect(k);
+    set(&mut c, "mode", format!("{mode:?}"));
+    set(&mut c, "scouting/multicast/enabled", "false".into());
+    set(&mut c, "connect/endpoints", format!("[{endpoint:?}]"));
+    set(&mut c, "listen/endpoints", "[]".into());
+    if mode == "peer" {
+        // A peer tries for a while, then gives up instead of waiting for ever.
+        set(&mut c, "connect/timeout_ms", "3000".into());
+        set(&mut c, "connect/exit_on_failure", "true".into());
+    }
+    if let Some(secret) = secret {
+        set(&mut c, "transport/auth/usrpwd/user", "\"lightcone\"".into());
+        set(
+            &mut c,
+            "transport/auth/usrpwd/password",
+            format!("{secret:?}"),
+        );
+    }
+    let session = zenoh::open(c).wait().map_err(|e| e.to_string())?;
+    // It got a session: listen to everything, forge a ready answer, a
+    // frame, a swap and a node's liveliness token.
+    let all = session
+        .declare_subscriber("lightcone/cluster/**")
+        .wait()
+        .map_err(|e| e.to_string())?;
+    let _token = session
+        .liveliness()
+        .declare_token("lightcone/cluster/node/front-stranger");
+    let end = Instant::now() + stay;
+    let mut got = 0;
+    while Instant::now() < end {
+        for key in [
+            "lightcone/cluster/ready",
+            "lightcone/cluster/frame",
+            "lightcone/cluster/swap",
+        ] {
+            let _ = session.put(key, vec![0u8; 64]).wait();
+        }
+        while let Ok(Some(_)) = all.try_recv() {
+            got += 1;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    Ok(got)
+}
+
+/// `lightcone wall --join ENDPOINT --wall WALL --headless --key KEY`,
+/// logging to `log`.
+fn node(endpoint: &str, wall: &str, log: &Path, key: &Path) -> Proc {
     let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
         .args(["wall", "--join", endpoint, "--wall", wall, "--headless"])
+        .arg("--key")
+        .arg(key)
         .args(["--silence", "15", "--frame-log"])
         .arg(log)
         .current_dir(repo())
@@ -132,6 +227,8 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
     let master_log = dir.join("master.jsonl");
     let log = |name: &str| -> PathBuf { dir.join(format!("{name}.jsonl")) };
     let walls = ["front", "left", "right", "floor"];
+    let (cave, key) = keyed_cave(&dir);
+    let wrong = wrong_key(&dir);
 
     let mut tracker = Proc(Some(
         Command::new(env!("CARGO_BIN_EXE_lightcone"))
@@ -145,14 +242,57 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
     // Three nodes from the start; the floor's joins late.
     let mut nodes: Vec<Proc> = walls[..3]
         .iter()
-        .map(|w| node(&endpoint, w, &log(w)))
+        .map(|w| node(&endpoint, w, &log(w), &key))
         .collect();
     let late = {
-        let (endpoint, master_log, floor_log) =
-            (endpoint.clone(), master_log.clone(), log("floor"));
+        let (endpoint, master_log, floor_log, key) = (
+            endpoint.clone(),
+            master_log.clone(),
+            log("floor"),
+            key.clone(),
+        );
         std::thread::spawn(move || {
             until_master_frame(&master_log, 25);
-            node(&endpoint, "floor", &floor_log)
+            node(&endpoint, "floor", &floor_log, &key)
+        })
+    };
+    // Strangers, from the master's 10th frame on: Zenoh clients and peers
+    // without the key and with another, and a render node given another
+    // key, each trying to join while the cluster runs.
+    let strangers = {
+        let (endpoint, master_log, wrong) = (endpoint.clone(), master_log.clone(), wrong.clone());
+        std::thread::spawn(move || {
+            until_master_frame(&master_log, 10);
+            let other = "5a".repeat(32);
+            let tries: Vec<(String, Result<usize, String>)> = [
+                ("client", None),
+                ("client", Some(other.as_str())),
+                ("peer", None),
+                ("peer", Some(other.as_str())),
+            ]
+            .into_iter()
+            .map(|(mode, secret)| {
+                let who = format!(
+                    "a {mode} with {}",
+                    if secret.is_some() {
+                        "another key"
+                    } else {
+                        "no key"
+                    }
+                );
+                (
+                    who,
+                    stranger(&endpoint, mode, secret, Duration::from_secs(3)),
+                )
+            })
+            .collect();
+            let out = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+                .args(["wall", "--join", &endpoint, "--wall", "front", "--headless"])
+                .args(["--silence", "2", "--key"])
+                .arg(&wrong)
+                .output()
+                .expect("lightcone wall runs");
+            (tries, out)
         })
     };
     // The left wall's node dies midway.
@@ -171,7 +311,7 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
             "play",
             "tests/lessons/cluster_stroke.py",
             "--cave",
-            "assets/cave.toml",
+            &cave.to_string_lossy(),
             "--tracker",
             &service,
             "--serve",
@@ -186,6 +326,17 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
     assert!(img.is_some(), "the master failed: {stderr}");
     killer.join().unwrap();
     let mut floor = late.join().unwrap();
+    let (tries, wrong_node) = strangers.join().unwrap();
+    for (who, got) in &tries {
+        assert!(got.is_err(), "{who} was let in: {got:?}");
+    }
+    let wrong_err = String::from_utf8_lossy(&wrong_node.stderr);
+    assert_eq!(wrong_node.status.code(), Some(1), "{wrong_err}");
+    assert!(
+        wrong_err.contains(&format!("no cluster master at {endpoint}"))
+            && wrong_err.contains(&format!("that accepts the key {}", wrong.display())),
+        "{wrong_err}"
+    );
     for n in &mut nodes {
         assert!(
             n.finish(Duration::from_secs(20)),
@@ -233,13 +384,20 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
     let spread = heads.iter().copied().fold(f64::MIN, f64::max)
         - heads.iter().copied().fold(f64::MAX, f64::min);
     assert!(spread > 0.01, "the tracked head did not move: {spread} m");
-    // The master says who joined and who left.
+    // The master says who joined and who left: the four walls' nodes,
+    // once each, and no stranger.
     for w in walls {
         assert!(
             stderr.contains(&format!("render node {w}-")),
             "{w} never joined: {stderr}"
         );
     }
+    assert_eq!(
+        stderr.matches(" joined").count(),
+        4,
+        "only the four nodes joined: {stderr}"
+    );
+    assert!(!stderr.contains("stranger"), "{stderr}");
     assert!(
         stderr.contains(" left"),
         "the killed node's leaving was not seen: {stderr}"
@@ -350,16 +508,13 @@ fn a_render_node_window_draws_its_wall_under_xvfb() {
     let master_log = dir.join("master.jsonl");
     let node_log = dir.join("front.jsonl");
     let shot = dir.join("front.png");
+    let (cave, key) = keyed_cave(&dir);
     let mut master = Proc(Some(
         Command::new("xvfb-run")
             .args(["-a", "-s", "-screen 0 1280x720x24"])
             .arg(env!("CARGO_BIN_EXE_lightcone"))
-            .args([
-                "play",
-                "tests/lessons/cluster_stroke.py",
-                "--cave",
-                "assets/cave.toml",
-            ])
+            .args(["play", "tests/lessons/cluster_stroke.py", "--cave"])
+            .arg(&cave)
             .args(["--serve", &endpoint, "--frames", "150", "--frame-log"])
             .arg(&master_log)
             .arg("--screenshot")
@@ -384,7 +539,8 @@ fn a_render_node_window_draws_its_wall_under_xvfb() {
             "ceiling",
             "--headless",
         ])
-        .args(["--silence", "10"])
+        .args(["--silence", "10", "--key"])
+        .arg(&key)
         .output()
         .expect("lightcone wall runs");
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -399,6 +555,8 @@ fn a_render_node_window_draws_its_wall_under_xvfb() {
         .args([
             "wall", "--join", &endpoint, "--wall", "front", "--frames", "30",
         ])
+        .arg("--key")
+        .arg(&key)
         .arg("--screenshot")
         .arg(&shot)
         .arg("--frame-log")
@@ -449,8 +607,23 @@ fn bad_cluster_arguments_are_refused() {
             String::from_utf8_lossy(&out.stderr).into_owned(),
         )
     };
+    let dir = std::env::temp_dir().join(format!("lightcone-cluster-args-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (cave, key) = keyed_cave(&dir);
+    let (cave, key) = (
+        cave.to_string_lossy().into_owned(),
+        key.to_string_lossy().into_owned(),
+    );
     // Not a TCP endpoint.
-    let (code, err) = run(&["wall", "--join", "udp/127.0.0.1:7447", "--wall", "front"]);
+    let (code, err) = run(&[
+        "wall",
+        "--join",
+        "udp/127.0.0.1:7447",
+        "--wall",
+        "front",
+        "--key",
+        &key,
+    ]);
     assert_eq!(code, Some(1), "{err}");
     assert!(
         err.contains("\"udp/127.0.0.1:7447\": give a Zenoh TCP endpoint"),
@@ -469,6 +642,8 @@ fn bad_cluster_arguments_are_refused() {
         "--headless",
         "--silence",
         "1",
+        "--key",
+        &key,
     ]);
     assert_eq!(code, Some(1), "{err}");
     assert!(
@@ -488,20 +663,88 @@ fn bad_cluster_arguments_are_refused() {
         "front",
         "--silence",
         "nan",
+        "--key",
+        &key,
     ]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--silence NaN"), "{err}");
-    // A master whose endpoint cannot be listened on.
+    // A node without a key file, or with a file that is not a key; a
+    // master without a key beside its CAVE file: each says how to make one.
     let (code, err) = run(&[
-        "play",
-        "--cave",
-        "assets/cave.toml",
-        "--serve",
-        "tcp/not-an-address:1",
+        "wall", "--join", &endpoint, "--wall", "front", "--key", &cave,
     ]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("not a cluster key"), "{err}");
+    assert!(err.contains("lightcone cluster-key CAVE.toml"), "{err}");
+    let (code, err) = run(&["wall", "--join", &endpoint, "--wall", "front"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("--key"), "{err}");
+    let (code, err) = run(&["play", "--cave", "assets/cave.toml", "--serve", &endpoint]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("assets/cave.key: cannot read the cluster key")
+            && err.contains("lightcone cluster-key CAVE.toml"),
+        "{err}"
+    );
+    // A second key is not made over the first (the nodes hold copies).
+    let (code, err) = run(&["cluster-key", &cave]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains("already there"), "{err}");
+    // A master whose endpoint cannot be listened on.
+    let (code, err) = run(&["play", "--cave", &cave, "--serve", "tcp/not-an-address:1"]);
     assert_eq!(code, Some(1), "{err}");
     assert!(
         err.contains("cannot serve the cluster on tcp/not-an-address:1"),
         "{err}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The key file's form, its privacy, and the signatures made with it:
+/// a message opens with the key it was sealed with only, as its own kind
+/// only, and not once a byte is changed.
+#[test]
+fn cluster_keys_are_private_and_sign_what_the_cluster_says() {
+    use lightcone::cluster::key;
+    let dir = std::env::temp_dir().join(format!("lightcone-cluster-key-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = key::beside(&dir.join("cave.toml"));
+    assert_eq!(path, dir.join("cave.key"));
+    let _ = std::fs::remove_file(&path);
+    key::generate(&path, false).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.starts_with("lightcone:") && text.trim().len() == 10 + 64, "{text}");
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o600);
+    }
+    let k = key::load(&path).unwrap();
+    let e = key::generate(&path, false).unwrap_err();
+    assert!(e.contains("already there"), "{e}");
+    let other_path = dir.join("other.key");
+    key::generate(&other_path, true).unwrap();
+    let other = key::load(&other_path).unwrap();
+    assert_ne!(k.secret(), other.secret(), "two keys, two secrets");
+    let sealed = k.seal("frame", vec![1, 2, 3]);
+    assert_eq!(sealed.len(), 3 + key::TAG_BYTES);
+    assert_eq!(k.open("frame", &sealed), Ok(&[1u8, 2, 3][..]));
+    assert_eq!(
+        other.open("frame", &sealed).unwrap_err(),
+        "a frame (35 bytes) not signed with this cluster's key"
+    );
+    assert!(k.open("ready", &sealed).is_err(), "another kind");
+    let mut forged = sealed.clone();
+    forged[1] ^= 1;
+    assert!(k.open("frame", &forged).is_err(), "a changed byte");
+    assert!(k.open("frame", &sealed[..10]).is_err(), "too short");
+    assert!(k.open("frame", &[1, 2, 3]).is_err(), "unsigned");
+    for bad in ["", "lightcone:abc\n", "other:00\n", "lightcone:zz\nx\n"] {
+        std::fs::write(&path, bad).unwrap();
+        let e = key::load(&path).unwrap_err();
+        assert!(e.contains("not a cluster key"), "{bad:?}: {e}");
+    }
+    let e = key::load(&dir.join("none.key")).unwrap_err();
+    assert!(e.contains("cannot read the cluster key"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

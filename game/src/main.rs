@@ -78,6 +78,17 @@ enum Command {
     /// FILE --serve`) and draws the named walls of its CAVE, frame by frame
     /// with it.
     Wall(commands::wall::WallArgs),
+    /// Make a CAVE's cluster key: writes CAVE.key beside the CAVE file (a
+    /// new random secret, readable by its owner only), which `play --cave
+    /// CAVE.toml --serve` reads and each render node is given a copy of
+    /// (`lightcone wall --key FILE`).
+    ClusterKey {
+        /// The CAVE file (TOML).
+        cave: PathBuf,
+        /// Replace a key already there (every node then needs the new one).
+        #[arg(long)]
+        replace: bool,
+    },
     /// The simulated head tracker: publish head motion (a path, or a
     /// recorded CSV track) with noise and faults on an iceoryx2 service.
     /// Options: --service NAME --path still|circle|walk|figure8 --csv FILE
@@ -463,6 +474,7 @@ fn main() -> ExitCode {
             },
         ),
         Some(Command::Wall(args)) => commands::wall::run(&args),
+        Some(Command::ClusterKey { cave, replace }) => commands::wall::keygen(&cave, replace),
         Some(Command::Tracker { args }) => commands::tracker::run(args),
         Some(Command::TrackerBridge { args }) => lightcone::tracker_bridge::child_main(&args),
         Some(Command::Cave {

@@ -13,6 +13,7 @@ use zenoh::qos::CongestionControl;
 use zenoh::query::{Query, Queryable};
 use zenoh::sample::{Sample, SampleKind};
 
+use super::key::ClusterKey;
 use super::message::{self, Frame, Ready, Sent, ViewState};
 use super::{BARRIER, FRAME_KEY, MASTER_KEY, NODE_KEY, READY_KEY, SNAPSHOT_KEY, SWAP_KEY};
 use crate::model::GameState;
@@ -21,6 +22,8 @@ use crate::model::GameState;
 pub struct ClusterMaster {
     endpoint: String,
     cave_toml: String,
+    /// Signs what the master sends, checks what the nodes answer.
+    key: ClusterKey,
     _session: zenoh::Session,
     _token: zenoh::liveliness::LivelinessToken,
     frames: Publisher<'static>,
@@ -43,10 +46,11 @@ pub struct ClusterMaster {
 }
 
 impl ClusterMaster {
-    /// Listens on `endpoint` (`tcp/HOST:PORT`) for render nodes, whose CAVE
-    /// is `cave_toml` (the CAVE file's text). The error names the endpoint.
-    pub fn serve(endpoint: &str, cave_toml: String) -> Result<Self, String> {
-        let config = super::config(endpoint, true)?;
+    /// Listens on `endpoint` (`tcp/HOST:PORT`) for render nodes that hold
+    /// `key`, whose CAVE is `cave_toml` (the CAVE file's text). The error
+    /// names the endpoint.
+    pub fn serve(endpoint: &str, cave_toml: String, key: ClusterKey) -> Result<Self, String> {
+        let config = super::config(endpoint, true, &key)?;
         let session = zenoh::open(config)
             .wait()
             .map_err(|e| format!("cannot serve the cluster on {endpoint}: {e}"))?;
@@ -83,6 +87,7 @@ impl ClusterMaster {
         Ok(Self {
             endpoint: endpoint.to_owned(),
             cave_toml,
+            key,
             _session: session,
             _token: token,
             frames,
@@ -125,7 +130,11 @@ impl ClusterMaster {
             sample_ns,
             sent_ns: super::now_ns(),
         };
-        if let Err(e) = self.frames.put(message::encode(&frame)).wait() {
+        if let Err(e) = self
+            .frames
+            .put(self.key.seal("frame", message::encode(&frame)))
+            .wait()
+        {
             self.news
                 .push(format!("cluster: frame {} not sent: {e}", self.seq));
         }
@@ -142,7 +151,8 @@ impl ClusterMaster {
                 return;
             };
             let bytes = bytes.get_or_insert_with(|| {
-                message::encode(&message::snapshot(game, self.seq, &self.cave_toml, view))
+                let snapshot = message::snapshot(game, self.seq, &self.cave_toml, view);
+                self.key.seal("snapshot", message::encode(&snapshot))
             });
             if let Err(e) = query.reply(SNAPSHOT_KEY, bytes.clone()).wait() {
                 self.news.push(format!("cluster: a snapshot not sent: {e}"));
@@ -195,7 +205,11 @@ impl ClusterMaster {
                 self.take_ready(&sample);
             }
         }
-        if let Err(e) = self.swaps.put(message::encode(&self.seq)).wait() {
+        if let Err(e) = self
+            .swaps
+            .put(self.key.seal("swap", message::encode(&self.seq)))
+            .wait()
+        {
             self.news
                 .push(format!("cluster: swap {} not sent: {e}", self.seq));
         }
@@ -204,7 +218,12 @@ impl ClusterMaster {
     /// Takes one ready answer. A live node that answered this frame or the
     /// one before keeps up: it is (again) in the swap lock.
     fn take_ready(&mut self, sample: &Sample) {
-        let Ok(r) = message::decode::<Ready>(&sample.payload().to_bytes(), "ready answer") else {
+        let bytes = sample.payload().to_bytes();
+        let Ok(r) = self
+            .key
+            .open("ready", &bytes)
+            .and_then(|b| message::decode::<Ready>(b, "ready answer"))
+        else {
             return;
         };
         if !self.live.contains(&r.node) || r.seq + 1 < self.seq || r.seq > self.seq {

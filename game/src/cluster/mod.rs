@@ -15,9 +15,12 @@
 //! master holds one under [`MASTER_KEY`], and the nodes stop when it goes
 //! (the master quit or died).
 //!
-//! Transport: Zenoh over TCP, multicast scouting off (the master listens on
-//! the endpoint, the nodes connect to it).
+//! Transport: Zenoh over TCP, multicast and gossip scouting off (the
+//! master listens on the endpoint, the nodes connect to it), every peer
+//! authenticated with the CAVE's key and every message signed with it
+//! ([`key`]).
 
+pub mod key;
 pub mod master;
 pub mod message;
 pub mod node;
@@ -46,8 +49,14 @@ pub const DEFAULT_ENDPOINT: &str = "tcp/0.0.0.0:7447";
 
 /// A Zenoh configuration that listens on (`listen`) or connects to
 /// `endpoint` (a Zenoh locator such as `tcp/127.0.0.1:7447`), with
-/// multicast scouting off. The error names the endpoint.
-pub fn config(endpoint: &str, listen: bool) -> Result<zenoh::Config, String> {
+/// multicast and gossip scouting off (the master connects to no one, and
+/// learns of no one but those who connect to it), authenticated with
+/// `key`. The error names the endpoint.
+pub fn config(
+    endpoint: &str,
+    listen: bool,
+    key: &key::ClusterKey,
+) -> Result<zenoh::Config, String> {
     if !endpoint.starts_with("tcp/") {
         return Err(format!(
             "{endpoint:?}: give a Zenoh TCP endpoint such as tcp/127.0.0.1:7447"
@@ -65,6 +74,8 @@ pub fn config(endpoint: &str, listen: bool) -> Result<zenoh::Config, String> {
         if listen { "\"peer\"" } else { "\"client\"" },
     )?;
     set(&mut c, "scouting/multicast/enabled", "false")?;
+    set(&mut c, "scouting/gossip/enabled", "false")?;
+    key.configure(&mut c, listen)?;
     if listen {
         set(&mut c, "listen/endpoints", &endpoints)?;
         set(&mut c, "connect/endpoints", "[]")?;

@@ -13,6 +13,7 @@ use zenoh::sample::Sample;
 
 use lightcone_tracker::cave::CaveConfig;
 
+use super::key::ClusterKey;
 use super::message::{self, Frame, Ready, Snapshot};
 use super::{FRAME_KEY, MASTER_KEY, NODE_KEY, READY_KEY, SNAPSHOT_KEY, SWAP_KEY};
 use crate::cave::{self, Side};
@@ -46,6 +47,8 @@ pub struct ClusterNode {
     pub endpoint: String,
     /// The last frame applied.
     seq: u64,
+    /// Checks what the master sends, signs the ready answers.
+    key: ClusterKey,
 }
 
 /// `cave` with only the walls named `walls` (in that order) and the outputs
@@ -85,15 +88,25 @@ pub fn only_walls(cave: &CaveConfig, walls: &[String]) -> Result<CaveConfig, Str
 impl ClusterNode {
     /// Joins the master at `endpoint` to draw `walls` (checked against the
     /// master's CAVE at the first snapshot), trying again every half second
-    /// for at most `patience` while no master is there yet.
-    pub fn join(endpoint: &str, walls: &[String], patience: Duration) -> Result<Self, String> {
+    /// for at most `patience` while no master is there yet, proving it
+    /// holds `key` (the master refuses it otherwise), and taking only what
+    /// is signed with it.
+    pub fn join(
+        endpoint: &str,
+        walls: &[String],
+        patience: Duration,
+        key: ClusterKey,
+    ) -> Result<Self, String> {
         let start = Instant::now();
         let session = loop {
-            match zenoh::open(super::config(endpoint, false)?).wait() {
+            match zenoh::open(super::config(endpoint, false, &key)?).wait() {
                 Ok(s) => break s,
                 Err(e) if start.elapsed() >= patience => {
+                    // Zenoh says the same whether nothing listens there or
+                    // the master refused this key.
                     return Err(format!(
-                        "no cluster master at {endpoint} within {patience:?}: {e}"
+                        "no cluster master at {endpoint} within {patience:?} that accepts the key {}: {e}",
+                        key.path.display()
                     ));
                 }
                 Err(_) => std::thread::sleep(Duration::from_millis(500)),
@@ -154,6 +167,7 @@ impl ClusterNode {
             cave: None,
             endpoint: endpoint.to_owned(),
             seq: 0,
+            key,
         })
     }
 
@@ -198,7 +212,8 @@ impl ClusterNode {
         let sample = reply
             .into_result()
             .map_err(|e| format!("the master refused a snapshot: {e:?}"))?;
-        message::decode(&sample.payload().to_bytes(), "snapshot")
+        let bytes = sample.payload().to_bytes();
+        message::decode(self.key.open("snapshot", &bytes)?, "snapshot")
     }
 
     /// Waits at most `timeout` for the master's next frame and applies it
@@ -227,7 +242,9 @@ impl ClusterNode {
             else {
                 continue;
             };
-            let frame: Frame = match message::decode(&sample.payload().to_bytes(), "frame") {
+            let bytes = sample.payload().to_bytes();
+            let opened = self.key.open("frame", &bytes);
+            let frame: Frame = match opened.and_then(|b| message::decode(b, "frame")) {
                 Ok(f) => f,
                 Err(e) => {
                     // Dropped; the gap it leaves brings a new snapshot.
@@ -289,7 +306,10 @@ impl ClusterNode {
             node: self.name.clone(),
             seq,
         };
-        let _ = self.ready.put(message::encode(&r)).wait();
+        let _ = self
+            .ready
+            .put(self.key.seal("ready", message::encode(&r)))
+            .wait();
     }
 
     /// Waits at most `timeout` for the master to let frame `seq` be shown.
@@ -300,7 +320,11 @@ impl ClusterNode {
             let left = deadline.saturating_duration_since(Instant::now());
             match self.swaps.recv_timeout(left) {
                 Ok(Some(sample)) => {
-                    if message::decode::<u64>(&sample.payload().to_bytes(), "swap")
+                    let bytes = sample.payload().to_bytes();
+                    if self
+                        .key
+                        .open("swap", &bytes)
+                        .and_then(|b| message::decode::<u64>(b, "swap"))
                         .is_ok_and(|s| s >= seq)
                     {
                         return true;

@@ -72,9 +72,13 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     // The render nodes get the CAVE file's text from the master.
     let cluster = match (serve, &cave_file) {
         (Some(endpoint), Some(file)) => {
+            // The nodes prove they hold the key beside the CAVE file.
+            let key = crate::cluster::key::load(&crate::cluster::key::beside(file));
             let master = std::fs::read_to_string(file)
                 .map_err(|e| format!("{}: {e}", file.display()))
-                .and_then(|text| crate::cluster::master::ClusterMaster::serve(&endpoint, text));
+                .and_then(|text| {
+                    crate::cluster::master::ClusterMaster::serve(&endpoint, text, key?)
+                });
             match master {
                 Ok(m) => Some(m),
                 Err(e) => {

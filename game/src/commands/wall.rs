@@ -13,6 +13,10 @@ pub struct WallArgs {
     /// The master's Zenoh endpoint, e.g. tcp/192.168.1.10:7447.
     #[arg(long)]
     pub join: String,
+    /// The CAVE's cluster key: a copy of the key file beside the master's
+    /// CAVE file (`lightcone cluster-key CAVE.toml` makes it).
+    #[arg(long)]
+    pub key: PathBuf,
     /// A wall of the master's CAVE file to draw (repeatable).
     #[arg(long = "wall", required = true)]
     pub walls: Vec<String>,
@@ -46,10 +50,18 @@ pub fn run(args: &WallArgs) -> ExitCode {
         );
         return ExitCode::from(2);
     }
+    let key = match crate::cluster::key::load(&args.key) {
+        Ok(k) => k,
+        Err(e) => {
+            crate::errln!("lightcone wall: --key {e}");
+            return ExitCode::from(2);
+        }
+    };
     let mut joined = match ClusterNode::join(
         &args.join,
         &args.walls,
         Duration::from_secs_f64(args.silence),
+        key,
     ) {
         Ok(n) => n,
         Err(e) => {
@@ -82,6 +94,32 @@ pub fn run(args: &WallArgs) -> ExitCode {
         }
         Err(e) => {
             crate::errln!("{e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `lightcone cluster-key CAVE.toml [--replace]`: writes the CAVE's cluster
+/// key beside its file (see [`crate::cluster::key`]), and says where to
+/// copy it.
+pub fn keygen(cave: &std::path::Path, replace: bool) -> ExitCode {
+    if let Err(e) = crate::cave::load(cave) {
+        crate::errln!("lightcone cluster-key: {e}");
+        return ExitCode::FAILURE;
+    }
+    let path = crate::cluster::key::beside(cave);
+    match crate::cluster::key::generate(&path, replace) {
+        Ok(()) => {
+            crate::sayln!("{}", path.display());
+            crate::errln!(
+                "lightcone cluster-key: wrote {}; copy it to every render node \
+                 (`lightcone wall --key FILE`), keep it off shared folders",
+                path.display()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            crate::errln!("lightcone cluster-key: {e}");
             ExitCode::FAILURE
         }
     }
