@@ -34,11 +34,11 @@ pub fn save_layout(
             serde_json::json!({
                 "rect": r,
                 "kind": match p.kind { ViewKind::Seen => "seen", ViewKind::Truth => "truth" },
-                "caption": caption(&state, *p),
+                "caption": caption(state, *p),
             })
         })
         .collect();
-    let pucks: Vec<serde_json::Value> = markers(&state, &rects)
+    let pucks: Vec<serde_json::Value> = markers(state, &rects)
         .iter()
         .map(|m| {
             let c = ring_colour(state.scene.pucks[m.puck].color);
