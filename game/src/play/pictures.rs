@@ -12,9 +12,12 @@ use super::layout::{Plan, clamp_rect};
 use crate::cave::{self, Side};
 use crate::model::GameState;
 
-/// One stereo eye of the CAVE this frame: the wall side, its view and
-/// the eye's board-frame position (m).
-pub type StereoEye = (Side, lightcone_engine::ecs::Entity, glam::DVec3);
+/// A CAVE and the stereo eyes drawn this frame (each side, its view, and
+/// where it is in tracker space): what its walls are drawn from.
+pub type Walls<'a> = (
+    &'a CaveConfig,
+    &'a [(Side, lightcone_engine::ecs::Entity, glam::DVec3)],
+);
 
 /// The scene renderer of the main window, and its vertex buffer.
 pub struct Pictures {
@@ -43,7 +46,7 @@ impl Pictures {
         size: (u32, u32),
         plans: &[([f32; 4], Plan)],
         state: &GameState,
-        cave: Option<(&CaveConfig, &[StereoEye])>,
+        cave: Option<Walls<'_>>,
     ) {
         let (w, h) = (size.0 as f32, size.1 as f32);
         let mut cleared = false;
@@ -85,7 +88,7 @@ impl Pictures {
         plan: Plan,
         rect: [f32; 4],
         state: &GameState,
-        cave: Option<(&CaveConfig, &[StereoEye])>,
+        cave: Option<Walls<'_>>,
     ) -> Option<glam::Mat4> {
         self.vertices.clear();
         match (plan, cave) {
