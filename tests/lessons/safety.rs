@@ -248,3 +248,119 @@ fn in_the_window_a_flooding_lesson_is_stopped_and_the_game_stays_small() {
         }
     }
 }
+
+/// The hostile lessons the sandbox refuses (`lesson::sandbox`), past the
+/// audit hook or through it, and what the reason says.
+const HOSTILE: [(&str, &str); 9] = [
+    ("forks", "may not start processes"),
+    ("signals_the_game", "may not signal the game"),
+    ("posix_spawns", "Operation not permitted"),
+    (
+        "ctypes_kills",
+        "kill(parent, SIGKILL) refused: Operation not permitted",
+    ),
+    ("ctypes_forks", "fork() refused: Operation not permitted"),
+    ("ctypes_execs", "execv refused: Operation not permitted"),
+    ("opens_a_socket", "Operation not permitted"),
+    ("writes_outside", "written.txt: Permission denied"),
+    ("reads_secrets", "secret.txt: Permission denied"),
+];
+
+/// Processes whose command line names `needle` (the lesson's file, or a
+/// `sleep 60` a lesson would have started).
+fn running_with(needle: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir("/proc").into_iter().flatten().flatten() {
+        let Ok(cmdline) = std::fs::read(entry.path().join("cmdline")) else {
+            continue;
+        };
+        let cmdline = String::from_utf8_lossy(&cmdline).replace('\0', " ");
+        if cmdline.contains(needle) {
+            found.push(format!(
+                "{}: {cmdline}",
+                entry.file_name().to_string_lossy()
+            ));
+        }
+    }
+    found
+}
+
+/// A folder outside the lesson's with a file in it, for the lessons that
+/// try to read or write there.
+fn outside() -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("lightcone-outside-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("secret.txt"), "a teacher's secret").unwrap();
+    dir
+}
+
+/// Headless and in the window: each hostile lesson is refused with its
+/// reason, the game (the runner, the test's own process in the window)
+/// goes on, the outcome is printed, nothing the lesson started is left
+/// running, and nothing was written outside its temporary folder.
+#[test]
+fn the_sandbox_refuses_every_hostile_lesson() {
+    let dir = outside();
+    // SAFETY: set before any thread of this test reads them; the lessons'
+    // processes inherit them.
+    unsafe {
+        std::env::set_var("LIGHTCONE_TEST_OUTSIDE", &dir);
+        std::env::set_var("LIGHTCONE_TEST_SECRET", dir.join("secret.txt"));
+    }
+    for (name, says) in HOSTILE {
+        let (outcome, code, _, stderr) =
+            lesson_outcome(&format!("tests/lessons/{name}.py"), &["--hook-limit", "2"]);
+        let error = outcome["error"].as_str().unwrap_or_default();
+        assert!(
+            error.contains(says),
+            "{name}: {says:?} not in {error}\n{stderr}"
+        );
+        assert_eq!(code, Some(1), "{name}: {error}");
+        assert!(
+            outcome["t"].as_f64().unwrap_or(0.0) > 0.0,
+            "{name}: {outcome}"
+        );
+        println!(
+            "{name} (headless): refused: {}",
+            error.lines().last().unwrap_or("")
+        );
+    }
+    // Two at a time: a lesson's process that starts late on a loaded
+    // machine meets its setup's 1 s limit.
+    for pair in HOSTILE.chunks(2) {
+        let runs: Vec<_> = pair
+            .iter()
+            .map(|&(name, says)| {
+                let lesson = format!("tests/lessons/{name}.py");
+                let run = std::thread::spawn(move || super::drive_window_host(&lesson, 2.0));
+                (name, says, run)
+            })
+            .collect();
+        for (name, says, run) in runs {
+            let run = run.join().unwrap();
+            let error = run.error.unwrap_or_default();
+            assert!(
+                error.contains(says),
+                "{name} (window): {says:?} not in {error}"
+            );
+            assert!(!run.running, "{name}: hooks stop");
+            assert!(run.t > 0.0, "{name}: board time {}", run.t);
+            println!("{name} (window): refused");
+        }
+    }
+    for needle in HOSTILE
+        .iter()
+        .map(|(name, _)| format!("tests/lessons/{name}.py"))
+        .chain(["sleep 60".to_owned()])
+    {
+        let left = running_with(&needle);
+        assert!(left.is_empty(), "left running: {left:?}");
+    }
+    assert!(!dir.join("written.txt").exists());
+    assert!(
+        !repo()
+            .join("tests/lessons/written_by_a_lesson.txt")
+            .exists()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -28,6 +28,7 @@
 pub mod headless;
 pub mod lend;
 pub mod remote;
+mod sandbox;
 pub mod supervise;
 mod watchdog;
 

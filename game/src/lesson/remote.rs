@@ -214,6 +214,12 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
         return 1;
     }
     let dir = super::lesson_dir(path);
+    // Before the lesson's code runs (`begin` loads it): the interpreter
+    // has started.
+    if let Err(e) = supervise::sandboxed(path) {
+        crate::errln!("{e}");
+        return 1;
+    }
     let world = Python::attach(|py| -> PyResult<Py<PyAny>> {
         let f = pyo3::wrap_pyfunction!(request, py)?;
         let w = module(py)?
@@ -427,6 +433,9 @@ pub(crate) struct Remote {
     /// The hooks the lesson defines (known after `setup`).
     hooks: Vec<String>,
     memory_mb: u64,
+    /// Its temporary folder, removed after it (the last field: dropped
+    /// after `Drop` ended the process).
+    _scratch: super::sandbox::Scratch,
 }
 
 impl Remote {
@@ -442,7 +451,7 @@ impl Remote {
             "--".into(),
             path.as_os_str().to_owned(),
         ];
-        let mut child = supervise::spawn(&isolation.exe, &args)?;
+        let (mut child, scratch) = supervise::spawn(&isolation.exe, &args)?;
         let (Some(stdin), Some(stdout)) = (child.stdin.take(), child.stdout.take()) else {
             supervise::kill_group(child.id());
             let _ = child.wait();
@@ -510,6 +519,7 @@ impl Remote {
             queue: VecDeque::new(),
             hooks: Vec::new(),
             memory_mb: isolation.memory_mb,
+            _scratch: scratch,
         })
     }
 

@@ -32,6 +32,7 @@ use serde::{Deserialize, Serialize};
 
 use super::headless::{self, Outcome, Progress, Stop};
 use super::remote;
+use super::sandbox::{self, Scratch};
 use super::watchdog::{self, HARD_STOP_STATUS};
 use lightcone_python::{MAX_CLAIM_BYTES, MAX_CLAIMS};
 
@@ -202,6 +203,13 @@ pub(crate) fn child_process(memory_mb: u64) -> Result<std::fs::File, String> {
     if std::os::unix::process::parent_id() == 1 {
         return Err("the parent is already gone".to_owned());
     }
+    // Nothing the game had open but the three pipes reaches the lesson
+    // (the sandbox restricts what it opens, not what it holds).
+    // SAFETY: closes this process's descriptors from 3 on; none is in use
+    // yet.
+    unsafe {
+        libc::syscall(libc::SYS_close_range, 3u32, u32::MAX, 0u32);
+    }
 
     // A batch task: woken by the game's call, it does not preempt the
     // game's frame on the same core (the wake-up would otherwise cost the
@@ -231,9 +239,16 @@ pub(crate) fn child_process(memory_mb: u64) -> Result<std::fs::File, String> {
 
 /// Starts `lightcone ARGS` (this binary, `exe`) as a lesson's process: its
 /// own process group, standard input, output and error piped (what it
-/// prints is read through [`forward_printed`]).
-pub(crate) fn spawn(exe: &Path, args: &[std::ffi::OsString]) -> Result<Child, String> {
+/// prints is read through [`forward_printed`]), and its private temporary
+/// folder (removed when the [`Scratch`] is dropped, after the process).
+pub(crate) fn spawn(exe: &Path, args: &[std::ffi::OsString]) -> Result<(Child, Scratch), String> {
+    let scratch = Scratch::new()?;
     let mut command = Command::new(exe);
+    // Its private temporary folder, the one place it may write
+    // (`super::sandbox`).
+    command
+        .env("TMPDIR", scratch.path())
+        .env(sandbox::SCRATCH_ENV, scratch.path());
     // Under the address-space limit, glibc's malloc arenas (64 MiB of
     // address space each, one per thread that allocates, up to 8 per core)
     // would take it all: six of them fill 384 MiB, and the lesson could
@@ -251,6 +266,7 @@ pub(crate) fn spawn(exe: &Path, args: &[std::ffi::OsString]) -> Result<Child, St
         .stderr(Stdio::piped())
         .process_group(0)
         .spawn()
+        .map(|child| (child, scratch))
         .map_err(|e| format!("cannot start the lesson's process: {e}"))
 }
 
@@ -278,6 +294,15 @@ pub(crate) fn how_it_ended(status: std::process::ExitStatus, memory_mb: u64) -> 
         (None, Some(libc::SIGABRT)) => {
             format!("aborted (SIGABRT: out of memory? the limit is {memory_mb} MiB)")
         }
+        (None, Some(libc::SIGXCPU)) => format!(
+            "was stopped by its CPU time limit (SIGXCPU: {} h)",
+            sandbox::CPU_LIMIT_S / 3600
+        ),
+        (None, Some(libc::SIGXFSZ)) => format!(
+            "was stopped writing a file larger than {} MiB (SIGXFSZ)",
+            sandbox::FILE_SIZE >> 20
+        ),
+        (None, Some(libc::SIGSYS)) => "was stopped by its sandbox (SIGSYS)".to_owned(),
 
         (None, Some(sig)) => format!("was ended by signal {sig}"),
         (None, None) => "ended".to_owned(),
@@ -308,6 +333,10 @@ pub fn child(path: &Path, limits: Limits) -> u8 {
     // Each claim goes to the parent as it is made (not when its hook
     // returns): a process that dies later in the hook keeps it.
     lightcone_python::observe_claims(claim_event);
+    if let Err(e) = super::init_python().and_then(|()| sandboxed(path)) {
+        send(&Event::Failed(e));
+        return 1;
+    }
     let result = headless::run_reporting(path, limits.until, limits.fps, limits.hook, &mut |p| {
         if !matches!(p, Progress::Claim(_)) {
             send(&Event::Progress(p));
@@ -330,6 +359,15 @@ pub fn child(path: &Path, limits: Limits) -> u8 {
             1
         }
     }
+}
+
+/// Enters the sandbox ([`super::sandbox`]) before the lesson at `path`
+/// runs, saying on stderr what this kernel lacks.
+pub(crate) fn sandboxed(path: &Path) -> Result<(), String> {
+    for lacking in sandbox::enter(&super::lesson_dir(path))? {
+        crate::errln!("{}: {lacking}", path.display());
+    }
+    Ok(())
 }
 
 /// What the parent knows of a child that did not report its outcome.
@@ -362,7 +400,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         path.as_os_str().to_owned(),
     ]
     .into();
-    let mut child = spawn(&exe, &args)?;
+    let (mut child, _scratch) = spawn(&exe, &args)?;
     let pid = child.id();
     let kill_group = || kill_group(pid);
     // Bounded both ways: a line is read to at most `MAX_LINE` bytes, and
