@@ -713,7 +713,10 @@ fn cluster_keys_are_private_and_sign_what_the_cluster_says() {
     let _ = std::fs::remove_file(&path);
     key::generate(&path, false).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.starts_with("lightcone:") && text.trim().len() == 10 + 64, "{text}");
+    assert!(
+        text.starts_with("lightcone:") && text.trim().len() == 10 + 64,
+        "{text}"
+    );
     {
         use std::os::unix::fs::PermissionsExt;
         let mode = std::fs::metadata(&path).unwrap().permissions().mode();
