@@ -21,8 +21,9 @@
 //!
 //! A header line is required (`valid` column optional; missing means valid).
 //! `t` is seconds from the start of the recording and must not decrease.
-//! Blank lines and lines starting with `#` are skipped. Errors name the
-//! 1-based line number and the field.
+//! Blank lines and lines starting with `#` are skipped; a field may be
+//! quoted. Records are split by the `csv` crate; errors name the 1-based
+//! line number and the field.
 
 use crate::sample::TrackerSample;
 use glam::{DQuat, DVec3};
@@ -222,6 +223,14 @@ pub enum CsvError {
         /// What is wrong.
         message: String,
     },
+    /// The text does not split into CSV records.
+    #[error("line {line}: {message}")]
+    Syntax {
+        /// 1-based line number.
+        line: usize,
+        /// The csv crate's message.
+        message: String,
+    },
     /// A data line has the wrong number of fields.
     #[error("line {line}: expected {expected} fields, found {found}")]
     FieldCount {
@@ -252,6 +261,29 @@ pub struct TrackRow {
 
 const CSV_FIELDS: [&str; 9] = ["t", "x", "y", "z", "qx", "qy", "qz", "qw", "valid"];
 
+/// The 1-based line of `text` a record that the csv crate says starts at
+/// byte `offset` is on: the line of `offset`, past the blank and comment
+/// lines the reader skipped from there.
+fn line_at(text: &str, offset: u64) -> usize {
+    let end = usize::try_from(offset)
+        .unwrap_or(usize::MAX)
+        .min(text.len());
+    let mut line = 1 + text.as_bytes()[..end]
+        .iter()
+        .filter(|b| **b == b'\n')
+        .count();
+    let mut rest = text.get(end..).unwrap_or("");
+    while let Some((first, after)) = rest.split_once('\n') {
+        let first = first.trim();
+        if !(first.is_empty() || first.starts_with('#')) {
+            break;
+        }
+        line += 1;
+        rest = after;
+    }
+    line
+}
+
 /// A recorded head track, replayable by [`MotionGenerator`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CsvTrack {
@@ -261,15 +293,35 @@ pub struct CsvTrack {
 impl CsvTrack {
     /// Parses CSV text (see the module docs for the format).
     pub fn parse(text: &str) -> Result<Self, CsvError> {
+        // The csv crate splits the records (quoting, CR LF, `#` comment
+        // lines, blank lines); the fields' meaning is checked here, each
+        // error at the record's line.
+        let mut reader = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .trim(csv::Trim::All)
+            .comment(Some(b'#'))
+            .from_reader(text.as_bytes());
         let mut columns: Option<usize> = None;
         let mut rows: Vec<TrackRow> = Vec::new();
-        for (idx, raw) in text.lines().enumerate() {
-            let line_no = idx + 1;
-            let line = raw.trim();
-            if line.is_empty() || line.starts_with('#') {
+        let mut record = csv::StringRecord::new();
+        loop {
+            let more = reader
+                .read_record(&mut record)
+                .map_err(|e| CsvError::Syntax {
+                    line: line_at(text, e.position().map_or(0, |p| p.byte())),
+                    message: e.to_string(),
+                })?;
+            if !more {
+                break;
+            }
+            // From the record's byte offset: the csv crate's own line count
+            // skips the comment lines.
+            let line_no = line_at(text, record.position().map_or(0, |p| p.byte()));
+            let fields: Vec<&str> = record.iter().collect();
+            if fields.iter().all(|f| f.is_empty()) {
                 continue;
             }
-            let fields: Vec<&str> = line.split(',').map(str::trim).collect();
             let Some(ncols) = columns else {
                 let ok = (fields.len() == 8 || fields.len() == 9)
                     && fields
@@ -279,7 +331,7 @@ impl CsvTrack {
                 if !ok {
                     return Err(CsvError::Header {
                         line: line_no,
-                        found: line.to_owned(),
+                        found: fields.join(","),
                     });
                 }
                 columns = Some(fields.len());
@@ -769,6 +821,16 @@ mod tests {
             let err = CsvTrack::parse(text).expect_err(text).to_string();
             assert!(err.contains(want), "{text:?}: got {err:?}, want {want:?}");
         }
+        // Comments, blank lines, CR LF, spaces and quotes are CSV's.
+        let t = CsvTrack::parse(
+            "# a head\r\nt, x, y, z, qx, qy, qz, qw\r\n\r\n# start\r\n0, 1,\"2\",3, 0, 0, 0, 1\r\n",
+        )
+        .unwrap();
+        assert_eq!(t.rows()[0].position, DVec3::new(1.0, 2.0, 3.0));
+        let err = CsvTrack::parse("# a\nt,x,y,z,qx,qy,qz,qw\n\n0,1,2,3,0,0,0\n")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(err, "line 4: expected 8 fields, found 7");
         // NaN in a pose field is replayed, not rejected.
         assert!(CsvTrack::parse("t,x,y,z,qx,qy,qz,qw\n0,NaN,2,3,0,0,0,1\n").is_ok());
         let err = CsvTrack::from_path("/nonexistent/track.csv").expect_err("io");

@@ -25,12 +25,18 @@
 //! host, IPv4 first), the game's follower meanwhile seeing the tracker go
 //! stale.
 //!
+//! The command line is read with clap ([`parse_args`]).
+//!
 //! Stop it with Ctrl-C or kill: a killed publisher's shared-memory resources
 //! are reclaimed by the next iceoryx2 node created on the machine.
 
-use crate::motion::{CsvTrack, Faults, MotionConfig, MotionGenerator, Path, PoseSource};
+mod args;
+
+pub use args::{MAX_DURATION_S, USAGE, parse_args, usage};
+
+use crate::motion::{MotionConfig, MotionGenerator};
 use crate::transport::quiet_iceoryx_logs;
-use crate::{DEFAULT_SERVICE_NAME, Publisher, TrackerSample, dtrack, unix_now_ns, vrpn};
+use crate::{Publisher, TrackerSample, dtrack, unix_now_ns, vrpn};
 use std::time::{Duration, Instant};
 
 /// What to publish, and for how long.
@@ -67,157 +73,6 @@ pub struct DTrackSource {
     pub bind: std::net::SocketAddr,
     /// The head's DTrack body ID (from 0).
     pub body: u32,
-}
-
-/// The options, for error messages.
-pub const USAGE: &str = "options: [--service NAME] \
-[--path still|circle|walk|figure8] [--csv FILE] [--rate HZ] [--noise METRES] [--seed N] \
-[--first-seq N] [--duration S] [--count N] [--nan-every N] [--reorder-every N] \
-[--stall START,DURATION] [--dropout START,DURATION]... [--quiet] \
-[--dtrack-udp PORT [--dtrack-bind ADDR] [--dtrack-body ID]] \
-[--vrpn NAME@HOST[:PORT] [--vrpn-sensor N]]";
-
-fn parse_num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
-    v.parse()
-        .map_err(|_| format!("{flag}: `{v}` is not a valid number"))
-}
-
-fn parse_window(flag: &str, v: &str) -> Result<(f64, f64), String> {
-    let (a, b) = v
-        .split_once(',')
-        .ok_or_else(|| format!("{flag}: expected START,DURATION, got `{v}`"))?;
-    let start: f64 = parse_num(flag, a.trim())?;
-    let dur: f64 = parse_num(flag, b.trim())?;
-    if !(start.is_finite() && dur.is_finite() && dur >= 0.0) {
-        return Err(format!("{flag}: `{v}` must be finite with DURATION >= 0"));
-    }
-    Ok((start, dur))
-}
-
-/// Longest `--duration`, s (about 32 years).
-pub const MAX_DURATION_S: f64 = 1e9;
-
-/// Parses the options (without the program name).
-pub fn parse_args(argv: impl IntoIterator<Item = String>) -> Result<Args, String> {
-    let mut args = Args {
-        service: DEFAULT_SERVICE_NAME.to_owned(),
-        config: MotionConfig {
-            source: PoseSource::Path(Path::by_name("circle").ok_or("no circle path")?),
-            ..MotionConfig::default()
-        },
-        duration: None,
-        count: None,
-        quiet: false,
-        dtrack: None,
-        vrpn: None,
-    };
-    let mut vrpn_device: Option<vrpn::Device> = None;
-    let mut vrpn_sensor: i32 = 0;
-    let mut vrpn_sensor_given = false;
-    let mut faults = Faults::default();
-    let mut dtrack_port: Option<u16> = None;
-    let mut dtrack_bind = std::net::IpAddr::from([0, 0, 0, 0]);
-    let mut dtrack_body: u32 = 0;
-    let mut it = argv.into_iter();
-    while let Some(flag) = it.next() {
-        if flag == "--quiet" {
-            args.quiet = true;
-            continue;
-        }
-        if flag == "--help" || flag == "-h" {
-            return Err(USAGE.to_owned());
-        }
-        let v = it
-            .next()
-            .ok_or_else(|| format!("{flag}: missing value\n{USAGE}"))?;
-        match flag.as_str() {
-            "--service" => args.service = v,
-            "--path" => {
-                let p = Path::by_name(&v).ok_or_else(|| {
-                    format!("--path: unknown path `{v}` (still, circle, walk, figure8)")
-                })?;
-                args.config.source = PoseSource::Path(p);
-            }
-            "--csv" => {
-                let track = CsvTrack::from_path(&v).map_err(|e| format!("--csv: {e}"))?;
-                args.config.source = PoseSource::Replay(track);
-            }
-            "--rate" => {
-                let r: f64 = parse_num(&flag, &v)?;
-                if !(r.is_finite() && r > 0.0 && r <= 100_000.0) {
-                    return Err(format!("--rate: {r} must be in (0, 100000] Hz"));
-                }
-                args.config.rate_hz = r;
-            }
-            "--noise" => {
-                let n: f64 = parse_num(&flag, &v)?;
-                if !(n.is_finite() && n >= 0.0) {
-                    return Err(format!("--noise: {n} must be >= 0"));
-                }
-                args.config.noise_std_m = n;
-            }
-            "--seed" => args.config.seed = parse_num(&flag, &v)?,
-            "--first-seq" => args.config.first_sequence = parse_num(&flag, &v)?,
-            "--duration" => {
-                let d: f64 = parse_num(&flag, &v)?;
-                if !(d.is_finite() && d > 0.0 && d <= MAX_DURATION_S) {
-                    return Err(format!(
-                        "--duration: {v} must be seconds in (0, {MAX_DURATION_S:e}] \
-                         (leave it out to publish until stopped)"
-                    ));
-                }
-                args.duration = Some(d);
-            }
-            "--count" => args.count = Some(parse_num(&flag, &v)?),
-            "--nan-every" => faults.nan_every = Some(parse_num(&flag, &v)?),
-            "--reorder-every" => faults.reorder_every = Some(parse_num(&flag, &v)?),
-            "--stall" => faults.stall = Some(parse_window(&flag, &v)?),
-            "--dropout" => faults.dropouts.push(parse_window(&flag, &v)?),
-            "--dtrack-udp" => {
-                dtrack_port = Some(
-                    v.parse()
-                        .map_err(|_| format!("--dtrack-udp: `{v}` is not a port (0 to 65535)"))?,
-                )
-            }
-            "--dtrack-bind" => {
-                dtrack_bind = v
-                    .parse()
-                    .map_err(|_| format!("--dtrack-bind: `{v}` is not an IP address"))?
-            }
-            "--dtrack-body" => dtrack_body = parse_num(&flag, &v)?,
-            "--vrpn" => {
-                vrpn_device = Some(vrpn::Device::parse(&v).map_err(|e| format!("--vrpn: {e}"))?)
-            }
-            "--vrpn-sensor" => {
-                vrpn_sensor_given = true;
-                vrpn_sensor = parse_num(&flag, &v)?;
-                if vrpn_sensor < 0 {
-                    return Err(format!("--vrpn-sensor: {v} must be >= 0"));
-                }
-            }
-            _ => return Err(format!("unknown option `{flag}`\n{USAGE}")),
-        }
-    }
-    args.config.faults = faults;
-    if let Some(port) = dtrack_port {
-        args.dtrack = Some(DTrackSource {
-            bind: std::net::SocketAddr::new(dtrack_bind, port),
-            body: dtrack_body,
-        });
-    }
-    if vrpn_device.is_none() && vrpn_sensor_given {
-        return Err("--vrpn-sensor: give the device with --vrpn NAME@HOST[:PORT]".to_owned());
-    }
-    if let Some(device) = vrpn_device {
-        if args.dtrack.is_some() {
-            return Err("--vrpn and --dtrack-udp: choose one source".to_owned());
-        }
-        args.vrpn = Some(VrpnSource {
-            device,
-            sensor: vrpn_sensor,
-        });
-    }
-    Ok(args)
 }
 
 /// Publishes until the duration or count is reached (forever without
@@ -600,38 +455,6 @@ fn vrpn_connection(
                 }
                 vrpn::Event::Disconnect => return Err("the server disconnected".to_owned()),
             }
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn args(list: &[&str]) -> Result<Args, String> {
-        parse_args(list.iter().map(|s| (*s).to_owned()))
-    }
-
-    #[test]
-    fn a_vrpn_source_is_named_and_checked() {
-        let a = args(&["--vrpn", "Head@tracking-pc:3900", "--vrpn-sensor", "2"]).unwrap();
-        let v = a.vrpn.expect("a VRPN source");
-        assert_eq!(v.device.to_string(), "Head@tracking-pc:3900");
-        assert_eq!(v.sensor, 2);
-        for (bad, says) in [
-            (&["--vrpn", "Head"][..], "--vrpn: `Head` is not NAME@HOST"),
-            (
-                &["--vrpn", "Head@h", "--vrpn-sensor", "-1"][..],
-                "must be >= 0",
-            ),
-            (
-                &["--vrpn", "Head@h", "--dtrack-udp", "5000"][..],
-                "choose one source",
-            ),
-            (&["--vrpn-sensor", "1"][..], "give the device with --vrpn"),
-        ] {
-            let e = args(bad).map(|_| ()).unwrap_err();
-            assert!(e.contains(says), "{bad:?}: {e}");
         }
     }
 }
