@@ -200,7 +200,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
 /// How the window starts its lesson's process: this binary, with the
 /// address-space limit in `LIGHTCONE_MEMORY_LIMIT` (MiB, at least 256;
 /// default [`crate::lesson::supervise::MEMORY_LIMIT_MB`]).
-fn lesson_isolation() -> Result<crate::lesson::remote::Isolation, String> {
+fn lesson_isolation() -> Result<crate::lesson::Isolation, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find lightcone itself: {e}"))?;
     let memory_mb = match std::env::var("LIGHTCONE_MEMORY_LIMIT") {
         Err(_) => crate::lesson::supervise::MEMORY_LIMIT_MB,
@@ -213,5 +213,5 @@ fn lesson_isolation() -> Result<crate::lesson::remote::Isolation, String> {
             }
         },
     };
-    Ok(crate::lesson::remote::Isolation { exe, memory_mb })
+    Ok(crate::lesson::Isolation { exe, memory_mb })
 }

@@ -148,7 +148,7 @@ pub fn run_isolated(
     until: f64,
     fps: f64,
     hook_limit: std::time::Duration,
-    isolation: super::remote::Isolation,
+    isolation: super::isolation::Isolation,
 ) -> Result<Outcome, String> {
     let (host, game) =
         LessonHost::load_isolated_with_limit(path, hook_limit, super::placeholder, isolation)?;

@@ -26,10 +26,14 @@
 //! game). After `world.finish()` no hook runs again.
 
 pub mod headless;
+mod isolation;
 pub mod lend;
+mod line;
 pub mod remote;
 mod sandbox;
 pub mod supervise;
+
+pub use isolation::Isolation;
 mod watchdog;
 
 pub use watchdog::{GRACE, HARD_STOP_STATUS, HOOK_LIMIT};
@@ -229,7 +233,7 @@ pub struct LessonHost {
     /// The lesson's own process, when it runs in one (the window).
     remote: Option<remote::Remote>,
     /// How to start that process (`None`: the lesson runs in this one).
-    isolation: Option<remote::Isolation>,
+    isolation: Option<Isolation>,
     /// The game `setup` is building in the lesson's process.
     pending: Option<GameState>,
 }
@@ -265,7 +269,7 @@ impl LessonHost {
     pub fn load_isolated(
         path: &Path,
         fallback: impl FnOnce() -> GameState,
-        isolation: remote::Isolation,
+        isolation: Isolation,
     ) -> Result<(Self, GameState), String> {
         Self::load_isolated_with_limit(path, limit_from_env()?, fallback, isolation)
     }
@@ -276,7 +280,7 @@ impl LessonHost {
         path: &Path,
         limit: std::time::Duration,
         fallback: impl FnOnce() -> GameState,
-        isolation: remote::Isolation,
+        isolation: Isolation,
     ) -> Result<(Self, GameState), String> {
         let mut host = Self::new(path, limit)?;
         host.start_remote(&isolation);

@@ -22,7 +22,7 @@
 //! while it is drawn; the next frame takes their ends, waiting at most
 //! [`FRAME_BUDGET`] (`LessonHost::serve`); while a hook is out, board time
 //! waits (the window keeps drawing). Nothing the lesson
-//! sends is trusted: a line over [`MAX_LINE`] bytes, a message that is not
+//! sends is trusted: a line over [`MAX_LINE`](super::line::MAX_LINE) bytes, a message that is not
 //! an `Up`, a request for something the game does not serve, or a
 //! message when no call is out ends the lesson's process, with the reason.
 //!
@@ -47,13 +47,12 @@ use pyo3::types::PyModule;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use super::isolation::Isolation;
+use super::line::{MAX_LINE, read_line};
 use super::supervise::{self, KILL_AFTER};
 use super::{LessonHost, drain_printed, keep_printed, lend, placeholder, traceback, watchdog};
 use crate::model::GameState;
 use lightcone_python::World;
-
-/// Longest line either process accepts from the other, bytes.
-pub const MAX_LINE: usize = 16 << 20;
 
 /// How long a frame waits for the lesson before it draws: a hook that
 /// takes longer goes on over the next frames while board time waits.
@@ -122,26 +121,6 @@ fn module(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
         Ok(m.unbind())
     })?;
     Ok(m.bind(py).clone())
-}
-
-/// Reads one line of at most [`MAX_LINE`] bytes (without its newline).
-/// `Ok(None)` at the end of the stream.
-pub(crate) fn read_line(reader: &mut impl BufRead) -> Result<Option<Vec<u8>>, String> {
-    let mut line = Vec::new();
-    let n = reader
-        .by_ref()
-        .take(MAX_LINE as u64 + 1)
-        .read_until(b'\n', &mut line)
-        .map_err(|e| format!("cannot read the lesson's process: {e}"))?;
-    if n == 0 {
-        return Ok(None);
-    }
-    if line.last() == Some(&b'\n') {
-        line.pop();
-    } else if line.len() > MAX_LINE {
-        return Err(format!("it sent a line longer than {} MiB", MAX_LINE >> 20));
-    }
-    Ok(Some(line))
 }
 
 // ---- The lesson's process.
@@ -405,15 +384,6 @@ enum FromChild {
     Bad(String),
     /// The lesson's process closed its output (it ended).
     Closed,
-}
-
-/// How the window runs its lesson's process.
-#[derive(Clone, Debug)]
-pub struct Isolation {
-    /// The `lightcone` binary to start (the game's own).
-    pub exe: PathBuf,
-    /// Address-space limit of the lesson's process, MiB.
-    pub memory_mb: u64,
 }
 
 /// The lesson's process, seen from the game.

@@ -31,7 +31,7 @@ use std::time::{Duration, Instant};
 use serde::{Deserialize, Serialize};
 
 use super::headless::{self, Outcome, Progress, Stop};
-use super::remote;
+use super::line;
 use super::sandbox::{self, Scratch};
 use super::watchdog::{self, HARD_STOP_STATUS};
 use lightcone_python::{MAX_CLAIM_BYTES, MAX_CLAIMS};
@@ -417,7 +417,7 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         std::thread::spawn(move || {
             let mut reader = BufReader::new(out);
             loop {
-                let sent = match remote::read_line(&mut reader) {
+                let sent = match line::read_line(&mut reader) {
                     Ok(None) => break,
                     Err(e) => {
                         let _ = tx.send(Err(e));
