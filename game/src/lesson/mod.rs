@@ -28,7 +28,6 @@
 pub mod headless;
 pub mod lend;
 pub mod remote;
-mod sandbox;
 pub mod supervise;
 mod watchdog;
 

@@ -435,7 +435,7 @@ pub(crate) struct Remote {
     memory_mb: u64,
     /// Its temporary folder, removed after it (the last field: dropped
     /// after `Drop` ended the process).
-    _scratch: super::sandbox::Scratch,
+    _scratch: supervise::sandbox::Scratch,
 }
 
 impl Remote {

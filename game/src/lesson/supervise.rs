@@ -32,7 +32,12 @@ use serde::{Deserialize, Serialize};
 
 use super::headless::{self, Outcome, Progress, Stop};
 use super::remote;
-use super::sandbox::{self, Scratch};
+use sandbox::Scratch;
+
+/// The kernel's sandbox around the lesson's process, entered by
+/// [`sandboxed`] (beside this file).
+#[path = "sandbox.rs"]
+pub(crate) mod sandbox;
 use super::watchdog::{self, HARD_STOP_STATUS};
 use lightcone_python::{MAX_CLAIM_BYTES, MAX_CLAIMS};
 
