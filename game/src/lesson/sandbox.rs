@@ -1,7 +1,7 @@
 //! The kernel's sandbox around a lesson's process (Linux): once the
 //! interpreter has started and before the lesson's code runs, the process
 //! drops, by allowlist, what a lesson never needs. The audit hook of
-//! [`super::watchdog`] stays, for friendly messages; this is what holds
+//! `lesson::watchdog` stays, for friendly messages; this is what holds
 //! when a lesson walks past it (pure Python through `_posixsubprocess`, C
 //! through `ctypes`).
 //!
@@ -23,7 +23,7 @@
 //!   `socketpair` of its own is allowed), `setsid`/`setpgid`, `prctl`
 //!   but naming threads and memory, raising its own limits.
 //! - **Limits**: address space (`--memory-limit`, set earlier, in
-//!   [`super::supervise::child_process`]), [`CPU_LIMIT_S`] of CPU time,
+//!   [`super::child_process`]), [`CPU_LIMIT_S`] of CPU time,
 //!   [`OPEN_FILES`] open files, [`FILE_SIZE`] per file written, no core
 //!   dumps.
 //!
