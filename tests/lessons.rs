@@ -14,7 +14,8 @@ use std::process::Output;
 use std::time::{Duration, Instant};
 
 use common::{cloth_pixels, lightcone, play_under_xvfb, play_under_xvfb_with, repo};
-use lightcone::lesson::remote::{FRAME_BUDGET, Isolation};
+use lightcone::lesson::Isolation;
+use lightcone::lesson::remote::FRAME_BUDGET;
 use lightcone::lesson::{LessonHost, headless};
 use lightcone_render::headless::Image;
 

@@ -2,7 +2,7 @@
 //! line bounded, so that neither process can grow the other's memory by
 //! writing without a newline.
 
-use std::io::BufRead;
+use std::io::{BufRead, Read};
 
 /// Longest line either process accepts from the other, bytes.
 pub const MAX_LINE: usize = 16 << 20;
@@ -25,4 +25,20 @@ pub(crate) fn read_line(reader: &mut impl BufRead) -> Result<Option<Vec<u8>>, St
         return Err(format!("it sent a line longer than {} MiB", MAX_LINE >> 20));
     }
     Ok(Some(line))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_reader_refuses_overlong_lines_and_reads_the_rest() {
+        let mut ok = std::io::Cursor::new(b"{\"a\":1}\nlast".to_vec());
+        assert_eq!(read_line(&mut ok).unwrap().unwrap(), b"{\"a\":1}");
+        assert_eq!(read_line(&mut ok).unwrap().unwrap(), b"last");
+        assert!(read_line(&mut ok).unwrap().is_none());
+        let mut long = std::io::Cursor::new(vec![b'x'; MAX_LINE + 10]);
+        let err = read_line(&mut long).unwrap_err();
+        assert!(err.contains("longer than 16 MiB"), "{err}");
+    }
 }
