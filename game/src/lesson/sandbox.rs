@@ -109,6 +109,12 @@ pub(crate) fn enter(lesson_dir: &Path) -> Result<Vec<String>, String> {
     let scratch = std::env::var_os(SCRATCH_ENV).map(PathBuf::from);
     let mut reads = python_paths();
     reads.push(lesson_dir.to_path_buf());
+    // The shipped scenes (`world.load` of `assets/scenes/NAME.toml` from a
+    // lesson anywhere), read-only like the lesson's own folder.
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets");
+    if let Ok(assets) = assets.canonicalize() {
+        reads.push(assets);
+    }
     imp::enter(&reads, scratch.as_deref())
 }
 
