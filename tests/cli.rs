@@ -129,7 +129,7 @@ fn simulate_prints_the_documented_schema() {
         let t = c["t"].as_f64().unwrap();
         // In the order processed: that of each collision's first velocity
         // change; a contact lies between its two kicks (pair frame
-        // simultaneity, see README "Collision convention").
+        // simultaneity, see docs/guide/src/collisions.md).
         let kicks: Vec<f64> = c["pucks"]
             .as_array()
             .unwrap()
@@ -782,7 +782,7 @@ fn ctrl_c_stops_a_long_lesson_promptly_with_exit_130() {
 /// The default scene is built in: a binary copied out of the checkout and
 /// run from another folder checks it with no arguments. (Instead of
 /// `cargo install --path game --root TMP`, which would compile the whole
-/// game again in CI; README "Install" shows that command, and it installs
+/// game again in CI; the guide's "Getting started" shows that command, and it installs
 /// this same binary.)
 #[test]
 fn the_default_scene_is_built_in() {

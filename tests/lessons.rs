@@ -766,3 +766,49 @@ fn in_the_window_the_world_is_a_lightcone_world() {
     assert_eq!(claims.len(), 3, "{claims:?}");
     assert!(claims.iter().all(|c| c.ok), "{claims:?}");
 }
+
+/// The lesson template on the README's front page ("A lesson in 20 lines",
+/// under *Teachers start here*) runs as printed: it finishes, its claim
+/// holds, and the headless run answers its question with the text of the
+/// right choice (`ask`'s `answer=` is an index, `on_answer` gets the text).
+/// A teacher copies this block first, so it must never rot.
+#[test]
+fn the_readme_lesson_template_runs_as_printed() {
+    let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
+    let section = readme
+        .split("### A lesson in 20 lines")
+        .nth(1)
+        .expect("README.md has the section \"A lesson in 20 lines\"");
+    let code = section
+        .split("```python\n")
+        .nth(1)
+        .and_then(|s| s.split("\n```").next())
+        .expect("the section holds a ```python block");
+    let lines = code.lines().count();
+    assert!(lines <= 25, "the template is {lines} lines, not about 20");
+    let dir = std::env::temp_dir().join(format!("lightcone-readme-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("head_on.py");
+    std::fs::write(&path, code).unwrap();
+    let out = lightcone(&["lesson", path.to_str().unwrap(), "--json"]);
+    let _ = std::fs::remove_dir_all(&dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "the README's lesson failed:\n{stderr}"
+    );
+    let outcome: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(outcome["error"].is_null(), "{}", outcome["error"]);
+    assert!(outcome["finished"].is_string(), "{outcome}");
+    let claims = outcome["claims"].as_array().expect("claims");
+    assert!(!claims.is_empty(), "{outcome}");
+    assert!(
+        claims.iter().all(|c| c["ok"].as_bool() == Some(true)),
+        "{outcome}"
+    );
+    assert_eq!(
+        outcome["answers"],
+        serde_json::json!([["Which moves after?", "b"]]),
+        "{outcome}"
+    );
+}

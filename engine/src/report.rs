@@ -1,5 +1,5 @@
 //! The JSON shapes of what the physics did, shared by `lightcone simulate`
-//! and the Python API. Documented in the README ("simulate output").
+//! and the Python API. Documented in the guide (docs/guide/src/commands.md).
 //!
 //! Velocities are given twice: `u`, the proper velocity γβ (the engine's
 //! exact state), and `beta`, for reading. Vectors on the board are `[x, y]`.

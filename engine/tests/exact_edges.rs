@@ -3,7 +3,7 @@
 //! independent evaluation in double-double arithmetic (`common/dd.rs`), not
 //! against the engine's own intermediate numbers.
 //!
-//! * **Restitution** (item 1): the README defines `e` as the fraction of
+//! * **Restitution** (item 1): the guide (docs/guide/src/scenes.md) defines `e` as the fraction of
 //!   the centre-of-momentum kinetic energy kept. Here it is worked out from
 //!   the before and after 4-momenta alone: `K = M − Σ mᵢ`, `M² = E² − |P|²`
 //!   (`c = 1` units, mass units), in double-double. The input-rounding

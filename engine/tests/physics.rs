@@ -165,7 +165,7 @@ fn opening(c: &Collision) -> (f64, f64, f64) {
 /// the centre-of-momentum scattering turns nearly backwards, the target's
 /// angle θ₂ goes to 0 but the projectile's θ₁ tends to its classical value
 /// atan(√(4R² − b²)/b): 60° at b = R. The paper's "tends to 0" holds at a
-/// fixed CM scattering angle, not at a fixed aim (see README).
+/// fixed CM scattering angle, not at a fixed aim (see the guide, docs/guide/src/found.md).
 #[test]
 fn opening_angle_is_below_90_degrees_and_shrinks_as_v_goes_to_c() {
     let mut last = std::f64::consts::FRAC_PI_2;
@@ -279,7 +279,7 @@ fn three_pucks_in_simultaneous_contact() {
     // A meets B first (first by name), and C is then struck by the A that
     // B has already deflected: resolution is sequential and deterministic,
     // and 4-momentum is conserved exactly. (A truly simultaneous three-body
-    // outcome is not unique; see README.)
+    // outcome is not unique; see docs/guide/src/collisions.md.)
     assert_eq!(b.stats().overlapping_kicks, 0);
     let total = |t: f64| {
         (0..3).fold(FourMomentum::default(), |s, i| {
@@ -530,7 +530,7 @@ fn a_million_collisions_in_a_dense_box() {
     );
     // No puck passes through another: centres never come closer than a
     // fraction of 2R that the light-delay convention allows (pucks overlap
-    // while light crosses them; see README).
+    // while light crosses them; see docs/guide/src/collisions.md).
     assert!(min_gap > 0.3, "centres came within {min_gap} × 2R");
     let s = b.stats();
     assert_eq!(s.overlapping_kicks, 0);

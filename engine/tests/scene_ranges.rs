@@ -1,6 +1,6 @@
 //! The ranges a scene may give, fuzzed at their ends: the smallest
 //! subnormal, each bound, the doubles just beyond, zero, the largest double,
-//! NaN and the infinities. A value is accepted exactly when the README's
+//! NaN and the infinities. A value is accepted exactly when the guide's
 //! table ("What the engine holds", whose bounds are written out here, not
 //! read from the engine) holds it, and every accepted scene gives finite
 //! figures: the ones `lightcone check` prints from it (c²/(μg), the
@@ -46,7 +46,7 @@ fn toml(x: f64) -> String {
     }
 }
 
-/// One field of a scene file and the README's range for it.
+/// One field of a scene file and the guide's range for it (docs/guide/src/scenes.md).
 #[derive(Clone, Copy, Debug)]
 enum Field {
     C,
@@ -75,7 +75,7 @@ impl Field {
         Field::U,
     ];
 
-    /// The README's bounds.
+    /// The guide's bounds.
     fn bounds(self) -> (f64, f64) {
         match self {
             Field::C => (1e-6, 1e9),
@@ -88,7 +88,7 @@ impl Field {
         }
     }
 
-    /// Whether the README's table accepts `x` for this field (in a scene
+    /// Whether the guide's table accepts `x` for this field (in a scene
     /// where nothing else stops it: a puck of radius up to half the
     /// largest table fits).
     fn accepts(self, x: f64) -> bool {
@@ -107,7 +107,7 @@ impl Field {
     /// A scene holding `x` in this field, the others at ordinary values,
     /// on the largest table (so every puck fits) with light at 10³ m/s (so
     /// every puck brakes rigidly under the strongest cloth). `extreme`:
-    /// with the smallest friction and gravity the README allows and the
+    /// with the smallest friction and gravity the guide allows and the
     /// fastest light, so the braking figures are at their largest.
     fn scene(self, x: f64, extreme: bool) -> String {
         let v = toml(x);
@@ -183,7 +183,7 @@ fn figures_are_finite(s: &Scene) -> Result<(), String> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
 
-    /// Each field at each of its ends: accepted exactly when the README's
+    /// Each field at each of its ends: accepted exactly when the guide's
     /// range holds it, refused with a located error naming the field
     /// otherwise, and finite figures whenever accepted.
     #[test]
@@ -212,7 +212,7 @@ proptest! {
 }
 
 /// The case: the smallest double as friction is refused (it made
-/// c²/(μg) infinite), saying what to give; the README's smallest friction
+/// c²/(μg) infinite), saying what to give; the guide's smallest friction
 /// with the slowest gravity and the fastest light gives finite figures.
 #[test]
 fn a_subnormal_friction_is_refused_and_the_smallest_allowed_is_finite() {

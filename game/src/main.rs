@@ -137,7 +137,7 @@ enum Command {
         scenes: Vec<PathBuf>,
     },
     /// Run the physics headless; print every collision, then the final
-    /// state, as JSON lines (schema in the README).
+    /// state, as JSON lines (schema: docs/guide/src/commands.md).
     Simulate {
         /// Scene file (TOML).
         scene: PathBuf,
@@ -149,7 +149,7 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// What an observer sees at a board time, as one JSON object (schema in
-    /// the README).
+    /// docs/guide/src/commands.md).
     Observe {
         /// Scene file (TOML).
         scene: PathBuf,
@@ -274,7 +274,7 @@ enum Command {
         /// (see lesson::remote).
         #[arg(long, hide = true, conflicts_with = "child")]
         window_child: bool,
-        /// Print the outcome as one JSON object (schema in the README).
+        /// Print the outcome as one JSON object (schema: docs/guide/src/lessons.md).
         #[arg(long)]
         json: bool,
     },

@@ -31,7 +31,7 @@ pyo3::create_exception!(
     _lightcone,
     OutOfRangeError,
     SceneError,
-    "A number lies outside what the engine holds (README, \"What the engine holds\"): a length, mass, c, friction, gravity, restitution or |u|."
+    "A number lies outside what the engine holds (the guide, docs/guide/src/scenes.md, \"What the engine holds\"): a length, mass, c, friction, gravity, restitution or |u|."
 );
 
 pyo3::create_exception!(

@@ -14,7 +14,7 @@ fn planar(v: Option<Vector<2>>) -> Option<DVec3> {
     v.map(|v| DVec3::new(v.0[0], v.0[1], 0.0))
 }
 
-/// A validated scene (see the README's "Scene files").
+/// A validated scene (see the guide, docs/guide/src/scenes.md).
 #[pyclass(module = "lightcone._lightcone")]
 #[derive(Clone)]
 pub struct Scene {
@@ -68,7 +68,7 @@ impl Scene {
 
     /// Sliding friction μ of the table (0: frictionless). Setting it
     /// checks it as the constructor does (and that every puck can brake
-    /// rigidly, see the README's "Sliding friction"); raises SceneError.
+    /// rigidly, see the guide, docs/guide/src/friction.md); raises SceneError.
     #[getter]
     fn friction(&self) -> f64 {
         self.inner.table.friction

@@ -370,7 +370,7 @@ def test_diagram_returns_a_frame_and_its_line_is_the_pucks_now(tmp_path):
 
 def test_friction_in_code_stops_a_puck_where_relativity_says():
     # μ = 0.2, g = 9.80665, c = 1.42 m/s; struck at u₀ = γβ = 2 along x.
-    # Closed forms (README, "Sliding friction"): stopping time (c/μg) u₀,
+    # Closed forms (docs/guide/src/friction.md): stopping time (c/μg) u₀,
     # distance (c²/μg)(γ₀ − 1).
     mu, g, c, u0 = 0.2, 9.80665, 1.42, 2.0
     s = lightcone.Scene(size=(6.0, 2.0), c=c, friction=mu)

@@ -2,7 +2,7 @@
 //! finite position within the tracked room's bound and an orientation that
 //! is a rotation. DTrack's and VRPN's readers ([`crate::dtrack`],
 //! [`crate::vrpn`]) and the game's [`crate::follow::Follower`] apply the same
-//! bound, so a report the README says is dropped is dropped at the tracker,
+//! bound, so a report the guide says is dropped is dropped at the tracker,
 //! and again in the game should another publisher send it.
 
 use glam::{DQuat, DVec3};

@@ -740,7 +740,7 @@ mod tests {
         );
     }
 
-    /// Every report the README says is dropped is refused, with the field
+    /// Every report the guide (docs/guide/src/tracker.md) says is dropped is refused, with the field
     /// and what was there; a rotation of any finite length is normalised.
     #[test]
     fn reports_beyond_the_room_or_without_a_rotation_are_refused() {

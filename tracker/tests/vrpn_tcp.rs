@@ -224,7 +224,7 @@ fn a_silent_vrpn_server_is_connected_to_again() {
     );
 }
 
-/// A hostile VRPN server: reports the README says are dropped (a
+/// A hostile VRPN server: reports the guide says are dropped (a
 /// position of 1e300 m and of 1e6 m, a zero quaternion, a non-finite one)
 /// between good ones, then 10 000 sender descriptions with 32 kB names and
 /// 10 000 with distinct 220-byte ones, then a good report. Only the good

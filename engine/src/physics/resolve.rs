@@ -147,7 +147,7 @@ fn in_cm_frame(a: Body, b: Body, n_board: FourVector, restitution: f64) -> [Body
 /// board and are closing there, see `Billiard`): the impulse is along the
 /// board-frame unit direction `normal` (from `a` towards `b`), and
 /// `restitution` is, as in [`puck_puck`], the fraction of the CM kinetic
-/// energy kept (README, "Outcomes").
+/// energy kept (the guide, docs/guide/src/collisions.md).
 ///
 /// Worked in the frame that moves along `normal` with the pair's velocity
 /// component along it (`β = (P·n) / E`), where the pair's momentum along

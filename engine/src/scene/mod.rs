@@ -1,7 +1,7 @@
 //! Scene files (TOML): schema, loading, validation and error messages that
 //! name the file, line and field.
 //!
-//! See the README section "Scene files" for the format. A scene is read in
+//! See the guide, docs/guide/src/scenes.md, for the format. A scene is read in
 //! two steps: the private `raw` module mirrors the file with the position of every value,
 //! then `validate` checks the physics (speed below `c`, pucks on the table
 //! and apart, finite numbers) and builds the engine's [`Scene`]. The rules

@@ -8,7 +8,7 @@
 //! The ranges: everything a scene gives must lie inside them. Outside them
 //! f64 loses the digits the physics and optics need, a figure `lightcone
 //! check` prints is no longer finite, or a run cannot finish, so scenes
-//! beyond them are refused. README, "What the engine holds", gives the
+//! beyond them are refused. The guide (docs/guide/src/scenes.md, "What the engine holds") gives the
 //! reasons.
 
 use std::ops::RangeInclusive;

@@ -254,7 +254,7 @@ fn exactness(quick: bool) -> String {
          against the exact contact; and CPU time to run the paper's scene for 20 s of board time. \
          Head-on, the board frame's first touch and the pair frame's contact are the same event, so the \
          error is the stepping's alone; off-centre they differ (rigid contact is frame-dependent, see \
-         README), and the stepper, which tests overlap on the board, converges to the board frame's \
+         docs/guide/src/found.md), and the stepper, which tests overlap on the board, converges to the board frame's \
          first touch instead.\n\n\
          | method | head-on: max time error (ms) | head-on: max position error (mm) | off-centre: max time error (ms) | missed contacts | CPU per simulated second (µs) |\n\
          | --- | --- | --- | --- | --- | --- |\n",

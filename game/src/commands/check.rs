@@ -168,7 +168,7 @@ mod tests {
     }
 
     proptest! {
-        /// Scenes at the ends of the ranges (README, "What the engine
+        /// Scenes at the ends of the ranges (docs/guide/src/scenes.md, "What the engine
         /// holds") that the loader accepts: `check`'s summary prints
         /// finite figures only, and the braking ones as their size, not 0.
         #[test]

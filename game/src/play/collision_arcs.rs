@@ -3,7 +3,7 @@
 //! them, in degrees (the lesson's "79.8° instead of 90°", on the table).
 //!
 //! In the truth view an arc appears once both velocities have changed
-//! (the two kicks, see the README's collision convention) and stays for
+//! (the two kicks, see the guide's collision convention) and stays for
 //! [`ARC_S`] seconds of board time or until either puck is kicked again
 //! (braking on the cloth and stopping do not end it). In the seen view the same, but late by the light delay
 //! from the contact point to the eye: it appears when the contact is

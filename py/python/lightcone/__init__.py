@@ -10,7 +10,7 @@
 Collision, state and observation records are classes in
 `lightcone.records` (`Collision`, `State`, `Observation`, ...) holding the
 JSON objects that `lightcone simulate` and `lightcone observe` print
-(README): fields as attributes (typed, with units) or keys
+(docs/guide/src/python.md): fields as attributes (typed, with units) or keys
 (`c["kind"]`), `repr`, and `to_dict()`. Lessons
 (`lightcone play LESSON.py`) receive a `World` in their hooks.
 """

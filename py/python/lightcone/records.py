@@ -2,7 +2,7 @@
 observations, as classes.
 
 Each record holds the JSON object that `lightcone simulate` or `lightcone
-observe` prints for it (see the README) and offers it three ways:
+observe` prints for it (see the guide, docs/guide/src/commands.md) and offers it three ways:
 
 - as attributes, typed here: `sim.collisions()[0].pucks[1].u_after`;
 - by key, as before, so code written for dictionaries keeps working:

@@ -27,7 +27,7 @@
 //! contact. (The paper's Appendix instead waits for light from the contact
 //! to reach each centre; at high γ that delay, about γR/2c, lets the rigid
 //! shapes pass through each other, and the pair is found "colliding" again
-//! and again. See the README, "Collision convention".) In the board frame
+//! and again. See the guide, docs/guide/src/collisions.md.) In the board frame
 //! the two kicks are `γ_f (v_f·Δx′)/c²` apart in time (`Δx′` the centres'
 //! separation in the pair frame); the contact lies between them.
 
