@@ -31,13 +31,17 @@ impl Billiard {
 
     /// The next contact of pucks `a` and `b` from board time `now` on
     /// ([`pair::contact`]; `board_only` for a settled pair, see
-    /// `Puck::settled`).
+    /// `Puck::settled`). Only a contact processed at or before `horizon`
+    /// (s) counts: a braking pair's search stops there (not on the
+    /// reference path, which searches on so that the test comparing the
+    /// two loops checks the cut).
     pub(super) fn contact_of(
         &self,
         a: usize,
         b: usize,
         now: f64,
         board_only: bool,
+        horizon: f64,
     ) -> Option<PairContact> {
         pair::contact(
             self.mover(a),
@@ -46,6 +50,7 @@ impl Billiard {
             now,
             board_only,
             !self.reference,
+            horizon,
         )
     }
 
@@ -230,7 +235,8 @@ impl Billiard {
                 continue;
             }
             predictions += 1;
-            let Some(hit) = self.contact_of(a, b, now, settled) else {
+            let horizon = if self.reference { f64::INFINITY } else { limit };
+            let Some(hit) = self.contact_of(a, b, now, settled, horizon) else {
                 continue;
             };
             // Processed at the earliest of the two kicks (the contact lies

@@ -140,7 +140,7 @@ impl Billiard {
         predicted_at: f64,
     ) {
         let hit = if self.reference {
-            self.contact_of(a, b, predicted_at, self.settled(a, b))
+            self.contact_of(a, b, predicted_at, self.settled(a, b), f64::INFINITY)
         } else {
             kept
         };

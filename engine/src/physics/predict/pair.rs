@@ -45,6 +45,11 @@ pub const BOARD_FIRST_U: f64 = 3.0;
 /// would find nothing. `proofs`: whether such cheap one-sided proofs may
 /// skip the searches (the reference loop turns them off, so that the test
 /// comparing the two loops checks the proofs).
+///
+/// `horizon` (s): a braking pair's search may stop there
+/// ([`braking::pair_before`]: a contact whose earlier kick is at or before
+/// it is found to the same bits; a later one may be missed). Uniform pairs,
+/// solved in closed form, ignore it.
 #[must_use]
 pub fn contact(
     a: Mover,
@@ -53,11 +58,12 @@ pub fn contact(
     now: f64,
     board_only: bool,
     proofs: bool,
+    horizon: f64,
 ) -> Option<PairContact> {
     let (sa, sb) = (a.segment, b.segment);
     let (ra, rb) = (a.radius, b.radius);
     if sa.is_braking() || sb.is_braking() {
-        return braking::pair(a, b, c, now);
+        return braking::pair_before(a, b, c, now, horizon);
     }
     let on_board = |t: f64, m: DVec3, depth: f64| PairContact {
         contact: Event::new(
