@@ -62,8 +62,11 @@
 //!   cannot graze and then meet; braking motion could, in contrived cases.
 //! * Pucks overlapping and opening at `now` are searched from the first
 //!   time a doubling step finds them apart, not from a proven bracket.
-//! * No cheap lower bound prunes braking pairs in the event loop: every
-//!   broad-phase candidate gets this search (cost not yet benchmarked).
+//! * The search is the cost of friction (BENCHMARKS.md, Friction): the
+//!   event loop prunes pairs first (`predict::bounds::braking_touch`) and
+//!   stops the search at its earliest event so far ([`pair_before`]), but
+//!   each step near a touch is an overlap scan, and the final approach to
+//!   the touch converges only linearly.
 //!
 //! ## The collision convention
 //!
@@ -327,7 +330,13 @@ pub fn pair(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
 /// whose velocity (a weighted mean of the pucks') is below `β c`, the
 /// largest board speed now (braking only slows), and the contact is within
 /// a rest radius `R` of the centre, so the kick is at most `β R / (c (1 −
-/// β²))` earlier (doubled against rounding).
+/// β²))` earlier, doubled: against rounding, and for a kick before `now`
+/// (a contact within about `R/c` of it), where the pucks were faster. The
+/// doubling covers a speed there up to `√(1 − (1 − β²)/2)`. Limit: a
+/// braking puck near `c` whose kick falls that far before `now` would
+/// have its contact cut (processed later than the full search would);
+/// not met in the tests (random pairs to γ ≈ 20, the reference-loop
+/// braking gases).
 pub fn pair_before(a: Mover, b: Mover, c: f64, now: f64, horizon: f64) -> Option<PairContact> {
     let (sa, sb) = (a.segment, b.segment);
     let (ra, rb) = (a.radius, b.radius);
