@@ -62,8 +62,11 @@
 //!   cannot graze and then meet; braking motion could, in contrived cases.
 //! * Pucks overlapping and opening at `now` are searched from the first
 //!   time a doubling step finds them apart, not from a proven bracket.
-//! * No cheap lower bound prunes braking pairs in the event loop: every
-//!   broad-phase candidate gets this search (cost not yet benchmarked).
+//! * The search is the cost of friction (BENCHMARKS.md, Friction): the
+//!   event loop prunes pairs first (`predict::bounds::braking_touch`) and
+//!   stops the search at its earliest event so far ([`pair_before`]), but
+//!   each step near a touch is an overlap scan, and the final approach to
+//!   the touch converges only linearly.
 //!
 //! ## The collision convention
 //!
@@ -201,6 +204,21 @@ fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
 /// positive at both ends but cannot be excluded is a touch deeper than
 /// `lip` × that width at most; it is taken as no contact.
 pub fn first_contact(sep: impl Fn(f64) -> f64, t0: f64, t1: f64, lip: f64) -> Option<f64> {
+    first_contact_before(sep, t0, t1, lip, f64::INFINITY)
+}
+
+/// [`first_contact`], given up (`None`) once every interval left begins
+/// after `horizon` (s): the same search, cut short, so a contact at or
+/// before `horizon` is found to the same bits (the intervals are split and
+/// visited in the same order, earliest first; only later ones are never
+/// visited).
+pub fn first_contact_before(
+    sep: impl Fn(f64) -> f64,
+    t0: f64,
+    t1: f64,
+    lip: f64,
+    horizon: f64,
+) -> Option<f64> {
     if t1.is_nan() || t0.is_nan() || t1 <= t0 {
         return None;
     }
@@ -209,6 +227,9 @@ pub fn first_contact(sep: impl Fn(f64) -> f64, t0: f64, t1: f64, lip: f64) -> Op
     let mut stack = vec![(t0, sep(t0), t1, s1)];
     let mut evaluations = 0usize;
     while let Some((a, sa, b, sb)) = stack.pop() {
+        if a > horizon {
+            return None; // and every interval still on the stack is later
+        }
         if sb > 0.0 && sa + sb > lip * (b - a) {
             continue; // no touch anywhere in [a, b]
         }
@@ -297,6 +318,26 @@ fn simultaneous(segment: &Segment, contact: Event, frame: ProperVelocity, c: f64
 /// rounding placed just past) meet at once, as in the frictionless loop: a
 /// board contact (`on_board`) at `now` along the penetration direction.
 pub fn pair(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
+    pair_before(a, b, c, now, f64::INFINITY)
+}
+
+/// [`pair`], for a caller that only wants a contact whose earlier kick (or
+/// the contact itself) is at or before board time `horizon` (s; the event
+/// loop's earliest event so far): the same contact, to the bits, when there
+/// is one, and `None` or a later contact otherwise. The root isolation then
+/// stops at `horizon` plus the most a kick can precede its contact: the
+/// kick on a centre is simultaneous with the contact in the pair frame,
+/// whose velocity (a weighted mean of the pucks') is below `β c`, the
+/// largest board speed now (braking only slows), and the contact is within
+/// a rest radius `R` of the centre, so the kick is at most `β R / (c (1 −
+/// β²))` earlier, doubled: against rounding, and for a kick before `now`
+/// (a contact within about `R/c` of it), where the pucks were faster. The
+/// doubling covers a speed there up to `√(1 − (1 − β²)/2)`. Limit: a
+/// braking puck near `c` whose kick falls that far before `now` would
+/// have its contact cut (processed later than the full search would);
+/// not met in the tests (random pairs to γ ≈ 20, the reference-loop
+/// braking gases).
+pub fn pair_before(a: Mover, b: Mover, c: f64, now: f64, horizon: f64) -> Option<PairContact> {
     let (sa, sb) = (a.segment, b.segment);
     let (ra, rb) = (a.radius, b.radius);
     let end = [sa, sb]
@@ -339,11 +380,15 @@ pub fn pair(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
             pair_frame: ProperVelocity::ZERO,
         });
     }
+    // How far past `horizon` a contact can be whose kick is not.
+    let beta = (speed_at(sa, now).max(speed_at(sb, now)) / c).min(1.0);
+    let lead = 2.0 * beta * ra.max(rb) / (c * (1.0 - beta * beta));
+    let cut = horizon + lead + 1e-9 * (horizon.abs() + lead);
     if end > from {
         let lip = (speed_at(sa, from) + speed_at(sb, from)) * (1.0 + 1e-9)
             + SHAPE_RATE * (ra * sa.deceleration() + rb * sb.deceleration()) / c;
         let sep = |t: f64| separation(sa, ra, sb, rb, t).0;
-        if let Some(t) = first_contact(sep, from, end, lip) {
+        if let Some(t) = first_contact_before(sep, from, end, lip, cut) {
             let (_, m) = separation(sa, ra, sb, rb, t);
             // A braking puck that would stop within rounding of the touch
             // rests against the other: no event (no Zeno bounces).
@@ -368,7 +413,12 @@ pub fn pair(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
             return None;
         }
     }
-    // Both at rest, or what still moves moves uniformly: the closed form.
+    // Both at rest, or what still moves moves uniformly: the closed form
+    // (whose contact and kicks, from `end` on, are past a horizon before
+    // it).
+    if end > cut {
+        return None;
+    }
     let (ta, tb) = (sa.tangent_at(end), sb.tangent_at(end));
     if ta.is_rest() && tb.is_rest() {
         return None;
@@ -619,6 +669,69 @@ mod tests {
             }
         }
         assert!(checked >= 3, "{checked}");
+    }
+
+    #[test]
+    fn first_contact_before_a_horizon_finds_the_same_root_or_gives_up() {
+        // Two dips, at 0.5 and 3: a horizon after the first keeps it to the
+        // bit; one between them finds nothing; one before both gives up.
+        let sep = |t: f64| ((t - 0.5).abs() - 1e-6).min((t - 3.0).abs() - 0.1);
+        let full = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
+        assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, 0.6), Some(full));
+        assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, full), Some(full));
+        let sep = |t: f64| (t - 3.0).abs() - 0.1;
+        let later = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
+        assert!((later - 2.9).abs() < 1e-15, "{later}");
+        assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, 1.0), None);
+        assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, 3.0), Some(later));
+    }
+
+    #[test]
+    fn a_braking_pair_before_a_horizon_is_the_same_contact_to_the_bit() {
+        // Random braking pairs near each other (proper speeds to 20, γ to
+        // 20, so kicks can precede their contact by several R/c): every
+        // horizon at or after the contact's first kick gives the very
+        // contact of the full search; an earlier one gives it or nothing.
+        let mut rng = crate::physics::gas::Rng::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = move || rng.next_f64();
+        let (mut kept, mut cut) = (0, 0);
+        for _ in 0..1500 {
+            let speed = if next() < 0.5 { 3.0 } else { 20.0 };
+            let mut u = || DVec3::new(next() - 0.5, next() - 0.5, 0.0) * 2.0 * speed;
+            let (ua, ub) = (u(), u());
+            let (x, y) = (0.1 * next(), 0.1 * next());
+            let wa = braking(1.0, 0.7, ua, 1.962);
+            let wb = braking(1.0 + 0.07 + x, 0.7 + y, ub, 1.962);
+            let (a, b) = (
+                Mover {
+                    segment: wa.last(),
+                    radius: R,
+                },
+                Mover {
+                    segment: wb.last(),
+                    radius: R,
+                },
+            );
+            let full = pair(a, b, C, 0.0);
+            let first = full.map(|h| h.kicks[0].t.min(h.kicks[1].t).min(h.contact.t));
+            for horizon in [0.0, 1e-3, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0, f64::INFINITY] {
+                let ours = pair_before(a, b, C, 0.0, horizon);
+                match first {
+                    Some(first) if first <= horizon => {
+                        assert_eq!(ours, full, "{ua} {ub} at {horizon}");
+                        kept += 1;
+                    }
+                    _ => {
+                        assert!(ours.is_none() || ours == full, "{ua} {ub} at {horizon}");
+                        cut += usize::from(ours.is_none() && full.is_some());
+                    }
+                }
+            }
+            if let Some(first) = first {
+                assert_eq!(pair_before(a, b, C, 0.0, first), full);
+            }
+        }
+        assert!(kept > 500 && cut > 30, "{kept} kept, {cut} cut");
     }
 
     #[test]

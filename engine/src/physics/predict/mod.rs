@@ -1,6 +1,8 @@
 //! Collision prediction in closed form, one kernel per pair of shapes.
 
+pub mod bounds;
 pub mod braking;
+pub mod pair;
 pub mod puck_cushion;
 pub mod puck_puck;
 
