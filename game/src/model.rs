@@ -120,6 +120,9 @@ pub const REPLAY_WINDOW: f64 = 600.0;
 pub struct GameState {
     /// The scene as loaded (its `c` may be changed by the slider).
     pub scene: Scene,
+    /// The scene's own `c` (m/s), as the file or lesson gave it: the panel's
+    /// *scene's c* button returns to it after the slider moved `scene.c`.
+    pub scene_c: f64,
     /// The simulation: the physics, every eye (an observer with a
     /// worldline) and every picture (a view entity); its frame schedule
     /// is the one way to what is seen.
@@ -235,6 +238,7 @@ impl GameState {
             stereo: Vec::new(),
             views: Vec::new(),
             effects: scene.effects,
+            scene_c: scene.c,
             scene,
             live_time: 0.0,
             view_time: 0.0,

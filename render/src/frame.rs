@@ -35,7 +35,10 @@ pub enum ViewKind {
     /// What the observer sees, with the scene's effects.
     Seen,
     /// The board-frame "truth": every body where it is at this board time,
-    /// contracted, no light delay, no aberration, no colour change.
+    /// contracted, no light delay, no aberration, no colour change; each
+    /// clock reads the body's proper time at this board time (the time
+    /// dilation effect, which without light delay is `τ(t)`), so the truth
+    /// pane and the panel's proper times agree.
     Truth,
 }
 
@@ -46,6 +49,7 @@ impl ViewKind {
             ViewKind::Seen => scene,
             ViewKind::Truth => Effects {
                 contraction: true,
+                time_dilation: true,
                 ..Effects::NONE
             },
         }

@@ -266,3 +266,32 @@ fn several_pictures_run_in_one_frame_each_with_its_eye_and_effects() {
     let one = g.run_frame(&panes[..1]);
     assert_eq!(g.sim.views(), &one[..]);
 }
+
+#[test]
+fn the_truth_panes_clocks_read_each_pucks_proper_time_at_board_time() {
+    // Frictionless: puck a moves at β = 0.8 (γ = 5/3) and has lived
+    // τ = 0.6 t at board time t; puck b rests, τ = t. The truth pane shows
+    // the board at t, so its clocks read these (the panel's proper times),
+    // not board time for every puck.
+    let text = "c = 1.42\n[table]\nfriction = 0\nsize = [20.0, 2.0]\n\
+                [[puck]]\nname = \"a\"\nposition = [1.0, 0.5]\nbeta = [0.8, 0.0]\n\
+                [[puck]]\nname = \"b\"\nposition = [1.0, 1.5]\n";
+    let scene = lightcone_engine::scene::parse(text, "clocks.toml").expect("scene");
+    let mut g = GameState::new(scene);
+    g.panes = Some(Pane::parse_list("truth", &g.scene).unwrap());
+    g.step(2.0);
+    let t = g.view_time;
+    assert!((t - 2.0).abs() < 1e-12);
+    let views = g.run_frame(&[(g.pane_list()[0], 16.0 / 9.0)]);
+    let centres = g.centres(views[0]);
+    assert_eq!(centres.len(), 2);
+    for c in &centres {
+        let want = if c.puck == 0 { 0.6 * t } else { t };
+        assert!(
+            (c.clock - want).abs() < 1e-12 * t,
+            "puck {}: truth clock {} against τ = {want}",
+            c.puck,
+            c.clock
+        );
+    }
+}

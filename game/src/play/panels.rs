@@ -139,18 +139,32 @@ fn time_controls(ui: &mut egui::Ui, s: &GameState, actions: &mut Vec<UiAction>) 
 fn light_and_effects(ui: &mut egui::Ui, s: &GameState, hud: &Hud, actions: &mut Vec<UiAction>) {
     let mut c = s.scene.c;
     // A lesson sets c itself (restarting under it would break its
-    // bookkeeping).
-    if ui
-        .add_enabled(
-            !hud.lesson,
-            egui::Slider::new(&mut c, 0.2..=1.0e6)
-                .logarithmic(true)
-                .text("c (m/s)"),
-        )
-        .drag_stopped()
-    {
-        actions.push(UiAction::RestartWithC(c));
-    }
+    // bookkeeping). The slider spans 0.2 m/s to 1 km/s (about 60 px a
+    // decade at the panel's width); the number beside it takes any c the
+    // scene rules accept when typed (10⁶ m/s: Newton). A drag applies when
+    // it ends, a typed value when it is entered.
+    ui.add_enabled_ui(!hud.lesson, |ui| {
+        ui.horizontal(|ui| {
+            let slider = ui.add(
+                egui::Slider::new(&mut c, 0.2..=1.0e3)
+                    .logarithmic(true)
+                    .clamping(egui::SliderClamping::Never)
+                    .max_decimals(3)
+                    .text("c (m/s)"),
+            );
+            if slider.drag_stopped() || (slider.changed() && !slider.dragged()) {
+                actions.push(UiAction::RestartWithC(c));
+            }
+        });
+        let scene_c = format!("scene's c ({})", short_speed(s.scene_c));
+        if ui
+            .add_enabled(s.scene.c != s.scene_c, egui::Button::new(scene_c))
+            .on_hover_text("back to the c the scene or lesson was written for")
+            .clicked()
+        {
+            actions.push(UiAction::RestartWithC(s.scene_c));
+        }
+    });
     ui.label("effects (1–6):");
     for e in Effect::ALL {
         let mut on = s.effects.is_on(e);
@@ -374,4 +388,13 @@ pub fn node_status(ui: &mut egui::Ui, message: &str) {
                     .color(egui::Color32::GRAY),
             );
         });
+}
+
+/// `c` in m/s in a few characters: `1.42 m/s`, `300 m/s`, `1e6 m/s`.
+fn short_speed(c: f64) -> String {
+    if c >= 1.0e4 {
+        format!("{c:.0e} m/s")
+    } else {
+        format!("{} m/s", (c * 1000.0).round() / 1000.0)
+    }
 }
