@@ -10,6 +10,7 @@ pub mod cluster_role;
 pub mod collision_arcs;
 pub mod diagram_controls;
 pub mod input;
+pub mod labels;
 pub mod layout;
 pub mod lesson_host;
 pub mod lesson_panel;

@@ -34,6 +34,28 @@ pub struct Marker {
     pub heading: Option<DVec2>,
 }
 
+/// Which labels matter most ([`super::labels::place`]): the puck aimed,
+/// then the one followed, then the fastest (board speed now).
+fn label_priority(state: &GameState, markers: &[Marker]) -> Vec<f64> {
+    markers
+        .iter()
+        .map(|m| {
+            if state.cue.is_some_and(|c| c.puck == m.puck) {
+                f64::INFINITY
+            } else if state.follow == Some(m.puck) {
+                f64::MAX
+            } else {
+                let u = state
+                    .physics()
+                    .worldline(m.puck)
+                    .state_at(state.view_time)
+                    .u;
+                u.0.length()
+            }
+        })
+        .collect()
+}
+
 /// The caption of a picture: what it shows, and through whose eye when
 /// that is not the eye looked through.
 pub fn caption(state: &GameState, pane: Pane) -> String {
@@ -110,7 +132,42 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
             super::collision_arcs::draw(state, painter, rect, pane.kind, &shown, ppp);
         }
     }
-    for m in markers(state, rects) {
+    let markers = markers(state, rects);
+    let galleys: Vec<_> = markers
+        .iter()
+        .map(|m| {
+            let name = &state.scene.pucks[m.puck].name;
+            (
+                painter.layout_no_wrap(name.clone(), egui::FontId::proportional(12.0), label),
+                painter.layout_no_wrap(
+                    format!("{:.2} s", m.clock),
+                    egui::FontId::monospace(11.0),
+                    label,
+                ),
+            )
+        })
+        .collect();
+    let placed = super::labels::place(
+        &markers,
+        ppp,
+        &label_priority(state, &markers),
+        |i, name| {
+            if name {
+                galleys[i].0.size()
+            } else {
+                galleys[i].1.size()
+            }
+        },
+    );
+    for p in &placed {
+        let g = if p.is_name {
+            &galleys[p.marker].0
+        } else {
+            &galleys[p.marker].1
+        };
+        painter.galley(p.rect.min, g.clone(), label);
+    }
+    for m in markers {
         let spec = &state.scene.pucks[m.puck];
         let colour = ring_colour(spec.color);
         let r = m.ring / ppp;
@@ -124,20 +181,6 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
                 egui::Stroke::new(2.5, colour),
             );
         }
-        painter.text(
-            pt(m.centre) - egui::vec2(0.0, r + 1.0),
-            egui::Align2::CENTER_BOTTOM,
-            &spec.name,
-            egui::FontId::proportional(12.0),
-            label,
-        );
-        painter.text(
-            pt(m.centre) + egui::vec2(0.0, r + 1.0),
-            egui::Align2::CENTER_TOP,
-            format!("{:.2} s", m.clock),
-            egui::FontId::monospace(11.0),
-            label,
-        );
         // The cue: from the puck along the stroke, with the β and γ the
         // puck will have.
         let (rect, pane) = rects[m.view];
