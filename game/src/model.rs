@@ -20,12 +20,14 @@ use lightcone_engine::worldline::Worldline;
 use lightcone_render::frame::ViewMeshes;
 
 mod eye;
+mod hints;
 mod pane;
 #[cfg(test)]
 mod tests;
 mod views;
 
 pub use eye::FlyingEye;
+pub use hints::Stroke;
 pub use pane::{EyeChoice, Pane};
 pub use views::PuckCentre;
 use views::ViewKey;
@@ -163,6 +165,8 @@ pub struct GameState {
     pub replay_and_move: bool,
     /// A stroke being aimed.
     pub cue: Option<Cue>,
+    /// The last stroke made (for the hint that its light is on its way).
+    pub last_stroke: Option<Stroke>,
     /// Something to tell the player (errors, hints).
     pub message: String,
     /// How the camera is aimed.
@@ -250,6 +254,7 @@ impl GameState {
             observer: None,
             replay_and_move: false,
             cue: None,
+            last_stroke: None,
             message: String::new(),
             framing: Framing::Fit,
             zoom: 1.0,
@@ -347,7 +352,13 @@ impl GameState {
         let t = self.live_time;
         self.physics_mut()
             .apply_impulse(cue.puck, t, cue.du)
-            .map_err(|e| e.to_string())
+            .map_err(|e| e.to_string())?;
+        self.last_stroke = Some(Stroke {
+            puck: cue.puck,
+            t,
+            position: self.physics().worldline(cue.puck).position_at(t),
+        });
+        Ok(())
     }
 
     /// Restarts the scene with a new speed of light (m/s), each puck (and
@@ -373,6 +384,7 @@ impl GameState {
         self.view_time = 0.0;
         self.replay_and_move = false;
         self.cue = None;
+        self.last_stroke = None;
     }
 
     /// Starts the scene again from board time 0 (same c, same eye).

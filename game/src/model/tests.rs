@@ -295,3 +295,24 @@ fn the_truth_panes_clocks_read_each_pucks_proper_time_at_board_time() {
         );
     }
 }
+
+#[test]
+fn a_stroke_is_hinted_until_its_light_reaches_a_resting_eye() {
+    let mut g = game();
+    g.paused = false;
+    g.effects.aberration = false;
+    g.aim(1, DVec2::new(-0.2, 0.0));
+    g.strike().unwrap();
+    let s = g.last_stroke.expect("a stroke");
+    let eye = g.eye().event.position;
+    assert!(g.eye().u.0.length() < 1e-12, "the scene's eye rests");
+    // Closed form for a resting eye: the light arrives at t_s + d / c.
+    let arrival = s.t + (s.position - eye).length() / g.scene.c;
+    let left = g.stroke_light_in().expect("light on its way");
+    assert!((left - (arrival - g.view_time)).abs() < 1e-12);
+    assert!(g.hints(&[]).iter().any(|h| h.contains("on its way")));
+    g.step(arrival - g.view_time + 1e-6);
+    assert_eq!(g.stroke_light_in(), None);
+    assert!(g.hints(&[1.0]).is_empty());
+    assert!(g.hints(&[-0.5])[0].contains("below 0 s"));
+}

@@ -310,6 +310,16 @@ fn status_lines(ui: &mut egui::Ui, s: &GameState, hud: &Hud) {
     if !s.message.is_empty() {
         ui.colored_label(egui::Color32::LIGHT_RED, &s.message);
     }
+    let clocks: Vec<f64> = s
+        .sim
+        .views()
+        .iter()
+        .flat_map(|&v| s.centres(v))
+        .map(|c| c.clock)
+        .collect();
+    for hint in s.hints(&clocks) {
+        ui.colored_label(egui::Color32::from_rgb(255, 210, 120), hint);
+    }
 }
 
 /// The space-time diagram's window, its top left at `at` (points).
