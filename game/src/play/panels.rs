@@ -43,6 +43,8 @@ pub fn panels(
 ) -> SceneArea {
     let ctx = ui.ctx().clone();
     let ppp = ctx.pixels_per_point();
+    // Only a lesson's panel (desktop) takes room on the right.
+    #[cfg_attr(target_arch = "wasm32", allow(unused_mut))]
     let mut right = size.0 as f32;
     #[cfg(target_arch = "wasm32")]
     if let Some(host) = lesson {
