@@ -3,5 +3,8 @@
 //! load the system's libpython of the same name at run time.
 
 fn main() {
-    pyo3_build_config::add_libpython_rpath_link_args();
+    // The browser build (wasm32) embeds no Python.
+    if std::env::var("CARGO_CFG_TARGET_ARCH").as_deref() != Ok("wasm32") {
+        pyo3_build_config::add_libpython_rpath_link_args();
+    }
 }

@@ -17,18 +17,25 @@
 //! rest frame relative to the eye (as for the desktop camera), and each wall
 //! is placed in that frame by the tracker→board mapping. This is the paper's
 //! approximation too: the physical CAVE is the observer's laboratory.
+//!
+//! The browser build (wasm32) has the walls' geometry, not the tracked
+//! head (no bridge process there).
 
 use std::path::Path;
+#[cfg(not(target_arch = "wasm32"))]
 use std::time::Instant;
 
 use glam::{DMat3, DMat4, DQuat, DVec3, Mat4};
 use lightcone_engine::ecs::Entity;
 use lightcone_engine::spacetime::ProperVelocity;
 use lightcone_tracker::cave::{CaveConfig, OutputEyes, TrackerToBoard, Wall};
+#[cfg(not(target_arch = "wasm32"))]
 use lightcone_tracker::follow::{Follower, FollowerConfig, FollowerOutput, TrackerStatus, Verdict};
+#[cfg(not(target_arch = "wasm32"))]
 use lightcone_tracker::{TrackerSample, unix_now_ns};
 
 use crate::model::GameState;
+#[cfg(not(target_arch = "wasm32"))]
 use crate::tracker_bridge::{Bridge, BridgeState};
 use lightcone_render::frame::{self, FrameVertex};
 use lightcone_render::gpu::Gpu;
@@ -56,9 +63,11 @@ pub fn desktop_map(table: glam::DVec2) -> TrackerToBoard {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// How many latencies are kept (the newest).
 const LATENCY_WINDOW: usize = 100_000;
 
+#[cfg(not(target_arch = "wasm32"))]
 /// A tracked head, driving the observer.
 pub struct TrackedHead {
     service: String,
@@ -79,6 +88,7 @@ pub struct TrackedHead {
     batch: Vec<TrackerSample>,
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 impl TrackedHead {
     /// Follows `service` through a `tracker-bridge` child of this very
     /// program. Never fails: a child that cannot start, dies or cannot

@@ -104,6 +104,8 @@ macro_rules! sayln {
 /// Refuses an output path that names the input file itself (`simulate
 /// s.toml --out s.toml` once replaced the scene with JSON): a message
 /// naming both. Paths that do not exist yet are never the input.
+/// (Desktop-only: the browser build writes no files.)
+#[cfg(not(target_arch = "wasm32"))]
 pub fn not_the_input(out: &std::path::Path, input: &std::path::Path) -> Result<(), String> {
     use std::os::unix::fs::MetadataExt;
     let same = match (std::fs::metadata(out), std::fs::metadata(input)) {

@@ -50,7 +50,7 @@ pub fn open(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Re
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some("lightcone device"),
         required_features: wgpu::Features::empty(),
-        required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+        required_limits: limits().using_resolution(adapter.limits()),
         ..Default::default()
     }))
     .map_err(|e| format!("the graphics adapter {} refused a device: {e}", info.name))?;
@@ -61,6 +61,16 @@ pub fn open(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Re
         instance,
         handle: adapter,
     })
+}
+
+/// The limits asked of the device: WebGL2's in a browser, else wgpu's
+/// downlevel defaults.
+fn limits() -> wgpu::Limits {
+    if cfg!(target_arch = "wasm32") {
+        wgpu::Limits::downlevel_webgl2_defaults()
+    } else {
+        wgpu::Limits::downlevel_defaults()
+    }
 }
 
 /// A private runtime directory to give Mesa's Vulkan device-select layer,

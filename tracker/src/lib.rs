@@ -34,9 +34,13 @@ pub mod filter;
 pub mod follow;
 pub mod latency;
 pub mod motion;
+// The iceoryx2 transport and the publisher are desktop-only: the browser
+// build (wasm32) has CAVE geometry and filters, no shared memory.
+#[cfg(not(target_arch = "wasm32"))]
 pub mod publish;
 pub mod report;
 pub mod sample;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod transport;
 pub mod vrpn;
 
@@ -48,4 +52,5 @@ pub use follow::{Follower, FollowerConfig, FollowerOutput, HeadPose, TrackerStat
 pub use latency::{LatencyStats, latency_stats};
 pub use motion::{CsvTrack, MotionConfig, MotionGenerator, Path};
 pub use sample::{TrackerSample, unix_now_ns};
+#[cfg(not(target_arch = "wasm32"))]
 pub use transport::{DEFAULT_SERVICE_NAME, Publisher, Subscriber, TransportError};

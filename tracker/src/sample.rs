@@ -19,6 +19,7 @@
 //! instead of misreading memory.
 
 use glam::{DQuat, DVec3};
+#[cfg(not(target_arch = "wasm32"))]
 use iceoryx2::prelude::ZeroCopySend;
 use std::time::{SystemTime, UNIX_EPOCH};
 
@@ -29,8 +30,13 @@ use std::time::{SystemTime, UNIX_EPOCH};
 /// (glam's order). Nothing about the contents is trusted by the receiver:
 /// [`crate::follow::Follower`] validates every field.
 #[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
-#[type_name("lightcone::TrackerSample/v1")]
+#[derive(Debug, Clone, Copy, PartialEq)]
+// No iceoryx2 in the browser build (wasm32): the sample is plain data there.
+#[cfg_attr(
+    not(target_arch = "wasm32"),
+    derive(ZeroCopySend),
+    type_name("lightcone::TrackerSample/v1")
+)]
 pub struct TrackerSample {
     /// Publisher's wall clock at measurement time, nanoseconds since the Unix
     /// epoch. Wall-clock (not `Instant`) because `Instant` values cannot be

@@ -1,24 +1,35 @@
 //! `lightcone play [SCENE]`: the interactive game. [`crate::model`] holds
 //! the game's logic (time, replay, cue, flight, effects), testable without
 //! a window; [`window`] is the framework (winit, wgpu, egui) and [`app`]
-//! the game's frame in it, put together from one file per concern.
+//! the game's frame in it, put together from one file per concern. The
+//! browser build (wasm32) has [`web_app`] in place of `app`: the same
+//! frame without lessons, tracker, CAVE outputs, cluster or screenshots.
 
 pub mod actions;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod app;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod cave_role;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod cluster_role;
 pub mod collision_arcs;
 pub mod diagram_controls;
 pub mod input;
 pub mod labels;
 pub mod layout;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod lesson_host;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod lesson_panel;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod outputs;
 pub mod overlay;
 pub mod panels;
 pub mod pictures;
 pub mod scene_menu;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod screenshot;
 pub mod shown;
+#[cfg(target_arch = "wasm32")]
+pub mod web_app;
 pub mod window;

@@ -9,8 +9,14 @@ use lightcone_engine::scene::Effect;
 use super::actions::{Overlay, UiAction};
 use super::layout::{SceneArea, layout};
 use super::overlay::overlays;
+#[cfg(not(target_arch = "wasm32"))]
 use crate::lesson::LessonHost;
 use crate::model::{GameState, ViewMode};
+
+/// The browser build has no lessons yet (they need Python): no value of
+/// this type exists there, so its lesson panel is never shown.
+#[cfg(target_arch = "wasm32")]
+pub enum LessonHost {}
 
 /// What the panels show besides the game state.
 pub struct Hud {
@@ -37,7 +43,14 @@ pub fn panels(
 ) -> SceneArea {
     let ctx = ui.ctx().clone();
     let ppp = ctx.pixels_per_point();
+    // Only a lesson's panel (desktop) takes room on the right.
+    #[cfg_attr(target_arch = "wasm32", allow(unused_mut))]
     let mut right = size.0 as f32;
+    #[cfg(target_arch = "wasm32")]
+    if let Some(host) = lesson {
+        match *host {}
+    }
+    #[cfg(not(target_arch = "wasm32"))]
     if let Some(host) = lesson {
         egui::Panel::right("lesson")
             .default_size(340.0)

@@ -87,9 +87,16 @@ pub struct Ui(egui::FullOutput);
 impl Gfx {
     /// Opens the main window titled `title`, the GPU, and egui on it.
     fn open(event_loop: &ActiveEventLoop, game: &mut impl Game) -> Result<Self, String> {
-        let attributes = Window::default_attributes()
-            .with_title(game.title())
-            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        let attributes = Window::default_attributes().with_title(game.title());
+        #[cfg(not(target_arch = "wasm32"))]
+        let attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        // In a browser: a canvas appended to the page's body, sized by the
+        // page's style sheet (winit follows its size).
+        #[cfg(target_arch = "wasm32")]
+        let attributes = {
+            use winit::platform::web::WindowAttributesExtWebSys;
+            attributes.with_append(true)
+        };
         let window = Arc::new(
             event_loop
                 .create_window(attributes)
@@ -230,6 +237,7 @@ fn open_event_loop() -> Result<EventLoop<()>, String> {
 
 /// Opens the window and runs `game` until it exits or the window is
 /// closed.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(game: &mut impl Game) -> Result<(), String> {
     let event_loop = open_event_loop()?;
     let mut runner = Runner {
@@ -241,6 +249,23 @@ pub fn run(game: &mut impl Game) -> Result<(), String> {
         .run_app(&mut runner)
         .map_err(|e| format!("the window's event loop failed: {e}"))?;
     runner.result
+}
+
+/// Runs `game` in the page (wasm32): the browser drives the event loop,
+/// so this returns at once; an error the game returns later is written to
+/// the page's console and stops the game.
+#[cfg(target_arch = "wasm32")]
+pub fn spawn<G: Game + 'static>(game: G) -> Result<(), String> {
+    use winit::platform::web::EventLoopExtWebSys;
+    let event_loop = open_event_loop()?;
+    // The game lives as long as the page.
+    let game: &'static mut G = Box::leak(Box::new(game));
+    event_loop.spawn_app(Runner {
+        game,
+        gfx: None,
+        result: Ok(()),
+    });
+    Ok(())
 }
 
 /// The event loop's handler: the window once open, and the first error.
@@ -258,6 +283,8 @@ impl<G: Game> Runner<'_, G> {
             Ok(Flow::Continue) => {}
             Ok(Flow::Exit) => event_loop.exit(),
             Err(e) => {
+                #[cfg(target_arch = "wasm32")]
+                web_sys::console::error_1(&format!("lightcone: {e}").into());
                 self.result = Err(e);
                 event_loop.exit();
             }

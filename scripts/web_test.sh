@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The browser test (docs/web.md): serves web/dist/ (built by scripts/web.sh)
+# on a local port and runs web/tests/page.mjs in Debian's headless Chromium
+# with software WebGL2 (SwiftShader). Installs chromium (apt) and
+# playwright-core (npm, web/tests/package.json) if missing. Writes
+# docs/web_default.png (and docs/web_default_ten_pucks.png).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+[ -f web/dist/index.html ] || { echo "web/dist/ not built: run scripts/web.sh" >&2; exit 1; }
+if ! command -v chromium >/dev/null; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq chromium
+fi
+[ -d web/tests/node_modules/playwright-core ] ||
+  (cd web/tests && npm install --no-audit --no-fund --silent)
+
+port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+python3 -m http.server -b 127.0.0.1 -d web/dist "$port" >/dev/null 2>&1 &
+server=$!
+trap 'kill $server' EXIT
+for _ in $(seq 50); do
+  python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/')" 2>/dev/null && break
+  sleep 0.1
+done
+
+node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
+# The download: the wasm gzipped (as a server sends it), and the JS glue.
+wasm=web/dist/lightcone_web_bg.wasm
+echo "wasm $(stat -c %s $wasm) bytes, gzipped $(gzip -9 -c $wasm | wc -c) bytes; JS glue $(stat -c %s web/dist/lightcone_web.js) bytes"
