@@ -9,7 +9,14 @@
 
 use egui::{Pos2, Rect, Vec2};
 
-use super::overlay::Marker;
+/// Where a puck is marked: its ring's centre and radius, logical px.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Anchor {
+    /// The ring's centre, logical px.
+    pub centre: Pos2,
+    /// The ring's radius, logical px.
+    pub ring: f32,
+}
 
 /// One text to write: where (its box, logical px) and what.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,13 +32,11 @@ pub struct Placed {
 /// Gap between a ring and its text, and between texts, logical px.
 const GAP: f32 = 1.0;
 
-/// Places the labels of `markers` (centres and rings in physical px,
-/// `ppp` physical px per logical px). `size(i, is_name)`: the size of
-/// marker `i`'s name or clock text, logical px. `priority[i]`: larger
-/// first. Returns boxes of which no two intersect.
+/// Places the labels of the pucks marked at `markers`. `size(i,
+/// is_name)`: the size of marker `i`'s name or clock text, logical px.
+/// `priority[i]`: larger first. Returns boxes of which no two intersect.
 pub fn place(
-    markers: &[Marker],
-    ppp: f32,
+    markers: &[Anchor],
     priority: &[f64],
     size: impl Fn(usize, bool) -> Vec2,
 ) -> Vec<Placed> {
@@ -45,19 +50,14 @@ pub fn place(
     });
     let rings: Vec<Rect> = markers
         .iter()
-        .map(|m| {
-            Rect::from_center_size(
-                Pos2::new(m.centre.x as f32 / ppp, m.centre.y as f32 / ppp),
-                Vec2::splat(2.0 * m.ring / ppp),
-            )
-        })
+        .map(|m| Rect::from_center_size(m.centre, Vec2::splat(2.0 * m.ring)))
         .collect();
     let mut taken: Vec<Rect> = Vec::new();
     let mut out = Vec::new();
     for (rank, i) in order.into_iter().enumerate() {
         let m = &markers[i];
-        let c = Pos2::new(m.centre.x as f32 / ppp, m.centre.y as f32 / ppp);
-        let r = m.ring / ppp + GAP;
+        let c = m.centre;
+        let r = m.ring + GAP;
         let (name, clock) = (size(i, true), size(i, false));
         let clear_of_rings = |rect: &Rect| {
             !rings
@@ -127,16 +127,10 @@ pub fn any_overlap(placed: &[Placed]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec2;
-
-    fn marker(x: f64, y: f64) -> Marker {
-        Marker {
-            view: 0,
-            puck: 0,
-            centre: DVec2::new(x, y),
+    fn marker(x: f32, y: f32) -> Anchor {
+        Anchor {
+            centre: Pos2::new(x, y),
             ring: 16.0,
-            clock: 1.0,
-            heading: None,
         }
     }
 
@@ -151,7 +145,7 @@ mod tests {
     #[test]
     fn lone_pucks_keep_name_above_and_clock_below() {
         let markers = [marker(100.0, 100.0), marker(400.0, 100.0)];
-        let placed = place(&markers, 1.0, &[0.0, 0.0], size);
+        let placed = place(&markers, &[0.0, 0.0], size);
         assert_eq!(placed.len(), 4);
         let name = placed.iter().find(|p| p.marker == 0 && p.is_name).unwrap();
         let clock = placed.iter().find(|p| p.marker == 0 && !p.is_name).unwrap();
@@ -164,17 +158,17 @@ mod tests {
     fn a_heap_of_pucks_gets_labels_that_never_overlap_and_the_first_first() {
         // 120 pucks in a 300 × 200 px heap (the gas lesson's table seen
         // from afar): most labels cannot fit.
-        let markers: Vec<Marker> = (0..120)
+        let markers: Vec<Anchor> = (0..120u16)
             .map(|k| {
                 marker(
-                    100.0 + f64::from(k % 12) * 25.0,
-                    100.0 + f64::from(k / 12) * 20.0,
+                    100.0 + f32::from(k % 12) * 25.0,
+                    100.0 + f32::from(k / 12) * 20.0,
                 )
             })
             .collect();
         let mut priority = vec![0.0; 120];
         priority[57] = 10.0;
-        let placed = place(&markers, 1.0, &priority, size);
+        let placed = place(&markers, &priority, size);
         assert!(!any_overlap(&placed));
         assert!(placed.iter().filter(|p| p.is_name).count() < 120);
         // The most important puck keeps both its name and its clock.
@@ -184,14 +178,5 @@ mod tests {
         let mut bad = placed.clone();
         bad.push(placed[0].clone());
         assert!(any_overlap(&bad));
-    }
-
-    #[test]
-    fn scale_factor_is_applied() {
-        // At 2 physical px per logical px the same screen layout halves.
-        let placed = place(&[marker(200.0, 200.0)], 2.0, &[0.0], size);
-        let name = &placed[0];
-        assert!((name.rect.center().x - 100.0).abs() < 1e-4);
-        assert!((name.rect.max.y - (100.0 - 9.0)).abs() < 1e-4);
     }
 }

@@ -147,18 +147,20 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
             )
         })
         .collect();
-    let placed = super::labels::place(
-        &markers,
-        ppp,
-        &label_priority(state, &markers),
-        |i, name| {
-            if name {
-                galleys[i].0.size()
-            } else {
-                galleys[i].1.size()
-            }
-        },
-    );
+    let anchors: Vec<super::labels::Anchor> = markers
+        .iter()
+        .map(|m| super::labels::Anchor {
+            centre: pt(m.centre),
+            ring: m.ring / ppp,
+        })
+        .collect();
+    let placed = super::labels::place(&anchors, &label_priority(state, &markers), |i, name| {
+        if name {
+            galleys[i].0.size()
+        } else {
+            galleys[i].1.size()
+        }
+    });
     for p in &placed {
         let g = if p.is_name {
             &galleys[p.marker].0
