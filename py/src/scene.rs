@@ -45,21 +45,24 @@ impl Scene {
     /// match carom table) with speed of light `c` m/s (default: light
     /// crosses the long side in 2 s), sliding `friction` μ (default 0:
     /// frictionless; a carom cloth is about 0.2) under `gravity` m/s², as a
-    /// scene file's `[table] friction` and `gravity`. Raises SceneError for
-    /// a value out of range.
+    /// scene file's `[table] friction` and `gravity`; `description`: the
+    /// text shown under the title when the scene opens, as a scene file's
+    /// `description`. Raises SceneError for a value out of range.
     #[new]
-    #[pyo3(signature = (size = Vector([2.84, 1.42]), c = None, title = "scene", friction = 0.0, gravity = 9.80665))]
+    #[pyo3(signature = (size = Vector([2.84, 1.42]), c = None, title = "scene", friction = 0.0, gravity = 9.80665, description = ""))]
     fn new(
         size: Vector<2>,
         c: Option<f64>,
         title: &str,
         friction: f64,
         gravity: f64,
+        description: &str,
     ) -> PyResult<Self> {
         let size = size.pair();
         let mut inner =
             scene::Scene::empty(glam::DVec2::new(size.0, size.1), c).map_err(ScenePyErr::from)?;
         inner.title = title.to_owned();
+        inner.description = description.to_owned();
         inner
             .set_friction(friction, gravity)
             .map_err(ScenePyErr::from)?;
@@ -207,6 +210,12 @@ impl Scene {
     #[getter]
     fn title(&self) -> String {
         self.inner.title.clone()
+    }
+
+    /// The scene's description (shown under its title when it opens).
+    #[getter]
+    fn description(&self) -> String {
+        self.inner.description.clone()
     }
 
     /// Puck names, in file order.

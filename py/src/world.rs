@@ -483,9 +483,16 @@ impl World {
         super::diagram::simultaneity(py, g.scene(), g.billiard(), frame, t)
     }
 
-    /// Shows `text` as the lesson's message (replacing the previous one).
-    fn say(&mut self, text: &str) {
-        self.ui.text = text.to_owned();
+    /// Shows `text` as the lesson's message: replacing the previous one,
+    /// or with `append=True` as a new line after it.
+    #[pyo3(signature = (text, append = false))]
+    fn say(&mut self, text: &str, append: bool) {
+        if append && !self.ui.text.is_empty() {
+            self.ui.text.push('\n');
+            self.ui.text.push_str(text);
+        } else {
+            self.ui.text = text.to_owned();
+        }
     }
 
     /// Asks the student a question with `choices` (buttons) and pauses

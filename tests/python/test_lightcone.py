@@ -400,3 +400,15 @@ def test_slow_light_on_a_cloth_is_refused_with_the_reason():
     s.friction = 0.0
     s.c = 0.01
     assert s.c == 0.01
+
+
+def test_a_scene_built_in_code_carries_its_description():
+    # As a scene file's `description`: kept, and carried by the JSON a
+    # lesson's process sends the game (the path `world.load` takes).
+    s = lightcone.Scene(title="Train", description="Two flashes, one train.")
+    assert s.description == "Two flashes, one train."
+    back = lightcone.Scene._from_json(s._to_json())
+    assert back.description == "Two flashes, one train."
+    assert lightcone.Scene().description == ""
+    from_file = lightcone.Scene.from_toml('title = "t"\ndescription = "d"\n', "d.toml")
+    assert from_file.description == "d"
