@@ -135,6 +135,56 @@ fn check(name: &str, img: &Image, layout: &serde_json::Value, pucks: usize) -> R
     Ok(())
 }
 
+/// `[x, y, w, h]` of a JSON array.
+fn rect_of(v: &serde_json::Value) -> [f64; 4] {
+    let r: Vec<f64> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    [r[0], r[1], r[2], r[3]]
+}
+
+/// Whether two `[x, y, w, h]` boxes share a positive area.
+fn intersect(a: [f64; 4], b: [f64; 4]) -> bool {
+    let w = (a[0] + a[2]).min(b[0] + b[2]) - a[0].max(b[0]);
+    let h = (a[1] + a[3]).min(b[1] + b[3]) - a[1].max(b[1]);
+    w > 0.0 && h > 0.0
+}
+
+/// No two of the names and clocks written (the sidecar's `labels`)
+/// intersect, none is over the magnifier, and the most important puck of
+/// each view (its first label) has its name written.
+fn labels_apart(name: &str, layout: &serde_json::Value) -> Result<(), String> {
+    let labels = layout["labels"].as_array().unwrap();
+    let boxes: Vec<[f64; 4]> = labels.iter().map(|l| rect_of(&l["rect"])).collect();
+    for (i, a) in boxes.iter().enumerate() {
+        for (j, b) in boxes.iter().enumerate().skip(i + 1) {
+            ensure!(
+                !intersect(*a, *b),
+                "{name}: labels {} and {} overlap: {a:?} {b:?}",
+                labels[i],
+                labels[j]
+            );
+        }
+        if !layout["magnifier"].is_null() {
+            let m = rect_of(&layout["magnifier"]["rect"]);
+            ensure!(
+                !intersect(*a, m),
+                "{name}: label {} is under the magnifier",
+                labels[i]
+            );
+        }
+    }
+    let pucks = layout["pucks"].as_array().unwrap().len();
+    ensure!(
+        pucks == 0 || !labels.is_empty(),
+        "{name}: {pucks} pucks and no label"
+    );
+    Ok(())
+}
+
 fn scenes() -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(repo().join("assets/scenes"))
         .unwrap()
@@ -166,6 +216,7 @@ fn every_scene_and_lesson_shows_the_whole_table_and_every_puck() {
         let lesson = lesson.display().to_string();
         let (img, layout) = shot(&["play", &lesson], &name, 4);
         failures.extend(check(&name, &img, &layout, pucks).err());
+        failures.extend(labels_apart(&name, &layout).err());
     }
     // The shipped lessons, as they open.
     let mut lessons: Vec<PathBuf> = std::fs::read_dir(repo().join("scripts/lessons"))
@@ -180,6 +231,7 @@ fn every_scene_and_lesson_shows_the_whole_table_and_every_puck() {
         let pucks = layout["scene_pucks"].as_u64().unwrap() as usize;
         assert!(pucks > 0, "{name}: no puck in the scene");
         failures.extend(check(&name, &img, &layout, pucks).err());
+        failures.extend(labels_apart(&name, &layout).err());
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     let _ = std::fs::remove_dir_all(&dir);
@@ -212,4 +264,65 @@ fn the_split_view_and_the_top_view_frame_the_table_too() {
         3,
     );
     check("top", &img, &layout, 10).unwrap();
+}
+
+/// The magnifier of the contraction scene (the window alone) and of the
+/// contraction lesson (with its two panels), measured on the screenshot:
+/// the moving puck's body at least 60 px across, and its length along the
+/// motion over its width within 5 % of 1/γ = 0.436 (β = 0.9); the dashed
+/// rest outline is grey, so only the body has the puck's colour.
+#[test]
+fn the_magnified_moving_puck_is_contracted_by_one_over_gamma_on_screen() {
+    for (name, args) in [
+        (
+            "contraction_scene",
+            &["play", "assets/scenes/contraction.toml", "--at", "1.0"][..],
+        ),
+        (
+            "contraction_lesson",
+            &["play", "scripts/lessons/contraction.py"][..],
+        ),
+    ] {
+        let (img, layout) = shot(args, name, 4);
+        let m = &layout["magnifier"];
+        assert!(!m.is_null(), "{name}: no magnifier: {layout}");
+        assert_eq!(m["puck"], "moving", "{name}");
+        let gamma = m["gamma"].as_f64().unwrap();
+        // β = 0.9: γ = 1/√(1 − 0.81).
+        assert!(
+            (gamma - 1.0 / 0.19_f64.sqrt()).abs() < 1e-9,
+            "{name}: γ {gamma}"
+        );
+        let c: Vec<i32> = m["colour"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_i64().unwrap() as i32)
+            .collect();
+        let body = rect_of(&m["body"]);
+        let (mut x0, mut x1, mut y0, mut y1) = (u32::MAX, 0, u32::MAX, 0);
+        for y in body[1] as u32..(body[1] + body[3]) as u32 {
+            for x in body[0] as u32..(body[0] + body[2]) as u32 {
+                let p = img.pixel(x, y);
+                if (0..3).all(|k| (i32::from(p[k]) - c[k]).abs() <= 24) {
+                    x0 = x0.min(x);
+                    x1 = x1.max(x);
+                    y0 = y0.min(y);
+                    y1 = y1.max(y);
+                }
+            }
+        }
+        assert!(x1 > x0 && y1 > y0, "{name}: no body drawn in {body:?}");
+        let (length, width) = (f64::from(x1 - x0 + 1), f64::from(y1 - y0 + 1));
+        assert!(
+            length.max(width) >= 60.0,
+            "{name}: the body is {length} × {width} px"
+        );
+        let aspect = length / width;
+        assert!(
+            (aspect * gamma - 1.0).abs() < 0.05,
+            "{name}: on screen length / width = {aspect:.4}, 1/γ = {:.4}",
+            1.0 / gamma
+        );
+    }
 }

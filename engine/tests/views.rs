@@ -569,14 +569,28 @@ fn a_views_seen_history_is_what_its_frames_showed() {
             if f % 10 == 3 {
                 let a = sim.apparent(view).unwrap();
                 let b = &a.bodies[0];
-                live.push((t, a.eye.unwrap(), b.seen[b.centre()]));
+                live.push((
+                    t,
+                    a.eye.unwrap(),
+                    b.seen[b.centre()],
+                    b.emissions[b.centre()],
+                ));
             }
         }
         let times: Vec<f64> = live.iter().map(|l| l.0).collect();
         let history = sim.seen_history(view, 0, centre, &times);
-        for ((t, eye_then, seen_then), h) in live.iter().zip(&history) {
-            let (e, s) = h.unwrap();
+        for ((t, eye_then, seen_then, emission_then), h) in live.iter().zip(&history) {
+            let then = h.unwrap();
+            let (e, s) = (then.eye, then.seen);
             assert_eq!(e, *eye_then, "{fx:?} at {t}");
+            let d = then.emission.event.position - emission_then.event.position;
+            assert!(
+                d.length() <= 1e-12 * (1.0 + emission_then.event.position.length())
+                    && (then.emission.event.t - emission_then.event.t).abs() <= 1e-12,
+                "{fx:?} at {t}: emission {:?} vs {:?}",
+                then.emission.event,
+                emission_then.event
+            );
             assert!(
                 (s.position - seen_then.position).length()
                     <= 1e-12 * (1.0 + seen_then.position.length()),

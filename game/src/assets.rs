@@ -37,6 +37,11 @@ pub const SCENES: &[(&str, &str)] = &[
     ),
     ("ultra.toml", include_str!("../../assets/scenes/ultra.toml")),
     (
+        "contraction.toml",
+        include_str!("../../assets/scenes/contraction.toml"),
+    ),
+    ("flyby.toml", include_str!("../../assets/scenes/flyby.toml")),
+    (
         "wigner_box.toml",
         include_str!("../../assets/scenes/wigner_box.toml"),
     ),

@@ -54,7 +54,7 @@ pub enum Framing {
     Look,
 }
 
-/// Drawings over the views that show the physics (keys 7, 8, 9).
+/// Drawings over the views that show the physics (keys 7, 8, 9, 0).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Overlays {
     /// Trails: where each puck was seen (solid) and where it was (dotted),
@@ -66,6 +66,10 @@ pub struct Overlays {
     /// Velocity arrows: the board velocity now (truth) or at emission
     /// (seen), the distance covered in half a second.
     pub arrows: bool,
+    /// The magnifier: the fastest (or aimed, or followed) puck's body
+    /// drawn large from above over its rest outline (key 0;
+    /// `play::magnifier`).
+    pub magnifier: bool,
     /// The live space-time diagram, in its own window (key Y).
     pub diagram: bool,
     /// The diagram's frame: the puck whose lines of simultaneity it draws
@@ -94,6 +98,7 @@ impl Default for Overlays {
             trails: true,
             ghost: true,
             arrows: true,
+            magnifier: true,
             diagram: false,
             diagram_frame: None,
             diagram_axis: lightcone_render::diagram::Axis::X,
@@ -227,6 +232,16 @@ fn simulation(
     (sim, you, observers)
 }
 
+/// `Some(0)` when the scene's first observer moves (the window then looks
+/// through it), else `None` (the free eye, at rest where it stands).
+fn moving_first_observer(scene: &Scene) -> Option<usize> {
+    scene
+        .observers
+        .first()
+        .filter(|o| o.u.0.length() > 0.0)
+        .map(|_| 0)
+}
+
 impl GameState {
     /// A game on `scene`, starting at board time 0 looking through its first
     /// observer's eye (which the player may then fly).
@@ -234,6 +249,7 @@ impl GameState {
         let (position, eye) = eye::at_observer(&scene, 0);
         let start = (position, ProperVelocity::ZERO);
         let (mut sim, you, observers) = simulation(&scene, start, &eye, 0.0);
+        let observer = moving_first_observer(&scene);
         Self {
             meshes: ViewMeshes::new(&mut sim),
             sim,
@@ -251,7 +267,9 @@ impl GameState {
             view: ViewMode::Seen,
             panes: None,
             eye,
-            observer: None,
+            // A scene whose first observer moves (an eye flying past) is
+            // seen through that eye from the start.
+            observer,
             replay_and_move: false,
             cue: None,
             last_stroke: None,

@@ -29,4 +29,4 @@ pub use components::{
 };
 pub use phase::Phase;
 pub use schedule::frame_schedule;
-pub use simulation::{ObserverError, Simulation};
+pub use simulation::{ObserverError, SeenThen, Simulation};

@@ -34,6 +34,18 @@ pub enum ObserverError {
     Worldline(#[from] WorldlineError),
 }
 
+/// What a view saw of one point at one past board time
+/// ([`Simulation::seen_history`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SeenThen {
+    /// The view's eye then.
+    pub eye: Eye,
+    /// Where and when the light it received left the point (board frame).
+    pub emission: crate::optics::Emission,
+    /// The apparent point, relative to that eye.
+    pub seen: Seen,
+}
+
 /// One simulation: the ECS world and its frame schedule.
 pub struct Simulation {
     /// The ECS world (public so front ends can query it).
@@ -464,15 +476,17 @@ impl Simulation {
     /// or board-simultaneous; the puck's contracted shape, built here, or
     /// its rest shape; aberration or board directions).
     /// A history of the view's picture without running a frame per time:
-    /// the seen trails. Every entry is `None` if the view, its observer or
-    /// the puck does not exist.
+    /// the seen trails. Each entry: the eye then, the emission event (board
+    /// frame: where and when the light left the point) and the apparent
+    /// point. Every entry is `None` if the view, its observer or the puck
+    /// does not exist.
     pub fn seen_history(
         &self,
         view: Entity,
         puck: usize,
         offset: DVec3,
         times: &[f64],
-    ) -> Vec<Option<(Eye, Seen)>> {
+    ) -> Vec<Option<SeenThen>> {
         let gone = || times.iter().map(|_| None).collect();
         let (Some(v), Some(&vantage), Some(effects)) = (
             self.world.get::<View>(view),
@@ -517,7 +531,11 @@ impl Simulation {
                     ),
                 }
                 kernel::seen(&eye, c, &effects, &emissions, &mut seen);
-                seen.first().map(|s| (eye, *s))
+                Some(SeenThen {
+                    eye,
+                    emission: *emissions.first()?,
+                    seen: *seen.first()?,
+                })
             })
             .collect()
     }

@@ -16,6 +16,8 @@ pub enum Overlay {
     Ghost,
     /// Velocity arrows (9).
     Arrows,
+    /// The magnifier (0).
+    Magnifier,
     /// The space-time diagram's window (Y).
     Diagram,
 }
@@ -85,6 +87,7 @@ pub const KEYS: &[(KeyCode, UiAction)] = &[
     (KeyCode::Digit7, UiAction::Toggle(Overlay::Trails)),
     (KeyCode::Digit8, UiAction::Toggle(Overlay::Ghost)),
     (KeyCode::Digit9, UiAction::Toggle(Overlay::Arrows)),
+    (KeyCode::Digit0, UiAction::Toggle(Overlay::Magnifier)),
     (KeyCode::KeyY, UiAction::Toggle(Overlay::Diagram)),
     (KeyCode::KeyV, UiAction::TopView),
     (KeyCode::KeyG, UiAction::CycleFollow),
@@ -137,6 +140,7 @@ impl UiAction {
                     Overlay::Trails => &mut s.show.trails,
                     Overlay::Ghost => &mut s.show.ghost,
                     Overlay::Arrows => &mut s.show.arrows,
+                    Overlay::Magnifier => &mut s.show.magnifier,
                     Overlay::Diagram => &mut s.show.diagram,
                 };
                 *on = !*on;

@@ -326,7 +326,8 @@ impl App {
             let (w, h) = (size.0 as f32, size.1 as f32);
             let cave = self.immersion.cave.as_ref();
             let sidecar = path.with_extension("json");
-            screenshot::save_layout(&self.state, cave, self.area, &sidecar, (w, h))?;
+            let drawn = super::overlay::drawn(gfx.egui_context());
+            screenshot::save_layout(&self.state, cave, self.area, &sidecar, (w, h), &drawn)?;
         }
         gfx.gpu.queue.present(texture);
         // The outputs: the same frame's views, each output's wall.

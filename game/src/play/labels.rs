@@ -34,10 +34,12 @@ const GAP: f32 = 1.0;
 
 /// Places the labels of the pucks marked at `markers`. `size(i,
 /// is_name)`: the size of marker `i`'s name or clock text, logical px.
-/// `priority[i]`: larger first. Returns boxes of which no two intersect.
+/// `priority[i]`: larger first. No label goes over a box of `blocked`
+/// (an inset). Returns boxes of which no two intersect.
 pub fn place(
     markers: &[Anchor],
     priority: &[f64],
+    blocked: &[Rect],
     size: impl Fn(usize, bool) -> Vec2,
 ) -> Vec<Placed> {
     let mut order: Vec<usize> = (0..markers.len()).collect();
@@ -52,7 +54,7 @@ pub fn place(
         .iter()
         .map(|m| Rect::from_center_size(m.centre, Vec2::splat(2.0 * m.ring)))
         .collect();
-    let mut taken: Vec<Rect> = Vec::new();
+    let mut taken: Vec<Rect> = blocked.to_vec();
     let mut out = Vec::new();
     for (rank, i) in order.into_iter().enumerate() {
         let m = &markers[i];
@@ -145,7 +147,7 @@ mod tests {
     #[test]
     fn lone_pucks_keep_name_above_and_clock_below() {
         let markers = [marker(100.0, 100.0), marker(400.0, 100.0)];
-        let placed = place(&markers, &[0.0, 0.0], size);
+        let placed = place(&markers, &[0.0, 0.0], &[], size);
         assert_eq!(placed.len(), 4);
         let name = placed.iter().find(|p| p.marker == 0 && p.is_name).unwrap();
         let clock = placed.iter().find(|p| p.marker == 0 && !p.is_name).unwrap();
@@ -168,7 +170,7 @@ mod tests {
             .collect();
         let mut priority = vec![0.0; 120];
         priority[57] = 10.0;
-        let placed = place(&markers, &priority, size);
+        let placed = place(&markers, &priority, &[], size);
         assert!(!any_overlap(&placed));
         assert!(placed.iter().filter(|p| p.is_name).count() < 120);
         // The most important puck keeps both its name and its clock.

@@ -21,6 +21,7 @@ pub mod layout;
 pub mod lesson_host;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod lesson_panel;
+pub mod magnifier;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod outputs;
 pub mod overlay;
@@ -30,6 +31,7 @@ pub mod scene_menu;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod screenshot;
 pub mod shown;
+pub mod trails;
 #[cfg(target_arch = "wasm32")]
 pub mod web_app;
 pub mod window;

@@ -34,6 +34,40 @@ pub struct Marker {
     pub heading: Option<DVec2>,
 }
 
+/// A puck's name or clock as written over a view (for the screenshot's
+/// sidecar): physical px from the window's top left.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LabelBox {
+    /// The puck.
+    pub puck: usize,
+    /// Index of the view rectangle.
+    pub view: usize,
+    /// The text's box `[x, y, w, h]` (a clock's includes its dial).
+    pub rect: [f32; 4],
+    /// The name (`false`: the clock).
+    pub is_name: bool,
+}
+
+/// What [`overlays`] drew this frame where a test or a slide needs to
+/// find it, left in egui's temporary data under [`DRAWN`] for
+/// `--screenshot`'s sidecar.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Drawn {
+    /// Every name and clock written.
+    pub labels: Vec<LabelBox>,
+    /// The magnifier, when one was drawn.
+    pub magnifier: Option<super::magnifier::Magnifier>,
+}
+
+/// The key of [`Drawn`] in egui's temporary data.
+pub const DRAWN: &str = "lightcone overlays drawn";
+
+/// What [`overlays`] drew at the last frame painted with `ctx`.
+pub fn drawn(ctx: &egui::Context) -> Drawn {
+    ctx.data(|d| d.get_temp::<Drawn>(egui::Id::unique(DRAWN)))
+        .unwrap_or_default()
+}
+
 /// Which labels matter most ([`super::labels::place`]): the puck aimed,
 /// then the one followed, then the fastest (board speed now).
 fn label_priority(state: &GameState, markers: &[Marker]) -> Vec<f64> {
@@ -133,14 +167,26 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
         }
     }
     let markers = markers(state, rects);
+    let magnified = super::magnifier::layout(state, rects, ppp);
+    // Each clock says which time it reads: proper time (τ) with time
+    // dilation, board time (t) without.
+    let dilated: Vec<bool> = rects
+        .iter()
+        .map(|&(_, pane)| shown(state, pane).is_some_and(|s| s.effects.time_dilation))
+        .collect();
     let galleys: Vec<_> = markers
         .iter()
         .map(|m| {
             let name = &state.scene.pucks[m.puck].name;
+            let which = if dilated.get(m.view).copied().unwrap_or(false) {
+                "τ"
+            } else {
+                "t"
+            };
             (
                 painter.layout_no_wrap(name.clone(), egui::FontId::proportional(12.0), label),
                 painter.layout_no_wrap(
-                    format!("{:.2} s", m.clock),
+                    format!("{which} {:.2} s", m.clock),
                     egui::FontId::monospace(11.0),
                     label,
                 ),
@@ -154,21 +200,59 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
             ring: m.ring / ppp,
         })
         .collect();
-    let placed = super::labels::place(&anchors, &label_priority(state, &markers), |i, name| {
-        if name {
-            galleys[i].0.size()
-        } else {
-            galleys[i].1.size()
-        }
-    });
+    let blocked: Vec<egui::Rect> = magnified
+        .iter()
+        .map(|m| {
+            egui::Rect::from_min_size(
+                egui::pos2(m.rect[0] / ppp, m.rect[1] / ppp),
+                egui::vec2(m.rect[2] / ppp, m.rect[3] / ppp),
+            )
+        })
+        .collect();
+    let dial = |g: &std::sync::Arc<egui::Galley>| g.size().y + 3.0;
+    let placed = super::labels::place(
+        &anchors,
+        &label_priority(state, &markers),
+        &blocked,
+        |i, name| {
+            if name {
+                galleys[i].0.size()
+            } else {
+                let g = &galleys[i].1;
+                g.size() + egui::vec2(dial(g), 0.0)
+            }
+        },
+    );
     for p in &placed {
-        let g = if p.is_name {
-            &galleys[p.marker].0
+        if p.is_name {
+            painter.galley(p.rect.min, galleys[p.marker].0.clone(), label);
         } else {
-            &galleys[p.marker].1
-        };
-        painter.galley(p.rect.min, g.clone(), label);
+            let g = &galleys[p.marker].1;
+            let d = dial(g);
+            clock_dial(
+                painter,
+                p.rect.min + egui::vec2(d / 2.0 - 1.0, p.rect.height() / 2.0),
+                (d - 4.0) / 2.0,
+                markers[p.marker].clock,
+            );
+            painter.galley(p.rect.min + egui::vec2(d, 0.0), g.clone(), label);
+        }
     }
+    // What was written where, for the screenshot's sidecar.
+    let labels: Vec<LabelBox> = placed
+        .iter()
+        .map(|p| LabelBox {
+            puck: markers[p.marker].puck,
+            view: markers[p.marker].view,
+            rect: [
+                p.rect.min.x * ppp,
+                p.rect.min.y * ppp,
+                p.rect.width() * ppp,
+                p.rect.height() * ppp,
+            ],
+            is_name: p.is_name,
+        })
+        .collect();
     for m in markers {
         let spec = &state.scene.pucks[m.puck];
         let colour = ring_colour(spec.color);
@@ -222,6 +306,17 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
             }
         }
     }
+    if let Some(m) = &magnified {
+        let spec = &state.scene.pucks[m.puck];
+        super::magnifier::draw(painter, m, &spec.name, ring_colour(spec.color), ppp);
+    }
+    let drawn = Drawn {
+        labels,
+        magnifier: magnified,
+    };
+    painter
+        .ctx()
+        .data_mut(|d| d.insert_temp(egui::Id::unique(DRAWN), drawn));
     if rects.len() > 1 {
         for &(rect, pane) in rects {
             painter.text(
@@ -243,6 +338,23 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
     }
 }
 
+/// Seconds of proper time a clock's dial hand takes to go round once.
+pub const DIAL_PERIOD_S: f64 = 2.0;
+
+/// A clock's dial: a ring of `radius` (logical px) at `centre` with one
+/// hand at `clock` (s) on a [`DIAL_PERIOD_S`] face, turning clockwise from
+/// the top; beside each puck's clock, so that a slow clock is seen slow.
+fn clock_dial(painter: &egui::Painter, centre: egui::Pos2, radius: f32, clock: f64) {
+    let grey = egui::Color32::from_gray(200);
+    painter.circle_stroke(centre, radius, egui::Stroke::new(1.2, grey));
+    let a = std::f64::consts::TAU * (clock / DIAL_PERIOD_S).rem_euclid(1.0);
+    let hand = egui::vec2(a.sin() as f32, -(a.cos() as f32)) * (radius - 1.0);
+    painter.line_segment(
+        [centre, centre + hand],
+        egui::Stroke::new(2.0, egui::Color32::from_gray(245)),
+    );
+}
+
 /// `colour` at opacity `alpha` (0–255).
 fn faded(colour: egui::Color32, alpha: u8) -> egui::Color32 {
     egui::Color32::from_rgba_unmultiplied(colour.r(), colour.g(), colour.b(), alpha)
@@ -262,7 +374,7 @@ fn physics_marks(
         return;
     }
     let pt = |p: DVec2| egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp);
-    let (eye, camera, effects) = (shown.eye, shown.camera, shown.effects);
+    let effects = shown.effects;
     let c = state.scene.c;
     let clip = egui::Rect::from_min_size(
         egui::pos2(rect[0] / ppp, rect[1] / ppp),
@@ -270,28 +382,18 @@ fn physics_marks(
     );
     let painter = painter.with_clip_rect(clip);
     // A board point (at rest) where this view shows it.
-    let board = |p: DVec3| {
-        let s = eye.see_static(p, c, effects.aberration);
-        project(&camera, rect, s.position)
-    };
+    let board = |p: DVec3| super::trails::board_point(state, shown, rect, p);
     let t_now = state.view_time;
-    let t_from = (t_now - crate::model::TRAIL_S).max(t_now.min(0.0));
-    const SAMPLES: usize = 90;
-    let times: Vec<f64> = (0..=SAMPLES)
-        .map(|k| t_from + (t_now - t_from) * k as f64 / SAMPLES as f64)
-        .collect();
+    let times = super::trails::sample_times(state);
     let seen_view = kind == ViewKind::Seen && effects.light_delay;
     let centres = state.centres(shown.view);
     for (i, spec) in state.scene.pucks.iter().enumerate() {
         let w = state.physics().worldline(i);
         let colour = ring_colour(spec.color);
         let lift = DVec3::new(0.0, 0.0, spec.height / 2.0);
-        if show.trails && t_now > t_from {
+        if show.trails && times.len() > 1 && times[0] < t_now {
             // Where it was: dotted.
-            let truth: Vec<Option<DVec2>> = times
-                .iter()
-                .map(|&t| board(w.position_at(t) + lift))
-                .collect();
+            let truth = super::trails::truth(state, shown, rect, i, lift, &times);
             for (k, pair) in truth.windows(2).enumerate() {
                 if let (Some(a), Some(b)) = (pair[0], pair[1])
                     && k % 2 == 0
@@ -300,24 +402,9 @@ fn physics_marks(
                         .line_segment([pt(a), pt(b)], egui::Stroke::new(1.5, faded(colour, 150)));
                 }
             }
-            // Where it was seen: solid (light delay on).
+            // Where the pictures showed it: solid (light delay on).
             if seen_view {
-                // The view's own history: its eye then (on its observer's
-                // worldline) and its effects, through the schedule's
-                // kernels; drawn shifted with the eye since then.
-                let seen: Vec<Option<DVec2>> = state
-                    .sim
-                    .seen_history(shown.view, i, lift, &times)
-                    .into_iter()
-                    .map(|seen| {
-                        let (then, s) = seen?;
-                        project(
-                            &camera,
-                            rect,
-                            s.position + (then.event.position - eye.event.position),
-                        )
-                    })
-                    .collect();
+                let seen = super::trails::seen(state, shown, rect, i, lift, &times);
                 for pair in seen.windows(2) {
                     if let (Some(a), Some(b)) = (pair[0], pair[1]) {
                         painter.line_segment(

@@ -195,12 +195,15 @@ fn light_and_effects(ui: &mut egui::Ui, s: &GameState, hud: &Hud, actions: &mut 
         overlay(ui, s.show.ghost, "ghost (8)", Overlay::Ghost);
         overlay(ui, s.show.arrows, "arrows (9)", Overlay::Arrows);
     });
-    overlay(
-        ui,
-        s.show.diagram,
-        "space-time diagram (Y)",
-        Overlay::Diagram,
-    );
+    ui.horizontal(|ui| {
+        overlay(ui, s.show.magnifier, "magnifier (0)", Overlay::Magnifier);
+        overlay(
+            ui,
+            s.show.diagram,
+            "space-time diagram (Y)",
+            Overlay::Diagram,
+        );
+    });
     if s.effects.doppler {
         super::overlay::doppler_legend(ui);
     }
@@ -261,10 +264,18 @@ fn view_controls(ui: &mut egui::Ui, s: &GameState, actions: &mut Vec<UiAction>) 
         }
         ui.label(format!("zoom {:.2}× (wheel)", s.zoom));
     });
-    let u = s.eye_velocity();
+    // The eye looked through: the free eye (which X stops) or a scene
+    // observer (on its own worldline).
+    let looked = s.observer.and_then(|i| s.scene.observers.get(i));
+    let u = match looked {
+        Some(_) => s.eye().u,
+        None => s.eye_velocity(),
+    };
     let eb = u.beta();
+    let who = looked.map_or("your".to_owned(), |o| format!("{}'s", o.name));
+    let stops = if looked.is_some() { "" } else { " (X stops)" };
     ui.label(format!(
-        "your β = ({:.3}, {:.3}, {:.3}), γ = {:.4} (X stops)",
+        "{who} β = ({:.3}, {:.3}, {:.3}), γ = {:.4}{stops}",
         eb.x,
         eb.y,
         eb.z,

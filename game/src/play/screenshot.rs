@@ -9,20 +9,26 @@ use lightcone_render::gpu::Gpu;
 use lightcone_tracker::cave::CaveConfig;
 
 use super::layout::{Plan, SceneArea, tiled_walls, wall_tiles};
-use super::overlay::{caption, markers};
+use super::overlay::{Drawn, caption, markers};
 use super::shown::ring_colour;
 use crate::model::GameState;
 
-/// Beside a screenshot, where its views and pucks are (for tests and
-/// for marking up slides): `{"views": [{"rect": [x, y, w, h], "kind"}],
-/// "pucks": [{"name", "view", "centre": [x, y], "ring_px", "ring_colour":
-/// [r, g, b], "clock_s"}]}`, physical px from the top left.
+/// Beside a screenshot, where its views, pucks, labels and magnifier are
+/// (for tests and for marking up slides): `{"views": [{"rect": [x, y, w,
+/// h], "kind", "caption"}], "pucks": [{"name", "view", "centre": [x, y],
+/// "ring_px", "ring_colour": [r, g, b], "clock_s"}], "labels": [{"puck",
+/// "view", "rect": [x, y, w, h], "text": "name" | "clock"}],
+/// "magnifier": null | {"puck", "view", "rect", "body": [x, y, w, h],
+/// "colour": [r, g, b], "beta", "gamma", "length_over_width",
+/// "contraction", "light_delay"}, "scene_pucks": n}`, physical px from
+/// the top left. `drawn`: what the overlays drew this frame.
 pub fn save_layout(
     state: &GameState,
     cave: Option<&CaveConfig>,
     area: SceneArea,
     path: &Path,
     (w, h): (f32, f32),
+    drawn: &Drawn,
 ) -> Result<(), String> {
     if let Some(c) = cave {
         return save_cave_layout(state, c, area, path, (w, h));
@@ -52,9 +58,38 @@ pub fn save_layout(
             })
         })
         .collect();
+    let labels: Vec<serde_json::Value> = drawn
+        .labels
+        .iter()
+        .map(|l| {
+            serde_json::json!({
+                "puck": state.scene.pucks[l.puck].name,
+                "view": l.view,
+                "rect": l.rect,
+                "text": if l.is_name { "name" } else { "clock" },
+            })
+        })
+        .collect();
+    let magnifier = drawn.magnifier.as_ref().map(|m| {
+        let c = ring_colour(state.scene.pucks[m.puck].color);
+        serde_json::json!({
+            "puck": state.scene.pucks[m.puck].name,
+            "view": m.view,
+            "rect": m.rect,
+            "body": m.body,
+            "colour": [c.r(), c.g(), c.b()],
+            "beta": m.beta,
+            "gamma": m.gamma,
+            "length_over_width": m.length_over_width,
+            "contraction": m.contraction,
+            "light_delay": m.light_delay,
+        })
+    });
     let text = serde_json::json!({
         "views": views,
         "pucks": pucks,
+        "labels": labels,
+        "magnifier": magnifier,
         "scene_pucks": state.physics().len(),
     })
     .to_string();

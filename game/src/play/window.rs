@@ -147,6 +147,11 @@ impl Gfx {
         self.surface.configure(&self.gpu.device, &self.config);
     }
 
+    /// egui's context (what the last frame's panels left in its memory).
+    pub fn egui_context(&self) -> &egui::Context {
+        &self.egui
+    }
+
     /// The surface's size, physical px.
     pub fn size(&self) -> (u32, u32) {
         (self.config.width, self.config.height)
