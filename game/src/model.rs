@@ -19,6 +19,7 @@ use lightcone_engine::worldline::Worldline;
 
 use lightcone_render::frame::ViewMeshes;
 
+mod cue_keys;
 mod eye;
 mod hints;
 mod pane;

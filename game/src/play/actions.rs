@@ -74,7 +74,18 @@ pub enum UiAction {
     ReloadLesson,
     /// Answer `i` to the lesson's open question.
     Answer(usize),
+    /// Put the cue on the next puck (keys: play without a mouse).
+    CueNext,
+    /// Turn the cued stroke, radians counter-clockwise from above.
+    CueTurn(f64),
+    /// Make the cued stroke this many times as strong.
+    CueScale(f64),
+    /// Strike the cued stroke.
+    Strike,
 }
+
+/// One turn of the cue by `[` or `]`, radians.
+const FIVE_DEGREES: f64 = std::f64::consts::PI / 36.0;
 
 /// The keys, each with its action (the scene menu's own keys, while it is
 /// open, come first: `play::scene_menu::key`).
@@ -103,6 +114,13 @@ pub const KEYS: &[(KeyCode, UiAction)] = &[
     (KeyCode::F5, UiAction::ReloadLesson),
     (KeyCode::KeyT, UiAction::CycleView),
     (KeyCode::KeyM, UiAction::SceneMenu),
+    (KeyCode::KeyC, UiAction::CueNext),
+    (KeyCode::BracketLeft, UiAction::CueTurn(FIVE_DEGREES)),
+    (KeyCode::BracketRight, UiAction::CueTurn(-FIVE_DEGREES)),
+    (KeyCode::Comma, UiAction::CueScale(0.8)),
+    (KeyCode::Period, UiAction::CueScale(1.25)),
+    (KeyCode::Enter, UiAction::Strike),
+    (KeyCode::NumpadEnter, UiAction::Strike),
     (KeyCode::Digit1, UiAction::ToggleEffect(Effect::ALL[0])),
     (KeyCode::Digit2, UiAction::ToggleEffect(Effect::ALL[1])),
     (KeyCode::Digit3, UiAction::ToggleEffect(Effect::ALL[2])),
@@ -180,6 +198,14 @@ impl UiAction {
             UiAction::ReplayTo(t) => s.replay_to(t),
             UiAction::RestartWithC(c) => s.restart_with_c(c),
             UiAction::SceneMenu => s.scene_menu.open = !s.scene_menu.open,
+            UiAction::CueNext => s.cue_next(),
+            UiAction::CueTurn(a) => s.cue_turn(a),
+            UiAction::CueScale(f) => s.cue_scale(f),
+            UiAction::Strike => {
+                if let Err(e) = s.strike() {
+                    s.message = e;
+                }
+            }
             UiAction::CycleCaveEye | UiAction::ReloadLesson | UiAction::Answer(_) => {
                 return Some(self);
             }
@@ -191,6 +217,7 @@ impl UiAction {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     fn game() -> GameState {
         GameState::new(crate::assets::default_scene().unwrap())
@@ -212,6 +239,7 @@ mod tests {
             KeyCode::Digit7,
             KeyCode::Digit8,
             KeyCode::Digit9,
+            KeyCode::Digit0,
             KeyCode::KeyY,
         ] {
             let a = for_key(code).unwrap();
@@ -225,6 +253,45 @@ mod tests {
             for_key(KeyCode::KeyE).unwrap().apply(&mut g),
             Some(UiAction::CycleCaveEye)
         );
+    }
+
+    /// Play without a mouse: C cues the first puck towards the table's
+    /// middle at γv = 1 m/s, `]` turns it 5° clockwise, `.` makes it 1.25×
+    /// as strong, Enter strikes: the puck's proper velocity changes by
+    /// exactly that stroke (u adds), and C again moves the cue on.
+    #[test]
+    fn the_cue_aims_and_strikes_by_keys_alone() {
+        let mut g = game();
+        let key = |g: &mut GameState, code| {
+            assert_eq!(for_key(code).unwrap().apply(g), None, "{code:?}");
+        };
+        key(&mut g, KeyCode::KeyC);
+        let cue = g.cue.unwrap();
+        assert_eq!(cue.puck, 0);
+        let here = g.physics().worldline(0).position_at(g.live_time);
+        let middle = (g.scene.table.size / 2.0).extend(0.0);
+        let towards = (middle - here).with_z(0.0).normalize();
+        assert!((cue.du - towards * (1.0 / g.scene.c)).length() < 1e-12);
+        key(&mut g, KeyCode::BracketRight);
+        key(&mut g, KeyCode::Period);
+        let a = -std::f64::consts::PI / 36.0;
+        let want = DVec3::new(
+            towards.x * a.cos() - towards.y * a.sin(),
+            towards.x * a.sin() + towards.y * a.cos(),
+            0.0,
+        ) * (1.25 / g.scene.c);
+        assert!((g.cue.unwrap().du - want).length() < 1e-12);
+        let before = g.physics().worldline(0).proper_velocity_at(g.live_time).0;
+        key(&mut g, KeyCode::Enter);
+        assert!(g.cue.is_none(), "struck");
+        let after = g.physics().worldline(0).proper_velocity_at(g.live_time).0;
+        assert!(
+            (after - before - want).length() < 1e-12,
+            "{after} vs {before} + {want}"
+        );
+        key(&mut g, KeyCode::KeyC);
+        key(&mut g, KeyCode::KeyC);
+        assert_eq!(g.cue.unwrap().puck, 1 % g.physics().len());
     }
 
     #[test]
