@@ -38,7 +38,10 @@ pub fn run(scene_path: &Path, until: f64, out: Option<&PathBuf>) -> ExitCode {
     };
     let mut billiard = Billiard::from_scene(&scene);
     billiard.set_history(Some(0.0));
-    crate::interrupt::watch();
+    // A braking cluster can keep one step busy for long: stop within 2 s
+    // of Ctrl-C whatever the step is doing (the records are flushed a step
+    // at a time).
+    crate::interrupt::watch_within(std::time::Duration::from_millis(1500));
     let result = match out {
         Some(path) => match std::fs::File::create(path) {
             Ok(f) => stream(&mut billiard, until, BufWriter::new(f)),

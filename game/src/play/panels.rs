@@ -143,8 +143,15 @@ fn time_controls(ui: &mut egui::Ui, s: &GameState, actions: &mut Vec<UiAction>) 
             String::new()
         }
     ));
+    // Always one line (the panel below does not shift when a replay
+    // starts or ends).
     if s.replaying() {
-        ui.colored_label(egui::Color32::YELLOW, "replay: what was seen then");
+        ui.colored_label(
+            egui::Color32::YELLOW,
+            "replay: what was seen then (L: live)",
+        );
+    } else {
+        ui.colored_label(egui::Color32::from_gray(140), "live");
     }
 }
 
