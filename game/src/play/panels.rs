@@ -91,7 +91,16 @@ fn controls(ui: &mut egui::Ui, s: &GameState, hud: &Hud, actions: &mut Vec<UiAct
     puck_table(ui, s);
     status_lines(ui, s, hud);
     ui.separator();
-    ui.small("Drag from a puck to aim the cue (pull back, release to strike).");
+    ui.small(
+        "Drag from a puck to aim the cue (pull back, release to strike); \
+         or C, [ ], , . and Enter.",
+    );
+    // Where a browser user looks for what the desktop game has.
+    #[cfg(target_arch = "wasm32")]
+    ui.small(
+        "In the browser: no Python lessons yet, no head tracker, CAVE or \
+         render cluster (desktop only: see docs/web.md).",
+    );
 }
 
 /// Play, pause, live, restart; the time scale, the board-time slider and
