@@ -19,6 +19,8 @@
 //! Units: SI metres and seconds on the board; `c` is a scene parameter;
 //! velocities are proper velocities `u = γβ` (dimensionless).
 
+#![warn(missing_docs)]
+
 pub mod camera;
 pub mod ecs;
 pub mod optics;

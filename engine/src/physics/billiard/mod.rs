@@ -92,12 +92,12 @@ pub struct PuckOutcome {
     pub mass_before: f64,
     /// Rest mass after (larger after an inelastic puck–puck collision), kg.
     pub mass_after: f64,
-    /// True while the velocity change has not yet happened (its board time
-    /// is still ahead): the values are the scheduled ones.
     /// Rest-frame orientation after the change (accumulated Thomas–Wigner
     /// rotation), radians counter-clockwise about `+z`; see
     /// [`crate::worldline::Segment::orientation`].
     pub orientation_after: f64,
+    /// True while the velocity change has not yet happened (its board time
+    /// is still ahead): the values are the scheduled ones.
     pub pending: bool,
 }
 
