@@ -3,6 +3,8 @@
 //! `lightcone-engine`, the drawing in `lightcone-render`, the Python classes
 //! in `lightcone-py`.
 
+#![warn(missing_docs)]
+
 // Desktop-only modules (`cfg(not(target_arch = "wasm32"))`): the command
 // line, the lessons (embedded Python, child processes), the head tracker's
 // bridge process and the render cluster. The browser build has the model,

@@ -35,11 +35,13 @@ pub struct ViewState {
     pub paused: bool,
     /// The free eye watches the past from where it is now.
     pub replay_and_move: bool,
-    /// The free eye: position (board frame, m), proper velocity (m/s as
-    /// `γβ`, dimensionless), yaw and pitch (radians).
+    /// The free eye's position, board frame, m.
     pub eye_position: DVec3,
+    /// The free eye's proper velocity `γβ` (dimensionless), board frame.
     pub eye_u: DVec3,
+    /// The free eye's yaw, radians.
     pub eye_yaw: f64,
+    /// The free eye's pitch, radians.
     pub eye_pitch: f64,
     /// Effects shown.
     pub effects: Effects,
@@ -49,8 +51,9 @@ pub struct ViewState {
     pub zoom: f64,
     /// The puck the camera keeps in the middle, if any.
     pub follow: Option<usize>,
-    /// The tracked head: position (tracker space, m) and orientation.
+    /// The tracked head's position, tracker space, m.
     pub head_position: DVec3,
+    /// The tracked head's orientation (tracker space).
     pub head_orientation: DQuat,
     /// The player's own flight added to the head (board metres).
     pub flight: DVec3,
