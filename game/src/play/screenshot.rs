@@ -8,6 +8,7 @@ use lightcone_render::frame::ViewKind;
 use lightcone_render::gpu::Gpu;
 use lightcone_tracker::cave::CaveConfig;
 
+use super::diagram::Placed;
 use super::layout::{Plan, SceneArea, tiled_walls, wall_tiles};
 use super::overlay::{caption, markers};
 use super::shown::ring_colour;
@@ -16,11 +17,15 @@ use crate::model::GameState;
 /// Beside a screenshot, where its views and pucks are (for tests and
 /// for marking up slides): `{"views": [{"rect": [x, y, w, h], "kind"}],
 /// "pucks": [{"name", "view", "centre": [x, y], "ring_px", "ring_colour":
-/// [r, g, b], "clock_s"}]}`, physical px from the top left.
+/// [r, g, b], "clock_s"}], "diagram": {"rect": [x, y, w, h], "x": [m, m],
+/// "t": [s, s]} or null}`, physical px from the top left; the diagram's
+/// rect is where its data is drawn, board x (or y) `x` across it and board
+/// time `t` up it.
 pub fn save_layout(
     state: &GameState,
     cave: Option<&CaveConfig>,
     area: SceneArea,
+    diagram: Option<Placed>,
     path: &Path,
     (w, h): (f32, f32),
 ) -> Result<(), String> {
@@ -56,6 +61,11 @@ pub fn save_layout(
         "views": views,
         "pucks": pucks,
         "scene_pucks": state.physics().len(),
+        "diagram": diagram.map(|d| serde_json::json!({
+            "rect": [d.area.left, d.area.top, d.area.width, d.area.height],
+            "x": [d.x.0, d.x.1],
+            "t": [d.t.0, d.t.1],
+        })),
     })
     .to_string();
     std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
