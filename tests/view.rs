@@ -326,3 +326,120 @@ fn the_magnified_moving_puck_is_contracted_by_one_over_gamma_on_screen() {
         );
     }
 }
+
+/// The live diagram in the window (`--diagram-frame b60` on the parallel
+/// tracks at t = 1 s, c = 1.42 m/s, frictionless) draws what its legend
+/// says, where the sidecar's data area and ranges put it: the cushions'
+/// green down x = 0 and 2.84 m, the grid down x = 0.5 m, the board's now
+/// dashed along t = 1 s, and b60's now tilted, t = 1 + (β/c)(x − x₀)
+/// through x₀ = 0.3 + 0.6 c · 1 s (closed form: a puck at β = 0.6 since
+/// t = 0), in its colour lightened, and not along the board's now; text
+/// at the time axis and in the legend under the plot.
+#[test]
+fn the_live_diagram_has_its_grid_cushion_and_now_lines() {
+    let scene = "assets/scenes/parallel_tracks.toml";
+    let (img, layout) = shot(
+        &["play", scene, "--at", "1", "--diagram-frame", "b60"],
+        "diagram",
+        3,
+    );
+    let d = &layout["diagram"];
+    let num = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap_or_else(|| panic!("no diagram in the sidecar: {layout}"))
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (rect, xr, tr) = (num(&d["rect"]), num(&d["x"]), num(&d["t"]));
+    assert!(rect[2] > 400.0 && rect[3] > 250.0, "{rect:?}");
+    assert!(
+        rect[0] + rect[2] <= 1280.0 && rect[1] + rect[3] + 60.0 <= 720.0,
+        "on screen with its legend: {rect:?}"
+    );
+    let px = |x: f64, t: f64| {
+        (
+            rect[0] + (x - xr[0]) / (xr[1] - xr[0]) * rect[2],
+            rect[1] + rect[3] - (t - tr[0]) / (tr[1] - tr[0]) * rect[3],
+        )
+    };
+    let pixel = |x: f64, y: f64| {
+        let i = 4 * (y.round() as usize * img.width as usize + x.round() as usize);
+        let p = &img.rgba[i..i + 3];
+        [i32::from(p[0]), i32::from(p[1]), i32::from(p[2])]
+    };
+    // Whether a pixel within 2 px of (x, y), across (`dx`) or up (`dy`),
+    // passes `is`.
+    let near = |(x, y): (f64, f64), (dx, dy): (f64, f64), is: &dyn Fn([i32; 3]) -> bool| {
+        (-2..=2).any(|k| is(pixel(x + dx * f64::from(k), y + dy * f64::from(k))))
+    };
+    let green = |p: [i32; 3]| p[1] - p[0] >= 50 && p[1] - p[2] >= 40;
+    let grid = |p: [i32; 3]| p[1] >= 40 && (p[0] - p[1]).abs() <= 12 && p[2] >= p[1] && p[1] < 120;
+    let grey = |p: [i32; 3]| {
+        p.iter().all(|&c| c >= 140) && p.iter().max().unwrap() - p.iter().min().unwrap() <= 30
+    };
+    let c = 1.42;
+    let scene_file = lightcone_engine::scene::load(&repo().join(scene)).unwrap();
+    assert_eq!(scene_file.c, c);
+    let rgb = scene_file.pucks[2].color;
+    let light = [rgb.r, rgb.g, rgb.b].map(|v| i32::from(v.saturating_add(40)));
+    let frame = move |p: [i32; 3]| (0..3).all(|k| (p[k] - light[k]).abs() <= 40);
+    // The share of the points (x m, t s) near which `is` holds.
+    let share = |points: Vec<(f64, f64)>, dir, is: &dyn Fn([i32; 3]) -> bool| {
+        let n = points.len() as f64;
+        points
+            .into_iter()
+            .filter(|&(x, t)| near(px(x, t), dir, is))
+            .count() as f64
+            / n
+    };
+    let (t_lo, t_hi) = (tr[0] + 0.05 * (tr[1] - tr[0]), 0.95);
+    let down = |x: f64| -> Vec<(f64, f64)> {
+        (0..40)
+            .map(|k| (x, t_lo + (t_hi - t_lo) * (f64::from(k) + 0.5) / 40.0))
+            .collect()
+    };
+    let along = |t: &dyn Fn(f64) -> f64| -> Vec<(f64, f64)> {
+        (0..60)
+            .map(|k| 0.1 + 0.9 * (f64::from(k) + 0.5) / 60.0)
+            .map(|x| (x, t(x)))
+            .collect()
+    };
+    let across = (1.0, 0.0);
+    let up = (0.0, 1.0);
+    for (x, what) in [(0.0, "x = 0"), (2.84, "x = 2.84 m")] {
+        let s = share(down(x), across, &green);
+        assert!(s >= 0.8, "the cushion at {what}: {s}");
+    }
+    assert!(
+        share(down(1.25), across, &green) <= 0.1,
+        "no cushion mid-table"
+    );
+    let s = share(down(0.5), across, &grid);
+    assert!(s >= 0.7, "the grid at x = 0.5 m: {s}");
+    let s = share(along(&|_| 1.0), up, &grey);
+    assert!((0.3..=0.9).contains(&s), "the board's now, dashed: {s}");
+    let x0 = 0.3 + 0.6 * c;
+    let s = share(along(&|x| 1.0 + 0.6 / c * (x - x0)), up, &frame);
+    assert!(s >= 0.75, "b60's now, tilted: {s}");
+    let s = share(along(&|_| 1.0), up, &frame);
+    assert!(s <= 0.15, "b60's now is not the board's: {s}");
+    // Text: the seconds left of the plot, the legend under it.
+    let text = |x0: f64, y0: f64, w: usize, h: usize| {
+        (0..w * h)
+            .filter(|i| {
+                pixel(x0 + (i % w) as f64, y0 + (i / w) as f64)
+                    .iter()
+                    .all(|&c| c >= 120)
+            })
+            .count()
+    };
+    assert!(
+        text(rect[0] - 48.0, rect[1], 44, rect[3] as usize) > 100,
+        "time labels"
+    );
+    assert!(
+        text(rect[0], rect[1] + rect[3] + 30.0, 400, 40) > 150,
+        "the legend"
+    );
+}

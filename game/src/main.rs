@@ -64,6 +64,11 @@ enum Command {
         /// Open with the live space-time diagram shown.
         #[arg(long)]
         diagram: bool,
+        /// Open with the live space-time diagram shown in this puck's frame
+        /// (its line of simultaneity drawn; implies --diagram). For a
+        /// lesson, a puck of the scene its setup starts.
+        #[arg(long, value_name = "PUCK")]
+        diagram_frame: Option<String>,
         /// With --cave: be the master of a render cluster, listening for
         /// render nodes (`lightcone wall --join`) on this Zenoh endpoint
         /// (default tcp/0.0.0.0:7447).
@@ -450,6 +455,7 @@ fn main() -> ExitCode {
             top,
             effects,
             diagram,
+            diagram_frame,
             serve,
             frame_log,
         }) => commands::play::run(
@@ -469,6 +475,7 @@ fn main() -> ExitCode {
                 top,
                 effects,
                 diagram,
+                diagram_frame,
                 serve,
                 frame_log,
             },

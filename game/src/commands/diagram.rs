@@ -10,10 +10,12 @@ use lightcone_engine::scene;
 
 use lightcone_render::diagram;
 
-/// The index of puck `name` in `scene`, or a message listing the names.
+/// The index of puck `name` in `scene` (given as option `flag`, e.g.
+/// `--frame`), or a message listing the names.
 pub fn puck_index(
     scene: &lightcone_engine::scene::Scene,
     path: &Path,
+    flag: &str,
     name: &str,
 ) -> Result<usize, String> {
     scene
@@ -23,7 +25,7 @@ pub fn puck_index(
         .ok_or_else(|| {
             let names: Vec<&str> = scene.pucks.iter().map(|p| p.name.as_str()).collect();
             format!(
-                "{}: --frame {name:?}: no such puck; the pucks are {}",
+                "{}: {flag} {name:?}: no such puck; the pucks are {}",
                 path.display(),
                 names.join(", ")
             )
@@ -64,7 +66,10 @@ pub fn run(
         Ok(i) => i,
         Err(e) => return fail(e),
     };
-    let frame = match frame.map(|f| puck_index(&scene, path, f)).transpose() {
+    let frame = match frame
+        .map(|f| puck_index(&scene, path, "--frame", f))
+        .transpose()
+    {
         Ok(f) => f,
         Err(e) => return fail(e),
     };
@@ -81,10 +86,7 @@ pub fn run(
     if let Err(e) = drawn.image.save_png(out) {
         return fail(e);
     }
-    let axis_name = match axis {
-        diagram::Axis::X => "x",
-        diagram::Axis::Y => "y",
-    };
+    let axis_name = axis.name();
     for (p, e) in scene.pucks.iter().zip(&drawn.emissions) {
         println!(
             "{}: seen from t = {:.6} s at {axis_name} = {:.6} m",

@@ -32,6 +32,8 @@ pub struct Extras {
     pub effects: Option<String>,
     /// Show the live space-time diagram.
     pub diagram: bool,
+    /// Show it in this puck's frame (implies `diagram`).
+    pub diagram_frame: Option<String>,
     /// Serve a render cluster on this Zenoh endpoint (with `cave`).
     pub serve: Option<String>,
     /// Log each frame's CAVE eyes here (with `cave`).
@@ -52,6 +54,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         top,
         effects,
         diagram,
+        diagram_frame,
         serve,
         frame_log,
     } = extras;
@@ -178,7 +181,17 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
     if top {
         game.top_view();
     }
-    game.show.diagram = diagram;
+    game.show.diagram = diagram || diagram_frame.is_some();
+    if let Some(name) = diagram_frame {
+        let file = path.unwrap_or(Path::new("the default scene"));
+        match crate::commands::diagram::puck_index(&game.scene, file, "--diagram-frame", &name) {
+            Ok(i) => game.show.diagram_frame = Some(i),
+            Err(e) => {
+                crate::errln!("{e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
     match app::run(Options {
         game,
         lesson,

@@ -100,6 +100,8 @@ struct App {
     last: Instant,
     /// The area the last frame's panels left for the pictures.
     area: SceneArea,
+    /// Where the last frame's panels drew the space-time diagram.
+    diagram: Option<super::diagram::Placed>,
     /// The render cluster this game is the master of.
     cluster: Option<ClusterMaster>,
     /// Where each frame's CAVE eyes are logged.
@@ -135,6 +137,7 @@ impl App {
             frame: 0,
             last: Instant::now(),
             area: SceneArea::default(),
+            diagram: None,
             cluster,
             frame_log,
             node: None,
@@ -327,7 +330,16 @@ impl App {
             let cave = self.immersion.cave.as_ref();
             let sidecar = path.with_extension("json");
             let drawn = super::overlay::drawn(gfx.egui_context());
-            screenshot::save_layout(&self.state, cave, self.area, &sidecar, (w, h), &drawn)?;
+            let diagram = self.diagram;
+            screenshot::save_layout(
+                &self.state,
+                cave,
+                self.area,
+                diagram,
+                &sidecar,
+                (w, h),
+                &drawn,
+            )?;
         }
         gfx.gpu.queue.present(texture);
         // The outputs: the same frame's views, each output's wall.
@@ -350,6 +362,7 @@ impl App {
         };
         let node = self.immersion.node_head.is_some();
         let (state, lesson) = (&mut self.state, self.lesson.host.as_ref());
+        let mut diagram = None;
         let ui = gfx.run_ui(|ui| {
             if node {
                 panels::node_status(ui, &state.message);
@@ -359,8 +372,14 @@ impl App {
                 };
             } else {
                 area = panels::panels(ui, state, &hud, lesson, size, &mut actions);
+                diagram = state
+                    .show
+                    .diagram
+                    .then(|| super::diagram::placed(ui.ctx()))
+                    .flatten();
             }
         });
+        self.diagram = diagram;
         (ui, area, actions)
     }
 }

@@ -13,7 +13,7 @@ pub mod cave_role;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cluster_role;
 pub mod collision_arcs;
-pub mod diagram_controls;
+pub mod diagram;
 pub mod input;
 pub mod labels;
 pub mod layout;

@@ -62,8 +62,8 @@ pub fn panels(
         .show(ui, |ui| controls(ui, state, hud, actions));
     let left = ui.available_rect_before_wrap().left() * ppp;
     if state.show.diagram {
-        let at = egui::pos2(left / ppp + 12.0, size.1 as f32 / ppp - 340.0);
-        diagram_window(&ctx, state, at, actions);
+        let at = egui::pos2(left / ppp + 12.0, (size.1 as f32 / ppp - 500.0).max(8.0));
+        super::diagram::window(&ctx, state, at, actions);
     }
     super::scene_menu::window(&ctx, state, hud.lesson);
     if state.intro {
@@ -359,27 +359,6 @@ fn status_lines(ui: &mut egui::Ui, s: &GameState, hud: &Hud) {
         .collect();
     for hint in s.hints(&clocks) {
         ui.colored_label(egui::Color32::from_rgb(255, 210, 120), hint);
-    }
-}
-
-/// The space-time diagram's window, its top left at `at` (points).
-fn diagram_window(
-    ctx: &egui::Context,
-    state: &mut GameState,
-    at: egui::Pos2,
-    actions: &mut Vec<UiAction>,
-) {
-    let mut open = true;
-    egui::Window::new("space-time diagram")
-        .open(&mut open)
-        .default_pos(at)
-        .default_width(420.0)
-        .show(ctx, |ui| {
-            super::diagram_controls::frame_and_axis(ui, state);
-            super::overlay::diagram_panel(ui, state);
-        });
-    if !open {
-        actions.push(UiAction::Toggle(Overlay::Diagram));
     }
 }
 

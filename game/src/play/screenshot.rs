@@ -8,24 +8,29 @@ use lightcone_render::frame::ViewKind;
 use lightcone_render::gpu::Gpu;
 use lightcone_tracker::cave::CaveConfig;
 
+use super::diagram::Placed;
 use super::layout::{Plan, SceneArea, tiled_walls, wall_tiles};
 use super::overlay::{Drawn, caption, markers};
 use super::shown::ring_colour;
 use crate::model::GameState;
 
-/// Beside a screenshot, where its views, pucks, labels and magnifier are
-/// (for tests and for marking up slides): `{"views": [{"rect": [x, y, w,
-/// h], "kind", "caption"}], "pucks": [{"name", "view", "centre": [x, y],
-/// "ring_px", "ring_colour": [r, g, b], "clock_s"}], "labels": [{"puck",
-/// "view", "rect": [x, y, w, h], "text": "name" | "clock"}],
+/// Beside a screenshot, where its views, pucks, labels, magnifier and
+/// diagram are (for tests and for marking up slides): `{"views": [{"rect":
+/// [x, y, w, h], "kind", "caption"}], "pucks": [{"name", "view", "centre":
+/// [x, y], "ring_px", "ring_colour": [r, g, b], "clock_s"}], "labels":
+/// [{"puck", "view", "rect": [x, y, w, h], "text": "name" | "clock"}],
 /// "magnifier": null | {"puck", "view", "rect", "body": [x, y, w, h],
 /// "colour": [r, g, b], "beta", "gamma", "length_over_width",
-/// "contraction", "light_delay"}, "scene_pucks": n}`, physical px from
-/// the top left. `drawn`: what the overlays drew this frame.
+/// "contraction", "light_delay"}, "diagram": {"rect": [x, y, w, h], "x":
+/// [m, m], "t": [s, s]} or null, "scene_pucks": n}`, physical px from the
+/// top left; the diagram's rect is where its data is drawn, board x (or y)
+/// `x` across it and board time `t` up it. `drawn`: what the overlays drew
+/// this frame.
 pub fn save_layout(
     state: &GameState,
     cave: Option<&CaveConfig>,
     area: SceneArea,
+    diagram: Option<Placed>,
     path: &Path,
     (w, h): (f32, f32),
     drawn: &Drawn,
@@ -91,6 +96,11 @@ pub fn save_layout(
         "labels": labels,
         "magnifier": magnifier,
         "scene_pucks": state.physics().len(),
+        "diagram": diagram.map(|d| serde_json::json!({
+            "rect": [d.area.left, d.area.top, d.area.width, d.area.height],
+            "x": [d.x.0, d.x.1],
+            "t": [d.t.0, d.t.1],
+        })),
     })
     .to_string();
     std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
