@@ -241,8 +241,8 @@ fn a_finish_waits_until_the_light_of_its_event_reaches_the_eye() {
     let _one = one_lesson_at_a_time();
     // c = 1 m/s; the event at (0.5, 0.71) on the cloth at t = 0.1 s, the
     // finish called at t ≥ 0.2 s. The eye at (2.5, 0.71, 1.5): 2.5 m away.
-    let (t0, x0, y0, c) = (0.1, 0.5, 0.71, 1.0);
-    let (eye, fps) = ([2.5, 0.71, 1.5], 100.0);
+    let (t0, x0, y0, c): (f64, f64, f64, f64) = (0.1, 0.5, 0.71, 1.0);
+    let (eye, fps): ([f64; 3], f64) = ([2.5, 0.71, 1.5], 100.0);
     let write_lesson = |name: &str, beta_x: f64| {
         let path = temp(name);
         let text = format!(

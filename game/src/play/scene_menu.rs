@@ -219,7 +219,7 @@ pub fn window(ctx: &egui::Context, state: &mut GameState, shown: MenuContext) ->
             let list = egui::ScrollArea::vertical().max_height(400.0);
             list.show(ui, |ui| {
                 // The keys' choice is scrolled into view when it moves.
-                let id = ui.id().with("selected");
+                let id = egui::Id::unique("lightcone scene menu selected");
                 let entry_moved = ui.data(|d| d.get_temp::<usize>(id)) != Some(menu.selected);
                 ui.data_mut(|d| d.insert_temp(id, menu.selected));
                 for (i, choice) in entries(shown.lessons).enumerate() {
