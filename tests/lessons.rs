@@ -812,3 +812,69 @@ fn the_readme_lesson_template_runs_as_printed() {
         "{outcome}"
     );
 }
+
+/// The window's scene menu opens lessons as `lightcone play LESSON.py`
+/// does, through the same calls as the window (`UiAction::apply`, then
+/// the lesson host's `act`, then its frames): a shipped lesson (from its
+/// built-in copy), then a lesson typed in the path field in its place,
+/// then a scene, which ends the lesson. About 1 s: two lesson processes.
+#[test]
+fn the_scene_menu_starts_a_lesson_replaces_it_and_a_scene_ends_it() {
+    use lightcone::model::GameState;
+    use lightcone::play::actions::UiAction;
+    use lightcone::play::lesson_host::HostedLesson;
+    use lightcone::play::scene_menu::Choice;
+    let mut state = GameState::new(lightcone::assets::default_scene().unwrap());
+    let mut hosted = HostedLesson::new(None, Ok(isolation()));
+    let act = |hosted: &mut HostedLesson, state: &mut GameState, action: UiAction| {
+        if let Some(back) = action.apply(state) {
+            hosted.act(back, state);
+        }
+    };
+    // Frames (as the window's) until the lesson's setup has built its game.
+    let frames_until = |hosted: &mut HostedLesson, state: &mut GameState, title: &str| {
+        let start = Instant::now();
+        while state.scene.title != title {
+            assert!(start.elapsed() < Duration::from_secs(20), "no {title:?}");
+            hosted.step(state, 1.0 / 60.0, Instant::now());
+            hosted.after_draw(state);
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    };
+    let i = lightcone::assets::LESSONS
+        .iter()
+        .position(|(n, _)| *n == "cushion.py")
+        .expect("cushion.py is a shipped lesson");
+    act(&mut hosted, &mut state, UiAction::SceneMenu);
+    act(&mut hosted, &mut state, UiAction::Open(Choice::Lesson(i)));
+    assert!(!state.scene_menu.open, "the menu closes");
+    frames_until(&mut hosted, &mut state, "Cushion reflection");
+    let host = hosted.host.as_ref().expect("a lesson runs");
+    assert_eq!(host.name(), "(built in) cushion.py");
+    assert!(host.running() && host.error.is_none(), "{:?}", host.error);
+    // Its question is on the panel.
+    let asked = host.with_ui(|ui| ui.question.as_ref().map(|q| q.text.clone()));
+    let asked = asked.expect("the lesson asks first");
+    assert!(asked.contains("angle it came in"), "{asked}");
+    // Another lesson, typed in the field, replaces it.
+    let typed = repo().join("scripts/lessons/simultaneity.py");
+    state.scene_menu.path = typed.display().to_string();
+    act(&mut hosted, &mut state, UiAction::Open(Choice::Typed));
+    frames_until(&mut hosted, &mut state, "Apparent simultaneity");
+    let host = hosted.host.as_ref().expect("a lesson runs");
+    assert_eq!(host.path(), typed.as_path());
+    assert!(host.running() && host.error.is_none(), "{:?}", host.error);
+    // A scene ends it.
+    act(&mut hosted, &mut state, UiAction::Open(Choice::Scene(0)));
+    assert!(hosted.host.is_none(), "opening a scene ends the lesson");
+    assert_eq!(
+        state.scene.title,
+        lightcone::assets::default_scene().unwrap().title
+    );
+    // A lesson that is not there: said in the menu, the game goes on.
+    state.scene_menu.path = "no/such/lesson.py".to_owned();
+    act(&mut hosted, &mut state, UiAction::Open(Choice::Typed));
+    assert!(hosted.host.is_none());
+    let e = state.scene_menu.error.clone().expect("an error");
+    assert!(e.contains("no such lesson file"), "{e}");
+}

@@ -47,6 +47,58 @@ pub const SCENES: &[(&str, &str)] = &[
     ),
 ];
 
+/// Every shipped lesson (`scripts/lessons/*.py`), built in: the window's
+/// scene menu offers them (it writes the chosen one to a private temporary
+/// folder and runs it as `lightcone play LESSON.py` would). A test checks
+/// that the list matches the folder.
+pub const LESSONS: &[(&str, &str)] = &[
+    (
+        "approach_recede.py",
+        include_str!("../../scripts/lessons/approach_recede.py"),
+    ),
+    ("clocks.py", include_str!("../../scripts/lessons/clocks.py")),
+    (
+        "collision_angle.py",
+        include_str!("../../scripts/lessons/collision_angle.py"),
+    ),
+    (
+        "contraction.py",
+        include_str!("../../scripts/lessons/contraction.py"),
+    ),
+    (
+        "cushion.py",
+        include_str!("../../scripts/lessons/cushion.py"),
+    ),
+    (
+        "friction.py",
+        include_str!("../../scripts/lessons/friction.py"),
+    ),
+    ("gas.py", include_str!("../../scripts/lessons/gas.py")),
+    (
+        "relative_simultaneity.py",
+        include_str!("../../scripts/lessons/relative_simultaneity.py"),
+    ),
+    (
+        "simultaneity.py",
+        include_str!("../../scripts/lessons/simultaneity.py"),
+    ),
+    (
+        "wigner_rotation.py",
+        include_str!("../../scripts/lessons/wigner_rotation.py"),
+    ),
+];
+
+/// A shipped lesson's title: the first line of its docstring (empty when
+/// it has none).
+pub fn lesson_title(text: &str) -> &str {
+    text.trim_start()
+        .strip_prefix("\"\"\"")
+        .and_then(|s| s.lines().next())
+        .map_or("", |l| {
+            l.trim().trim_end_matches("\"\"\"").trim_end_matches('.')
+        })
+}
+
 /// The built-in scene `name` (a file name of [`SCENES`]).
 pub fn shipped_scene(name: &str) -> Option<Result<Scene, SceneErrors>> {
     SCENES
@@ -85,6 +137,27 @@ mod tests {
     fn the_built_in_assets_are_valid() {
         assert!(super::default_scene().is_ok());
         assert!(super::default_cave().is_ok());
+    }
+
+    #[test]
+    fn every_shipped_lesson_is_built_in() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scripts/lessons");
+        let mut files: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".py"))
+            .collect();
+        files.sort();
+        let built_in: Vec<String> = super::LESSONS.iter().map(|(n, _)| n.to_string()).collect();
+        assert_eq!(
+            files, built_in,
+            "assets.rs LESSONS must list scripts/lessons, sorted"
+        );
+        assert_eq!(
+            super::lesson_title(super::LESSONS[0].1),
+            "Apparent acceleration and deceleration (the paper's §4.3)"
+        );
+        assert_eq!(super::lesson_title("x = 1\n"), "");
     }
 
     #[test]

@@ -159,8 +159,13 @@ pub struct LessonUi {
     pub claims: Vec<Claim>,
     /// Charts, by title (a chart with the same title replaces the old).
     pub bars: Vec<Bars>,
-    /// Set by `finish`: the closing message.
+    /// Set by `finish`: the closing message (no hook runs after it).
     pub finished: Option<String>,
+    /// Set by `finish(after_light_from=…)`: the board event (board time s,
+    /// position m on the cloth, z = 0) whose light the closing message
+    /// waits for. The game clears it once that light has reached the eye
+    /// looked through; until then the message is not shown.
+    pub finish_light: Option<lightcone_engine::spacetime::Event>,
     /// The newest lines the lesson printed.
     pub printed: Vec<String>,
 }
@@ -181,6 +186,16 @@ pub struct World {
     pub dir: PathBuf,
     /// Makes the game `start` starts.
     new_game: NewGame,
+}
+
+impl LessonUi {
+    /// The closing message as the screen shows it: set by `finish`, and,
+    /// when it waits for an event's light, once that light has arrived.
+    pub fn closing(&self) -> Option<&str> {
+        self.finished
+            .as_deref()
+            .filter(|_| self.finish_light.is_none())
+    }
 }
 
 impl World {
@@ -626,11 +641,35 @@ impl World {
         Ok(())
     }
 
-    /// Ends the lesson with a closing `message`: it is shown, and no hook
-    /// runs again (the game goes on for the student).
-    #[pyo3(signature = (message = ""))]
-    fn finish(&mut self, message: &str) {
+    /// Ends the lesson with a closing `message`: no hook runs again (the
+    /// game goes on for the student), and the message is shown at once,
+    /// or, with `after_light_from = (t, x, y)` (a board event: board time
+    /// s, position m on the cloth), once the light of that event has
+    /// reached the eye looked through (for an eye at rest at distance d,
+    /// at board time t + d / c), so the student has seen what the message
+    /// explains. Raises ValueError for a number that is not finite.
+    #[pyo3(signature = (message = "", after_light_from = None))]
+    fn finish(
+        &mut self,
+        message: &str,
+        after_light_from: Option<super::convert::Vector<3>>,
+    ) -> PyResult<()> {
+        let light = match after_light_from {
+            None => None,
+            Some(v) => {
+                let (t, x, y) = v.triple();
+                if !(t.is_finite() && x.is_finite() && y.is_finite()) {
+                    return Err(PyValueError::new_err(format!(
+                        "finish: after_light_from = ({t}, {x}, {y}): give a board event (t s, x m, y m) of finite numbers"
+                    )));
+                }
+                let at = glam::DVec3::new(x, y, 0.0);
+                Some(lightcone_engine::spacetime::Event::new(t, at))
+            }
+        };
         self.ui.finished = Some(message.to_owned());
+        self.ui.finish_light = light;
+        Ok(())
     }
 
     /// Whether `finish` was called (then no further hook will run).

@@ -81,4 +81,9 @@ def on_collision(world, event):
         "Energy and momentum are both conserved, but energy now includes γ: "
         "the right angle of Newton's billiards is gone."
     )
-    world.finish("The faster the striker, the narrower the angle.")
+    # 0.7 s after the answer: closed only once the collision's light has
+    # reached the eye, so the student has watched the pucks part.
+    world.finish(
+        "The faster the striker, the narrower the angle.",
+        after_light_from=(event["t"], *event["contact"]),
+    )

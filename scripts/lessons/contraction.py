@@ -68,4 +68,10 @@ def on_frame(world, t):
         f"On the table the moving puck is {ratio:.3f} times as long as it is wide "
         f"(1/γ = {1 / gamma:.3f}). Switch on light_delay (key 2) to see what the eye gets."
     )
-    world.finish("Contraction is a board-frame fact; what you see adds light delay.")
+    # Measured at t = 0.5 s: closed once the light of the moving puck then
+    # has reached the eye, so the student has seen the puck the numbers are about.
+    now = {p["name"]: p for p in world.state()["pucks"]}["moving"]["position"]
+    world.finish(
+        "Contraction is a board-frame fact; what you see adds light delay.",
+        after_light_from=(t, now[0], now[1]),
+    )

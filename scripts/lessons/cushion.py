@@ -61,4 +61,7 @@ def on_collision(world, event):
         "Watch the right-hand picture: the seen path is bent, because the light "
         "from each leg took a different time to arrive."
     )
-    world.finish("Reflection is simple on the table and strange to the eye.")
+    # The bounce is seen only when its light reaches the eye: the closing
+    # message waits for that.
+    bounce = (event["t"], *event["contact"])
+    world.finish("Reflection is simple on the table and strange to the eye.", after_light_from=bounce)

@@ -93,4 +93,9 @@ def on_collision(world, event):
         "the turn: two boosts in different directions make a boost and a rotation. "
         "Slow pucks turn by about u²/2 per bounce, too little to see."
     )
-    world.finish("No torque, yet the puck comes back rotated: Thomas–Wigner rotation.")
+    # Closed once the eye has seen the fourth bounce (its light takes a
+    # second or more at c = 1 m/s).
+    world.finish(
+        "No torque, yet the puck comes back rotated: Thomas–Wigner rotation.",
+        after_light_from=(event["t"], *event["contact"]),
+    )

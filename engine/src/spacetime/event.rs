@@ -36,6 +36,19 @@ impl Event {
     pub fn is_finite(self) -> bool {
         self.t.is_finite() && self.position.is_finite()
     }
+
+    /// Whether light sent from `self` has reached `eye` (its event: where
+    /// and when it looks): `eye` lies on or inside the future light cone of
+    /// `self`, `c (t_eye − t) ≥ |x_eye − x|` (board frame, c in m/s). For
+    /// an eye at rest at `x_eye` this holds from `t + |x_eye − x| / c` on;
+    /// for a moving eye, from the event where its worldline leaves the
+    /// light cone's inside, whatever it did before. Compared without
+    /// squaring, so a grazing case is decided to the last few ulps of the
+    /// distance.
+    pub fn light_has_reached(self, eye: Event, c: f64) -> bool {
+        let dt = eye.t - self.t;
+        dt >= 0.0 && c * dt >= (eye.position - self.position).length()
+    }
 }
 
 /// A 4-vector `(ct, x)` in metres: a separation of events, or any vector
@@ -106,6 +119,23 @@ mod tests {
         let b = Event::new(3.0, DVec3::new(0.0, 2.0 * c, 0.0));
         assert_eq!(a.interval_to(b, c), 0.0);
         assert!(a.interval_to(Event::new(3.0, DVec3::ZERO), c) > 0.0);
+    }
+
+    #[test]
+    fn light_reaches_a_resting_eye_after_the_distance_over_c() {
+        // An eye 3-4-0 from the event: 5 m, at c = 2 m/s, 2.5 s later.
+        let c = 2.0;
+        let sent = Event::new(10.0, DVec3::new(1.0, 1.0, 0.0));
+        let eye = DVec3::new(4.0, 5.0, 0.0);
+        let arrival = 10.0 + 5.0 / c;
+        assert!(!sent.light_has_reached(Event::new(arrival - 1e-9, eye), c));
+        assert!(sent.light_has_reached(Event::new(arrival, eye), c));
+        assert!(sent.light_has_reached(Event::new(arrival + 7.0, eye), c));
+        // Never before it was sent, even at the same place.
+        assert!(!sent.light_has_reached(Event::new(9.0, sent.position), c));
+        assert!(sent.light_has_reached(sent, c));
+        // A NaN eye is never reached.
+        assert!(!sent.light_has_reached(Event::new(f64::NAN, eye), c));
     }
 
     #[test]

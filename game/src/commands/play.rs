@@ -113,7 +113,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
             ),
         };
         // The lesson runs in its own process: nothing it does ends the game.
-        let isolation = match lesson_isolation() {
+        let isolation = match crate::lesson::supervise::window_isolation() {
             Ok(i) => i,
             Err(e) => {
                 crate::errln!("{e}");
@@ -208,23 +208,4 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-/// How the window starts its lesson's process: this binary, with the
-/// address-space limit in `LIGHTCONE_MEMORY_LIMIT` (MiB, at least 256;
-/// default [`crate::lesson::supervise::MEMORY_LIMIT_MB`]).
-fn lesson_isolation() -> Result<crate::lesson::Isolation, String> {
-    let exe = std::env::current_exe().map_err(|e| format!("cannot find lightcone itself: {e}"))?;
-    let memory_mb = match std::env::var("LIGHTCONE_MEMORY_LIMIT") {
-        Err(_) => crate::lesson::supervise::MEMORY_LIMIT_MB,
-        Ok(text) => match text.trim().parse::<u64>() {
-            Ok(mb) if mb >= 256 => mb,
-            _ => {
-                return Err(format!(
-                    "LIGHTCONE_MEMORY_LIMIT={text:?}: give MiB, at least 256"
-                ));
-            }
-        },
-    };
-    Ok(crate::lesson::Isolation { exe, memory_mb })
 }

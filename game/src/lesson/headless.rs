@@ -109,8 +109,9 @@ fn new_claims(host: &LessonHost, seen: &mut usize, report: &mut dyn FnMut(Progre
     }
 }
 
-/// Runs the lesson at `path` until it calls `finish`, fails, or board time
-/// passes `until`, stepping `1 / fps` real seconds a frame; a hook running
+/// Runs the lesson at `path` until it calls `finish` (and, when its
+/// closing message waits for an event's light, until that light reaches
+/// the eye), fails, or board time passes `until`, stepping `1 / fps` real seconds a frame; a hook running
 /// longer than `hook_limit` is stopped with TimeoutError.
 pub fn run(
     path: &Path,
@@ -173,7 +174,14 @@ fn drive(
     // hard cap against a lesson that pauses forever.
     let max_frames = 10_000_000u64;
     // Ctrl-C (`crate::interrupt`) stops between frames.
-    while host.running() && frames < max_frames && !crate::interrupt::interrupted() {
+    // A closing message that waits for an event's light (`finish(after_light_from=…)`)
+    // keeps board time running until that light reaches the eye: the
+    // run ends when the student would see it.
+    host.watch_light(&game);
+    while (host.running() || host.awaiting_light())
+        && frames < max_frames
+        && !crate::interrupt::interrupted()
+    {
         let (finished, question) = host.with_ui(|ui| {
             let q = ui
                 .question
@@ -183,7 +191,7 @@ fn drive(
                     let i = q.answer.unwrap_or(0);
                     (q.text.clone(), q.choices[i].clone(), i)
                 });
-            (ui.finished.is_some(), q)
+            (ui.closing().is_some(), q)
         });
         if finished {
             break;
@@ -212,6 +220,7 @@ fn drive(
         });
         host.after_step(&mut game, before);
         host.settle(&mut game);
+        host.watch_light(&game);
         new_claims(&host, &mut claims_seen, report);
     }
     let (claims, finished) = host.with_ui(|ui| {

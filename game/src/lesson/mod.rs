@@ -237,6 +237,10 @@ pub struct LessonHost {
     isolation: Option<Isolation>,
     /// The game `setup` is building in the lesson's process.
     pending: Option<GameState>,
+    /// A shipped lesson's name, and the private folder holding the copy
+    /// of it that runs (removed with the host: the last field, dropped
+    /// after the lesson's process ended).
+    shipped: Option<(String, sandbox::Scratch)>,
 }
 
 /// Builds a placeholder game for the host to hold while the real one is lent.
@@ -273,6 +277,43 @@ impl LessonHost {
         isolation: Isolation,
     ) -> Result<(Self, GameState), String> {
         Self::load_isolated_with_limit(path, limit_from_env()?, fallback, isolation)
+    }
+
+    /// Starts the lesson at `path` in its own process while the window
+    /// runs (the scene menu), without waiting: its `setup` is served by
+    /// the next frames ([`Self::serve`]), and replaces the game when it
+    /// ends; meanwhile board time waits ([`Self::busy`]). A setup that
+    /// fails leaves the game as it was, paused, with the traceback shown.
+    /// Fails when Python cannot start or the hook limit in the
+    /// environment is not a number of seconds.
+    pub fn open_isolated(path: &Path, isolation: Isolation) -> Result<Self, String> {
+        let mut host = Self::new(path, limit_from_env()?)?;
+        host.start_remote(&isolation);
+        host.isolation = Some(isolation);
+        Ok(host)
+    }
+
+    /// [`Self::open_isolated`] for a lesson built into the binary
+    /// (`crate::assets::LESSONS`: its file `name` and its `text`), run
+    /// from a copy in a private temporary folder that lives as long as
+    /// the host.
+    pub fn open_shipped(name: &str, text: &str, isolation: Isolation) -> Result<Self, String> {
+        let folder = sandbox::Scratch::new()?;
+        let path = folder.path().join(name);
+        std::fs::write(&path, text)
+            .map_err(|e| format!("cannot copy the lesson {name} to {}: {e}", path.display()))?;
+        let mut host = Self::open_isolated(&path, isolation)?;
+        host.shipped = Some((name.to_owned(), folder));
+        Ok(host)
+    }
+
+    /// The lesson's name for the screen: its file's path, or `(built in)
+    /// NAME` for a shipped lesson.
+    pub fn name(&self) -> String {
+        match &self.shipped {
+            Some((name, _)) => format!("(built in) {name}"),
+            None => self.path.display().to_string(),
+        }
     }
 
     /// [`Self::load_isolated`] with a hook time limit other than
@@ -335,6 +376,7 @@ impl LessonHost {
             remote: None,
             isolation: None,
             pending: None,
+            shipped: None,
         })
     }
 
@@ -460,6 +502,35 @@ impl LessonHost {
     /// the window as headless; the game itself goes on).
     pub fn finished(&self) -> bool {
         self.finished
+    }
+
+    /// Whether the lesson finished with a closing message that waits for
+    /// an event's light (`finish(after_light_from=…)`) still on its way.
+    pub fn awaiting_light(&self) -> bool {
+        self.finished && self.with_ui(|ui| ui.finish_light.is_some())
+    }
+
+    /// Shows the closing message once the light of the event it waits for
+    /// has reached the eye looked through now (`game.eye()`: a scene
+    /// observer's or the free eye's worldline at the board time shown, so
+    /// a moving eye is caught wherever it flew). Call it after each step;
+    /// returns whether the message is shown now (or never waited).
+    pub fn watch_light(&mut self, game: &GameState) -> bool {
+        if !self.finished {
+            return false;
+        }
+        let eye = game.eye().event;
+        let c = game.scene.c;
+        Python::attach(|py| {
+            let mut w = self.world.borrow_mut(py);
+            if w.ui
+                .finish_light
+                .is_some_and(|sent| sent.light_has_reached(eye, c))
+            {
+                w.ui.finish_light = None;
+            }
+            w.ui.finish_light.is_none()
+        })
     }
 
     /// Calls `hook(world, *args)` if the lesson defines it, with the game

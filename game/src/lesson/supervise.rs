@@ -600,3 +600,24 @@ pub fn run(path: &Path, limits: Limits) -> Result<Outcome, String> {
         answers: partial.answers,
     })
 }
+
+/// How the window starts its lesson's process: this binary, with the
+/// address-space limit in `LIGHTCONE_MEMORY_LIMIT` (MiB, at least 256;
+/// default [`MEMORY_LIMIT_MB`]). Fails, saying why,
+/// when the binary cannot be found or the variable is not such a
+/// number.
+pub fn window_isolation() -> Result<super::isolation::Isolation, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot find lightcone itself: {e}"))?;
+    let memory_mb = match std::env::var("LIGHTCONE_MEMORY_LIMIT") {
+        Err(_) => MEMORY_LIMIT_MB,
+        Ok(text) => match text.trim().parse::<u64>() {
+            Ok(mb) if mb >= 256 => mb,
+            _ => {
+                return Err(format!(
+                    "LIGHTCONE_MEMORY_LIMIT={text:?}: give MiB, at least 256"
+                ));
+            }
+        },
+    };
+    Ok(super::isolation::Isolation { exe, memory_mb })
+}

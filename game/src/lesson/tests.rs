@@ -230,3 +230,98 @@ fn hooks_see_the_lent_game_and_a_world_outside_a_hook_says_so() {
             .any(|c| c.claim == "cushion" && c.ok)
     );
 }
+
+/// `finish(after_light_from=(t, x, y))`: the closing message waits until
+/// the event's light reaches the eye looked through, and the headless run
+/// ends then. Against the closed form: for an eye at rest at distance d,
+/// board time t + d / c; for an eye moving at constant velocity, the later
+/// root of |e₀ + v T − x| = c (T − t).
+#[test]
+fn a_finish_waits_until_the_light_of_its_event_reaches_the_eye() {
+    let _one = one_lesson_at_a_time();
+    // c = 1 m/s; the event at (0.5, 0.71) on the cloth at t = 0.1 s, the
+    // finish called at t ≥ 0.2 s. The eye at (2.5, 0.71, 1.5): 2.5 m away.
+    let (t0, x0, y0, c): (f64, f64, f64, f64) = (0.1, 0.5, 0.71, 1.0);
+    let (eye, fps): ([f64; 3], f64) = ([2.5, 0.71, 1.5], 100.0);
+    let write_lesson = |name: &str, beta_x: f64| {
+        let path = temp(name);
+        let text = format!(
+            "import lightcone\n\
+             def setup(world):\n\
+             \x20   s = lightcone.Scene(title='light', c={c})\n\
+             \x20   s.add_puck('a', ({x0}, {y0}))\n\
+             \x20   s.add_observer('eye', ({}, {}, {}), beta=({beta_x}, 0.0, 0.0))\n\
+             \x20   world.start(s)\n\
+             \x20   world.observer = 'eye'\n\
+             def on_frame(world, t):\n\
+             \x20   world.check('a hook before finish', not world.finished, str(t))\n\
+             \x20   if t >= 0.2:\n\
+             \x20       world.finish('seen', after_light_from=({t0}, {x0}, {y0}))\n",
+            eye[0], eye[1], eye[2]
+        );
+        write(&path, &text, 0);
+        path
+    };
+    let d = ((eye[0] - x0).powi(2) + (eye[1] - y0).powi(2) + eye[2].powi(2)).sqrt();
+    assert!((d - 2.5).abs() < 1e-12);
+    // A moving eye (β = 0.5 along x, from `eye` at t = 0): the later root
+    // of (T − t0)² c² = (e₀ₓ + v T − x0)² + (e₀ᵧ − y0)² + z².
+    let v = 0.5 * c;
+    let (a, b, k) = (
+        c * c - v * v,
+        -2.0 * (c * c * t0 + v * (eye[0] - x0)),
+        c * c * t0 * t0 - (eye[0] - x0).powi(2) - (eye[1] - y0).powi(2) - eye[2].powi(2),
+    );
+    let moving = (-b + (b * b - 4.0 * a * k).sqrt()) / (2.0 * a);
+    for (name, beta_x, arrival) in [("rest.py", 0.0, t0 + d / c), ("moving.py", 0.5, moving)] {
+        let path = write_lesson(name, beta_x);
+        let limit = std::time::Duration::from_secs(10);
+        let outcome = headless::run(&path, 60.0, fps, limit).unwrap();
+        assert!(outcome.passed(), "{name}: {outcome:?}");
+        assert_eq!(outcome.finished.as_deref(), Some("seen"), "{name}");
+        // Shown at the first frame on or after the arrival.
+        assert!(
+            outcome.t >= arrival - 1e-9 && outcome.t < arrival + 1.0 / fps + 1e-9,
+            "{name}: shown at {} s, the light arrives at {arrival} s",
+            outcome.t
+        );
+        // In the window's host: hooks stop at the finish, the message waits.
+        let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+        let mut shown_at = None;
+        while game.live_time < arrival + 1.0 {
+            let before = game.live_time;
+            game.step(1.0 / fps);
+            host.after_step(&mut game, before);
+            if host.watch_light(&game) && shown_at.is_none() {
+                shown_at = Some(game.live_time);
+            }
+            let closing = host.with_ui(|ui| ui.closing().map(str::to_owned));
+            assert_eq!(closing.is_some(), shown_at.is_some(), "{name}");
+            if game.live_time > 0.25 && shown_at.is_none() {
+                assert!(host.finished() && !host.running() && host.awaiting_light());
+            }
+        }
+        let shown_at = shown_at.expect("shown");
+        assert!(
+            (shown_at - arrival).abs() <= 1.0 / fps + 1e-9,
+            "{name}: {shown_at}"
+        );
+        // Exactly one hook before finish ran per frame up to 0.2 s.
+        let claims = host.with_ui(|ui| ui.claims.clone());
+        assert!(claims.iter().all(|c| c.ok), "{name}: {claims:?}");
+        assert!(claims.len() <= 21, "{name}: {} hooks ran", claims.len());
+    }
+    // Not a board event: refused.
+    let path = temp("bad_light.py");
+    let bad = lesson(
+        "bad",
+        "def on_frame(world, t):\n    world.finish('x', after_light_from=(float('nan'), 0, 0))\n",
+    );
+    write(&path, &bad, 0);
+    let outcome = headless::run(&path, 1.0, 30.0, std::time::Duration::from_secs(10)).unwrap();
+    let error = outcome.error.expect("an error");
+    assert!(
+        error.contains("ValueError") && error.contains("after_light_from"),
+        "{error}"
+    );
+}

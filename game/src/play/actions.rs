@@ -5,6 +5,7 @@
 use lightcone_engine::scene::Effect;
 use winit::keyboard::KeyCode;
 
+use super::scene_menu::Opened;
 use crate::model::{Framing, GameState, ViewMode};
 
 /// A drawing over the views that a key and a checkbox turn on and off.
@@ -68,6 +69,13 @@ pub enum UiAction {
     RestartWithC(f64),
     /// Open or close the scene menu.
     SceneMenu,
+    /// Open what the scene menu offers: a scene in place of the game (a
+    /// lesson that ran ends), or a lesson (the window starts it).
+    Open(super::scene_menu::Choice),
+    /// A scene opened from the menu replaced the game: the window ends
+    /// the lesson that ran, if one did (what [`UiAction::apply`] returns
+    /// for an [`UiAction::Open`] of a scene).
+    SceneOpened,
     /// The CAVE walls for the next eye (mono, left, right).
     CycleCaveEye,
     /// Load the lesson file again.
@@ -206,7 +214,17 @@ impl UiAction {
                     s.message = e;
                 }
             }
-            UiAction::CycleCaveEye | UiAction::ReloadLesson | UiAction::Answer(_) => {
+            UiAction::Open(choice) => {
+                return match super::scene_menu::open(s, choice) {
+                    Opened::Scene => Some(UiAction::SceneOpened),
+                    Opened::Lesson => Some(self),
+                    Opened::Nothing => None,
+                };
+            }
+            UiAction::CycleCaveEye
+            | UiAction::ReloadLesson
+            | UiAction::Answer(_)
+            | UiAction::SceneOpened => {
                 return Some(self);
             }
         }

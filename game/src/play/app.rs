@@ -128,8 +128,9 @@ impl App {
         let frame_log = frame_log.as_deref().map(FrameLog::create).transpose()?;
         Ok(Self {
             immersion: Immersion::new(tracker, cave, game.scene.table.size),
-            input: Input::new(lesson.is_some()),
-            lesson: HostedLesson::new(lesson),
+            // The desktop game starts lessons from the scene menu.
+            input: Input::new(true),
+            lesson: HostedLesson::new(lesson, crate::lesson::supervise::window_isolation()),
             state: game,
             pictures: None,
             screenshot,
@@ -358,7 +359,8 @@ impl App {
                 .status_line(self.cluster.as_ref().map(ClusterMaster::status_line)),
             tracker_colour: self.immersion.status_colour(),
             clocks: self.immersion.cave.is_none(),
-            lesson: self.lesson.host.is_some(),
+            lesson: self.lesson.host.as_ref().map(LessonHost::name),
+            lessons: true,
         };
         let node = self.immersion.node_head.is_some();
         let (state, lesson) = (&mut self.state, self.lesson.host.as_ref());
@@ -388,7 +390,7 @@ impl window::Game for App {
     fn title(&self) -> String {
         match (&self.lesson.host, &self.node) {
             (_, Some(role)) => format!("Lightcone render node: {}", role.node.name),
-            (Some(l), None) => format!("Lightcone lesson: {}", l.path().display()),
+            (Some(l), None) => format!("Lightcone lesson: {}", l.name()),
             (None, None) => format!("Lightcone: {}", self.state.scene.title),
         }
     }

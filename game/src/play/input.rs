@@ -8,14 +8,15 @@ use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, Window
 use winit::keyboard::{KeyCode, PhysicalKey};
 
 use super::actions::{self, UiAction};
+use super::scene_menu::MenuKey;
 use super::shown::project;
 use crate::model::{GameState, Pane};
 
 /// What the keyboard and mouse hold between events.
 #[derive(Default)]
 pub struct Input {
-    /// A lesson runs (its scene is not the menu's to change).
-    lesson: bool,
+    /// The window can start lessons (the scene menu lists them).
+    lessons: bool,
     /// Keys held down.
     keys: HashSet<KeyCode>,
     /// The cursor, physical px.
@@ -29,10 +30,11 @@ pub struct Input {
 }
 
 impl Input {
-    /// No key held, no drag; `lesson` when a lesson runs.
-    pub fn new(lesson: bool) -> Self {
+    /// No key held, no drag; `lessons` when the window can start lessons
+    /// (the desktop game).
+    pub fn new(lessons: bool) -> Self {
         Self {
-            lesson,
+            lessons,
             ..Self::default()
         }
     }
@@ -97,8 +99,12 @@ impl Input {
         };
         match event.state {
             ElementState::Pressed => {
-                if !event.repeat && !super::scene_menu::key(state, code, self.lesson) {
-                    actions.extend(actions::for_key(code));
+                if !event.repeat {
+                    match super::scene_menu::key(state, code, self.lessons) {
+                        MenuKey::NotMine => actions.extend(actions::for_key(code)),
+                        MenuKey::Taken => {}
+                        MenuKey::Open(choice) => actions.push(UiAction::Open(choice)),
+                    }
                 }
                 self.keys.insert(code);
             }

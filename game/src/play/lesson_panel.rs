@@ -137,9 +137,15 @@ fn contents(ui: &mut egui::Ui, lesson: &LessonUi, actions: &mut Vec<UiAction>) {
             }
         });
     }
-    if let Some(msg) = &lesson.finished {
+    if let Some(msg) = lesson.closing() {
         ui.separator();
         ui.colored_label(Color32::LIGHT_GREEN, format!("Lesson complete. {msg}"));
+    } else if lesson.finished.is_some() {
+        ui.separator();
+        ui.colored_label(
+            Color32::LIGHT_YELLOW,
+            "Watch the table: the light of what happened is still on its way to your eye.",
+        );
     }
 }
 

@@ -26,8 +26,11 @@ pub struct Hud {
     pub tracker_colour: egui::Color32,
     /// Draw the clocks over the desktop views (not over CAVE walls).
     pub clocks: bool,
-    /// A lesson runs (it owns c).
-    pub lesson: bool,
+    /// The lesson running, by name (it owns c).
+    pub lesson: Option<String>,
+    /// The window can start lessons (the desktop game: they need Python);
+    /// the scene menu lists them then.
+    pub lessons: bool,
 }
 
 /// The panels and the clocks drawn on the pucks, in a window of `size`
@@ -65,7 +68,13 @@ pub fn panels(
         let at = egui::pos2(left / ppp + 12.0, (size.1 as f32 / ppp - 500.0).max(8.0));
         super::diagram::window(&ctx, state, at, actions);
     }
-    super::scene_menu::window(&ctx, state, hud.lesson);
+    let menu = super::scene_menu::MenuContext {
+        lessons: hud.lessons,
+        running: hud.lesson.as_deref(),
+    };
+    if let Some(choice) = super::scene_menu::window(&ctx, state, menu) {
+        actions.push(UiAction::Open(choice));
+    }
     if state.intro {
         intro(state, &ctx, (left + right) / 2.0 / ppp, 12.0, actions);
     }
@@ -79,7 +88,12 @@ pub fn panels(
 fn controls(ui: &mut egui::Ui, s: &GameState, hud: &Hud, actions: &mut Vec<UiAction>) {
     ui.heading("Lightcone");
     ui.label(&s.scene.title);
-    if ui.small_button("other scenes… (M)").clicked() {
+    let menu = if hud.lessons {
+        "other scenes and lessons… (M)"
+    } else {
+        "other scenes… (M)"
+    };
+    if ui.small_button(menu).clicked() {
         actions.push(UiAction::SceneMenu);
     }
     ui.separator();
@@ -172,7 +186,7 @@ fn light_and_effects(ui: &mut egui::Ui, s: &GameState, hud: &Hud, actions: &mut 
     // decade at the panel's width); the number beside it takes any c the
     // scene rules accept when typed (10⁶ m/s: Newton). A drag applies when
     // it ends, a typed value when it is entered.
-    ui.add_enabled_ui(!hud.lesson, |ui| {
+    ui.add_enabled_ui(hud.lesson.is_none(), |ui| {
         ui.horizontal(|ui| {
             let slider = ui.add(
                 egui::Slider::new(&mut c, 0.2..=1.0e3)

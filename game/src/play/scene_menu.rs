@@ -1,17 +1,64 @@
 //! The scene menu (key M, or the panel's *scenes* button): pick any
-//! shipped scene (built into the binary, [`crate::assets::SCENES`]) or
-//! open a scene file by path, and start it afresh, paused on its title and
-//! description as `play` opens one. Keyboard: M opens and closes it, Up/Down
-//! choose, Enter starts the chosen scene, Tab reaches the path field
-//! (Enter there opens the file), Esc closes. While a lesson runs the
-//! lesson owns the scene, and the menu says so.
+//! shipped scene (built into the binary, [`crate::assets::SCENES`]) or,
+//! in the desktop game, any shipped lesson ([`crate::assets::LESSONS`]),
+//! or open a scene or lesson file by path. A scene starts afresh, paused
+//! on its title and description as `play` opens one; a lesson starts in
+//! its own process as `lightcone play LESSON.py` starts it (the window
+//! does that, `play::lesson_host`). Opening either while a lesson runs
+//! ends that lesson. Keyboard: M opens and closes it, Up/Down choose,
+//! Enter opens the chosen entry, Tab reaches the path field (Enter there
+//! opens the file), Esc closes.
 
 use std::path::Path;
 
 use lightcone_engine::scene::{self, Scene};
 use winit::keyboard::KeyCode;
 
+use crate::assets::{LESSONS, SCENES};
 use crate::model::GameState;
+
+/// What the scene menu opens.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Choice {
+    /// The shipped scene `i` ([`SCENES`]).
+    Scene(usize),
+    /// The shipped lesson `i` ([`LESSONS`]).
+    Lesson(usize),
+    /// The file whose path is typed in the menu's field: a scene, or a
+    /// lesson (`.py`).
+    Typed,
+}
+
+/// What [`open`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Opened {
+    /// Nothing: the menu says why (a bad file, a lesson in the browser).
+    Nothing,
+    /// A scene replaced the game.
+    Scene,
+    /// The choice is a lesson, checked: the window starts it.
+    Lesson,
+}
+
+/// What the window tells the menu.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MenuContext<'a> {
+    /// The window can start lessons (the desktop game: they need Python).
+    pub lessons: bool,
+    /// The lesson running now, by name, if one is.
+    pub running: Option<&'a str>,
+}
+
+/// What a key did to the open menu.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MenuKey {
+    /// Not the menu's key (or the menu is closed).
+    NotMine,
+    /// The menu's: it moved the choice or closed the menu.
+    Taken,
+    /// Enter: open this.
+    Open(Choice),
+}
 
 /// Starts `scene` in place of the current one: board time 0, paused on
 /// its title and description; the view, time scale and overlays the
@@ -30,108 +77,195 @@ pub fn switch(state: &mut GameState, scene: Scene) {
     *state = fresh;
 }
 
-/// Opens shipped scene `i`, or says why not.
-fn open_shipped(state: &mut GameState, i: usize) {
-    let Some((name, _)) = crate::assets::SCENES.get(i) else {
-        return;
-    };
-    match crate::assets::shipped_scene(name) {
-        Some(Ok(scene)) => switch(state, scene),
-        Some(Err(e)) => state.scene_menu.error = Some(e.to_string()),
-        None => {}
+/// Opens `choice`: a scene replaces the game here; a lesson is checked
+/// (a typed path must name a `.py` file) and left for the window to
+/// start. What cannot be opened is said in the menu.
+pub fn open(state: &mut GameState, choice: Choice) -> Opened {
+    match choice {
+        Choice::Scene(i) => open_shipped(state, i),
+        Choice::Lesson(i) if i < LESSONS.len() => Opened::Lesson,
+        Choice::Lesson(_) => Opened::Nothing,
+        Choice::Typed => {
+            let path = state.scene_menu.path.clone();
+            open_path(state, &path)
+        }
     }
 }
 
-/// Opens the scene file at `path`, or says why not (the scene's located
-/// errors, a lesson given instead of a scene).
-pub fn open_path(state: &mut GameState, path: &str) {
+/// Opens shipped scene `i`, or says why not.
+fn open_shipped(state: &mut GameState, i: usize) -> Opened {
+    let Some((name, _)) = SCENES.get(i) else {
+        return Opened::Nothing;
+    };
+    match crate::assets::shipped_scene(name) {
+        Some(Ok(scene)) => {
+            switch(state, scene);
+            Opened::Scene
+        }
+        Some(Err(e)) => {
+            state.scene_menu.error = Some(e.to_string());
+            Opened::Nothing
+        }
+        None => Opened::Nothing,
+    }
+}
+
+/// Opens the scene file at `path`, or checks the lesson file there (for
+/// the window to start), or says why not (the scene's located errors, a
+/// missing lesson, a lesson in the browser).
+pub fn open_path(state: &mut GameState, path: &str) -> Opened {
     let path = path.trim();
     if path.is_empty() {
-        state.scene_menu.error = Some("type the path of a scene file (.toml)".to_owned());
-        return;
+        state.scene_menu.error =
+            Some("type the path of a scene file (.toml) or a lesson (.py)".to_owned());
+        return Opened::Nothing;
     }
     if Path::new(path).extension().is_some_and(|e| e == "py") {
-        state.scene_menu.error = Some(format!(
-            "{path} is a lesson: open it with `lightcone play {path}`"
-        ));
-        return;
+        let why = if cfg!(target_arch = "wasm32") {
+            Some(format!(
+                "{path} is a lesson: lessons run in the desktop game (`lightcone play {path}`)"
+            ))
+        } else if !Path::new(path).is_file() {
+            Some(format!("{path}: no such lesson file"))
+        } else {
+            None
+        };
+        state.scene_menu.error = why;
+        return if state.scene_menu.error.is_some() {
+            Opened::Nothing
+        } else {
+            Opened::Lesson
+        };
     }
     match scene::load(Path::new(path)) {
-        Ok(scene) => switch(state, scene),
-        Err(e) => state.scene_menu.error = Some(e.to_string()),
+        Ok(scene) => {
+            switch(state, scene);
+            Opened::Scene
+        }
+        Err(e) => {
+            state.scene_menu.error = Some(e.to_string());
+            Opened::Nothing
+        }
     }
+}
+
+/// The menu's entries in order: every shipped scene, then (when the
+/// window can start them) every shipped lesson.
+fn entries(lessons: bool) -> impl Iterator<Item = Choice> {
+    let n = if lessons { LESSONS.len() } else { 0 };
+    (0..SCENES.len())
+        .map(Choice::Scene)
+        .chain((0..n).map(Choice::Lesson))
 }
 
 /// A key pressed in the window (not taken by a text field): while the menu
 /// is open ↑/↓/Enter/Esc act on it (M, which opens and closes it, is in
-/// the window's action table, `play::actions`). Returns whether the key
-/// was the menu's.
-pub fn key(state: &mut GameState, code: KeyCode, lesson: bool) -> bool {
+/// the window's action table, `play::actions`); `lessons` when the
+/// window can start lessons (they are listed then).
+pub fn key(state: &mut GameState, code: KeyCode, lessons: bool) -> MenuKey {
     let menu = &mut state.scene_menu;
     if !menu.open {
-        return false;
+        return MenuKey::NotMine;
     }
-    let n = crate::assets::SCENES.len();
+    let n = entries(lessons).count();
+    menu.selected %= n;
     match code {
         KeyCode::ArrowUp => menu.selected = (menu.selected + n - 1) % n,
         KeyCode::ArrowDown => menu.selected = (menu.selected + 1) % n,
         KeyCode::Escape => menu.open = false,
         KeyCode::Enter | KeyCode::NumpadEnter => {
-            if !lesson {
-                let i = menu.selected;
-                open_shipped(state, i);
+            if let Some(choice) = entries(lessons).nth(menu.selected) {
+                return MenuKey::Open(choice);
             }
         }
-        _ => return false,
+        _ => return MenuKey::NotMine,
     }
-    true
+    MenuKey::Taken
 }
 
-/// The menu's window, when open.
-pub fn window(ctx: &egui::Context, state: &mut GameState, lesson: bool) {
+/// The title line of a shipped scene's file (`title = "…"`), if it has one.
+fn scene_title(text: &str) -> &str {
+    text.lines()
+        .find_map(|l| l.strip_prefix("title = "))
+        .map_or("", |t| t.trim().trim_matches('"'))
+}
+
+/// The menu's window, when open. Returns what was clicked or entered.
+pub fn window(ctx: &egui::Context, state: &mut GameState, shown: MenuContext) -> Option<Choice> {
     if !state.scene_menu.open {
-        return;
+        return None;
     }
     let mut open = true;
     let mut chosen = None;
-    let mut path_entered = false;
-    egui::Window::new("scenes (M)")
+    let title = if shown.lessons {
+        "scenes and lessons (M)"
+    } else {
+        "scenes (M)"
+    };
+    egui::Window::new(title)
         .open(&mut open)
         .collapsible(false)
-        .default_width(360.0)
-        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 60.0))
+        .default_width(380.0)
+        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 40.0))
         .show(ctx, |ui| {
-            if lesson {
-                ui.label("A lesson runs: its scene is the lesson's. Reload (F5) restarts it.");
-                return;
+            if let Some(name) = shown.running {
+                ui.label(format!(
+                    "The lesson {name} runs: opening a scene or another lesson ends it."
+                ));
+                ui.separator();
             }
-            ui.small("Up/Down choose, Enter starts, Esc closes; or click");
+            ui.small("Up/Down choose, Enter opens, Esc closes; or click");
             let menu = &mut state.scene_menu;
-            for (i, (name, text)) in crate::assets::SCENES.iter().enumerate() {
-                // The title line of the file, if it has one.
-                let title = text
-                    .lines()
-                    .find_map(|l| l.strip_prefix("title = "))
-                    .map(|t| t.trim().trim_matches('"'))
-                    .unwrap_or("");
-                let label = format!("{name}  {title}");
-                let response = ui.selectable_label(menu.selected == i, label);
-                if response.clicked() {
-                    menu.selected = i;
-                    chosen = Some(i);
+            let list = egui::ScrollArea::vertical().max_height(400.0);
+            list.show(ui, |ui| {
+                // The keys' choice is scrolled into view when it moves.
+                let id = egui::Id::unique("lightcone scene menu selected");
+                let entry_moved = ui.data(|d| d.get_temp::<usize>(id)) != Some(menu.selected);
+                ui.data_mut(|d| d.insert_temp(id, menu.selected));
+                for (i, choice) in entries(shown.lessons).enumerate() {
+                    let label = match choice {
+                        Choice::Scene(k) => {
+                            if k == 0 {
+                                ui.label(egui::RichText::new("scenes").strong());
+                            }
+                            let (name, text) = SCENES[k];
+                            format!("{name}  {}", scene_title(text))
+                        }
+                        Choice::Lesson(k) => {
+                            if k == 0 {
+                                ui.label(egui::RichText::new("lessons").strong());
+                            }
+                            let (name, text) = LESSONS[k];
+                            format!("{name}  {}", crate::assets::lesson_title(text))
+                        }
+                        Choice::Typed => continue,
+                    };
+                    let entry = ui.selectable_label(menu.selected == i, label);
+                    if menu.selected == i && entry_moved {
+                        entry.scroll_to_me(None);
+                    }
+                    if entry.clicked() {
+                        menu.selected = i;
+                        chosen = Some(choice);
+                    }
                 }
-            }
+            });
             ui.separator();
             ui.horizontal(|ui| {
                 ui.label("file:");
+                let hint = if shown.lessons {
+                    "path/to/scene.toml or lesson.py"
+                } else {
+                    "path/to/scene.toml"
+                };
                 let field = ui.add(
                     egui::TextEdit::singleline(&mut menu.path)
-                        .hint_text("path/to/scene.toml")
-                        .desired_width(220.0),
+                        .hint_text(hint)
+                        .desired_width(240.0),
                 );
                 let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                 if ui.button("open").clicked() || enter {
-                    path_entered = true;
+                    chosen = Some(Choice::Typed);
                 }
             });
             if let Some(e) = &menu.error {
@@ -141,18 +275,23 @@ pub fn window(ctx: &egui::Context, state: &mut GameState, lesson: bool) {
     if !open {
         state.scene_menu.open = false;
     }
-    if let Some(i) = chosen {
-        open_shipped(state, i);
-    } else if path_entered {
-        let path = state.scene_menu.path.clone();
-        open_path(state, &path);
-    }
+    chosen
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::play::actions::UiAction;
+
+    /// Presses `code` as the window does: the menu's key first, an entry
+    /// it opens carried out through the action table.
+    fn press(state: &mut GameState, code: KeyCode, lessons: bool) -> Option<UiAction> {
+        match key(state, code, lessons) {
+            MenuKey::NotMine => panic!("{code:?} is the menu's while it is open"),
+            MenuKey::Taken => None,
+            MenuKey::Open(choice) => UiAction::Open(choice).apply(state),
+        }
+    }
 
     #[test]
     fn keys_choose_and_start_a_shipped_scene_keeping_the_players_view() {
@@ -161,42 +300,81 @@ mod tests {
         state.live_time = 3.0;
         UiAction::SceneMenu.apply(&mut state);
         assert!(state.scene_menu.open);
-        let target = crate::assets::SCENES
+        let target = SCENES
             .iter()
             .position(|(n, _)| *n == "parallel_tracks.toml")
             .unwrap();
         while state.scene_menu.selected != target {
-            assert!(key(&mut state, KeyCode::ArrowDown, false));
+            assert_eq!(press(&mut state, KeyCode::ArrowDown, false), None);
         }
-        assert!(key(&mut state, KeyCode::Enter, false));
+        // The window is told, so that a lesson that ran ends.
+        let told = press(&mut state, KeyCode::Enter, false);
+        assert_eq!(told, Some(UiAction::SceneOpened));
         assert_eq!(state.scene.pucks.len(), 5, "parallel_tracks has five pucks");
         assert_eq!(state.live_time, 0.0);
         assert!(state.paused && state.intro && !state.scene_menu.open);
         assert_eq!(state.view, crate::model::ViewMode::Split);
         // Closed, the arrows are the camera's again.
-        assert!(!key(&mut state, KeyCode::ArrowDown, false));
-        // While a lesson runs, Enter starts nothing.
+        assert_eq!(key(&mut state, KeyCode::ArrowDown, false), MenuKey::NotMine);
+    }
+
+    #[test]
+    fn the_menu_lists_the_shipped_lessons_after_the_scenes_and_enter_opens_one() {
+        let mut state = GameState::new(crate::assets::default_scene().unwrap());
+        let title = state.scene.title.clone();
         UiAction::SceneMenu.apply(&mut state);
-        key(&mut state, KeyCode::ArrowUp, true);
-        key(&mut state, KeyCode::Enter, true);
-        assert_eq!(state.scene.pucks.len(), 5);
+        // Up from the first entry wraps to the last: the last lesson.
+        let last = Choice::Lesson(LESSONS.len() - 1);
+        assert_eq!(press(&mut state, KeyCode::ArrowUp, true), None);
+        assert_eq!(key(&mut state, KeyCode::Enter, true), MenuKey::Open(last));
+        // Carried out, it is the window's to start; the scene is untouched.
+        let told = UiAction::Open(last).apply(&mut state);
+        assert_eq!(told, Some(UiAction::Open(last)));
+        assert_eq!(state.scene.title, title);
+        // Every lesson is an entry, with its title; without lessons (the
+        // browser) the list wraps among the scenes only.
+        let all: Vec<Choice> = entries(true).collect();
+        assert_eq!(all.len(), SCENES.len() + LESSONS.len());
+        for (i, (name, text)) in LESSONS.iter().enumerate() {
+            assert_eq!(all[SCENES.len() + i], Choice::Lesson(i));
+            assert!(
+                !crate::assets::lesson_title(text).is_empty(),
+                "{name} has no title line"
+            );
+        }
+        state.scene_menu.selected = 0;
+        press(&mut state, KeyCode::ArrowUp, false);
+        assert_eq!(state.scene_menu.selected, SCENES.len() - 1);
     }
 
     #[test]
     fn a_bad_path_is_reported_in_the_menu_and_the_game_goes_on() {
         let mut state = GameState::new(crate::assets::default_scene().unwrap());
         let title = state.scene.title.clone();
-        open_path(&mut state, "no/such/scene.toml");
+        assert_eq!(open_path(&mut state, "no/such/scene.toml"), Opened::Nothing);
         let e = state.scene_menu.error.clone().unwrap();
         assert!(
             e.contains("no/such/scene.toml") && e.contains("cannot read"),
             "{e}"
         );
-        open_path(&mut state, "scripts/lessons/gas.py");
-        assert!(state.scene_menu.error.as_ref().unwrap().contains("lesson"));
+        assert_eq!(open_path(&mut state, "no/such/lesson.py"), Opened::Nothing);
+        let e = state.scene_menu.error.clone().unwrap();
+        assert!(e.contains("no such lesson file"), "{e}");
         assert_eq!(state.scene.title, title);
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes");
-        open_path(&mut state, dir.join("ten_pucks.toml").to_str().unwrap());
+        // A lesson that is there is the window's to start.
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let lesson = root.join("scripts/lessons/gas.py");
+        assert_eq!(
+            open_path(&mut state, lesson.to_str().unwrap()),
+            Opened::Lesson
+        );
+        assert!(state.scene_menu.error.is_none());
+        assert_eq!(state.scene.title, title);
+        let scene = root.join("assets/scenes/ten_pucks.toml");
+        assert_eq!(
+            open_path(&mut state, scene.to_str().unwrap()),
+            Opened::Scene
+        );
         assert_eq!(state.scene.pucks.len(), 10);
         assert!(state.scene_menu.error.is_none());
     }

@@ -109,7 +109,8 @@ impl WebApp {
             tracker: None,
             tracker_colour: egui::Color32::GRAY,
             clocks: true,
-            lesson: false,
+            lesson: None,
+            lessons: false,
         };
         let state = &mut self.state;
         let ui = gfx.run_ui(|ui| {

@@ -294,8 +294,10 @@ class World:
         counts: Sequence[float],
         expected: Optional[Sequence[float]] = None,
     ) -> None: ...
-    def finish(self, message: str = "") -> None:
-        """Ends the lesson: the message is shown and no hook runs again."""
+    def finish(self, message: str = "", after_light_from: Optional[_Vector] = None) -> None:
+        """Ends the lesson: no hook runs again, and the message is shown at once, or, with
+        `after_light_from = (t, x, y)` (a board event: s, m, m), once that event's light has
+        reached the eye looked through (at rest at distance d: at board time t + d / c)."""
     @property
     def finished(self) -> bool:
         """Whether `finish` was called."""
