@@ -154,8 +154,12 @@ mod tests {
             files, built_in,
             "assets.rs LESSONS must list scripts/lessons, sorted"
         );
+        let approach = super::LESSONS
+            .iter()
+            .find(|(n, _)| *n == "approach_recede.py")
+            .unwrap();
         assert_eq!(
-            super::lesson_title(super::LESSONS[0].1),
+            super::lesson_title(approach.1),
             "Apparent acceleration and deceleration (the paper's §4.3)"
         );
         assert_eq!(super::lesson_title("x = 1\n"), "");
