@@ -52,7 +52,10 @@ pub const SCENES: &[(&str, &str)] = &[
 /// folder and runs it as `lightcone play LESSON.py` would). A test checks
 /// that the list matches the folder.
 pub const LESSONS: &[(&str, &str)] = &[
-    ("aberration.py", include_str!("../../scripts/lessons/aberration.py")),
+    (
+        "aberration.py",
+        include_str!("../../scripts/lessons/aberration.py"),
+    ),
     (
         "approach_recede.py",
         include_str!("../../scripts/lessons/approach_recede.py"),
