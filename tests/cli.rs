@@ -779,18 +779,19 @@ fn ctrl_c_stops_a_long_lesson_promptly_with_exit_130() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Ctrl-C during `simulate` of a dense gas braking on the cloth with
-/// restitution 0 (420 pucks, one step of the event loop about 2 s here,
-/// longer on a loaded machine; a braking cluster can keep one step busy
-/// for far longer) ends it within 2 s with exit 130, keeping the records
-/// already written, each a whole JSON line.
+/// Ctrl-C during `simulate` of a dense gas braking on a slippery cloth
+/// (μ = 0.01, so it runs for many seconds) with restitution 0 (420 pucks;
+/// a braking cluster can keep one step of the event loop busy for long)
+/// ends it within 2 s with exit 130, keeping the records already written,
+/// each a whole JSON line.
 #[test]
 fn ctrl_c_stops_a_long_braking_run_within_2_s() {
     use std::fmt::Write as _;
     use std::process::{Command, Stdio};
     let dir = temp_dir("sigint-braking");
     let mut scene = String::from(
-        "title = \"dense braking gas\"\n[table]\nsize = [2.84, 1.42]\n[physics]\nrestitution = 0.0\n",
+        "title = \"dense braking gas\"\n[table]\nsize = [2.84, 1.42]\nfriction = 0.01\n\
+         [physics]\nrestitution = 0.0\n",
     );
     let mut k = 0u32;
     for i in 0..30u32 {
@@ -810,7 +811,7 @@ fn ctrl_c_stops_a_long_braking_run_within_2_s() {
     let path = dir.join("gas.toml");
     std::fs::write(&path, scene).unwrap();
     let out_path = dir.join("gas.jsonl");
-    let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
         .args([
             "simulate",
             &path.to_string_lossy(),
@@ -824,6 +825,10 @@ fn ctrl_c_stops_a_long_braking_run_within_2_s() {
         .spawn()
         .unwrap();
     std::thread::sleep(std::time::Duration::from_millis(1500));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "the run ended before Ctrl-C: the test's scene is too short"
+    );
     let sent = std::time::Instant::now();
     let kill = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
