@@ -15,6 +15,8 @@
 //! * [`observe`]: what an observer sees, as the report `lightcone observe`
 //!   prints and Python's `observe` returns.
 
+#![warn(missing_docs)]
+
 pub mod camera;
 pub mod diagram;
 pub mod frame;
