@@ -742,6 +742,25 @@ fn floods_of_errors_are_capped_and_big_scenes_check_fast() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Sends `child` Ctrl-C (SIGINT) `ms` milliseconds after it started
+/// (it must still be running then) and waits for it: its output and the
+/// seconds it took to end after the signal.
+fn ctrl_c_after(mut child: std::process::Child, ms: u64) -> (std::process::Output, f64) {
+    std::thread::sleep(std::time::Duration::from_millis(ms));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "it ended before Ctrl-C: the test's run is too short"
+    );
+    let sent = std::time::Instant::now();
+    let kill = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    (out, sent.elapsed().as_secs_f64())
+}
+
 #[test]
 fn ctrl_c_stops_a_long_lesson_promptly_with_exit_130() {
     use std::process::{Command, Stdio};
@@ -761,15 +780,7 @@ fn ctrl_c_stops_a_long_lesson_promptly_with_exit_130() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(2500));
-    let sent = std::time::Instant::now();
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let out = child.wait_with_output().unwrap();
-    let took = sent.elapsed().as_secs_f64();
+    let (out, took) = ctrl_c_after(child, 2500);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{stderr}");
     assert!(took < 2.0, "stopped {took} s after Ctrl-C");
@@ -811,7 +822,7 @@ fn ctrl_c_stops_a_long_braking_run_within_2_s() {
     let path = dir.join("gas.toml");
     std::fs::write(&path, scene).unwrap();
     let out_path = dir.join("gas.jsonl");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
+    let child = Command::new(env!("CARGO_BIN_EXE_lightcone"))
         .args([
             "simulate",
             &path.to_string_lossy(),
@@ -824,19 +835,7 @@ fn ctrl_c_stops_a_long_braking_run_within_2_s() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    assert!(
-        child.try_wait().unwrap().is_none(),
-        "the run ended before Ctrl-C: the test's scene is too short"
-    );
-    let sent = std::time::Instant::now();
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let out = child.wait_with_output().unwrap();
-    let took = sent.elapsed().as_secs_f64();
+    let (out, took) = ctrl_c_after(child, 1500);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{stderr}");
     assert!(took < 2.0, "stopped {took} s after Ctrl-C: {stderr}");

@@ -104,15 +104,7 @@ pub fn layout(state: &GameState, rects: &[([f32; 4], Pane)], ppp: f32) -> Option
         })
         .filter(|(_, g, _)| *g >= MIN_GAMMA)
         .collect();
-    let rank = |i: usize, g: f64| {
-        if state.cue.is_some_and(|cue| cue.puck == i) {
-            f64::INFINITY
-        } else if state.follow == Some(i) {
-            f64::MAX
-        } else {
-            g
-        }
-    };
+    let rank = |i: usize, g: f64| super::overlay::attention(state, i, || g);
     let &(puck, gamma, body) = seen.iter().max_by(|a, b| {
         rank(a.0, a.1)
             .total_cmp(&rank(b.0, b.1))
@@ -149,10 +141,9 @@ pub fn layout(state: &GameState, rects: &[([f32; 4], Pane)], ppp: f32) -> Option
         .collect();
     let hull = convex_hull(&flat);
     let extent = |f: fn(DVec2) -> f64| {
-        let (lo, hi) = hull.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &p| {
+        hull.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &p| {
             (lo.min(f(p)), hi.max(f(p)))
-        });
-        (lo, hi)
+        })
     };
     let (x_lo, x_hi) = extent(|p| p.x);
     let (y_lo, y_hi) = extent(|p| p.y);

@@ -74,20 +74,29 @@ fn label_priority(state: &GameState, markers: &[Marker]) -> Vec<f64> {
     markers
         .iter()
         .map(|m| {
-            if state.cue.is_some_and(|c| c.puck == m.puck) {
-                f64::INFINITY
-            } else if state.follow == Some(m.puck) {
-                f64::MAX
-            } else {
+            attention(state, m.puck, || {
                 let u = state
                     .physics()
                     .worldline(m.puck)
                     .state_at(state.view_time)
                     .u;
                 u.0.length()
-            }
+            })
         })
         .collect()
+}
+
+/// How much puck `puck` matters to the player, larger first: the aimed
+/// puck, then the followed one, then `otherwise()` (its speed, in a unit
+/// the caller chooses). Labels and the magnifier rank pucks by it.
+pub fn attention(state: &GameState, puck: usize, otherwise: impl FnOnce() -> f64) -> f64 {
+    if state.cue.is_some_and(|c| c.puck == puck) {
+        f64::INFINITY
+    } else if state.follow == Some(puck) {
+        f64::MAX
+    } else {
+        otherwise()
+    }
 }
 
 /// The caption of a picture: what it shows, and through whose eye when
