@@ -244,6 +244,19 @@ fn moving_first_observer(scene: &Scene) -> Option<usize> {
 }
 
 impl GameState {
+    /// How much puck `puck` matters to the player, larger first: the aimed
+    /// puck, then the followed one, then `otherwise()` (its speed, in a unit
+    /// the caller chooses). Labels and the magnifier rank pucks by it.
+    pub fn attention(&self, puck: usize, otherwise: impl FnOnce() -> f64) -> f64 {
+        if self.cue.is_some_and(|c| c.puck == puck) {
+            f64::INFINITY
+        } else if self.follow == Some(puck) {
+            f64::MAX
+        } else {
+            otherwise()
+        }
+    }
+
     /// A game on `scene`, starting at board time 0 looking through its first
     /// observer's eye (which the player may then fly).
     pub fn new(scene: Scene) -> Self {

@@ -104,7 +104,7 @@ pub fn layout(state: &GameState, rects: &[([f32; 4], Pane)], ppp: f32) -> Option
         })
         .filter(|(_, g, _)| *g >= MIN_GAMMA)
         .collect();
-    let rank = |i: usize, g: f64| super::overlay::attention(state, i, || g);
+    let rank = |i: usize, g: f64| state.attention(i, || g);
     let &(puck, gamma, body) = seen.iter().max_by(|a, b| {
         rank(a.0, a.1)
             .total_cmp(&rank(b.0, b.1))

@@ -74,7 +74,7 @@ fn label_priority(state: &GameState, markers: &[Marker]) -> Vec<f64> {
     markers
         .iter()
         .map(|m| {
-            attention(state, m.puck, || {
+            state.attention(m.puck, || {
                 let u = state
                     .physics()
                     .worldline(m.puck)
@@ -84,19 +84,6 @@ fn label_priority(state: &GameState, markers: &[Marker]) -> Vec<f64> {
             })
         })
         .collect()
-}
-
-/// How much puck `puck` matters to the player, larger first: the aimed
-/// puck, then the followed one, then `otherwise()` (its speed, in a unit
-/// the caller chooses). Labels and the magnifier rank pucks by it.
-pub fn attention(state: &GameState, puck: usize, otherwise: impl FnOnce() -> f64) -> f64 {
-    if state.cue.is_some_and(|c| c.puck == puck) {
-        f64::INFINITY
-    } else if state.follow == Some(puck) {
-        f64::MAX
-    } else {
-        otherwise()
-    }
 }
 
 /// The caption of a picture: what it shows, and through whose eye when
