@@ -3,6 +3,7 @@
 mod common;
 
 use common::{cloth_pixels, lightcone, play_under_xvfb, repo};
+use lightcone_render::headless::Image;
 
 fn shipped_scenes() -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(repo().join("assets/scenes"))
@@ -1055,5 +1056,65 @@ fn record_writes_a_gif_a_png_sequence_or_says_ffmpeg_is_missing() {
         stderr.contains("bad.toml:3:8") && stderr.contains("mass"),
         "{stderr}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Near-white, unsaturated pixels: the overlays' label text, rings'
+/// ticks and dials (the table is green, the room dark).
+fn label_pixels(img: &Image) -> usize {
+    img.rgba
+        .chunks(4)
+        .filter(|p| {
+            let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
+            lo > 190 && hi - lo < 25
+        })
+        .count()
+}
+
+/// `render` draws the window's overlays (names, clocks, dials, the
+/// magnifier's caption) unless told not to, takes `play`'s look flags,
+/// and renders a lesson at a board time.
+#[test]
+fn render_draws_the_windows_overlays_and_takes_plays_flags() {
+    let dir = temp_dir("render-overlays");
+    let shot = |args: &[&str], name: &str| {
+        let png = dir.join(name);
+        let png_arg = png.to_str().unwrap().to_owned();
+        let mut all = vec!["render"];
+        all.extend(args);
+        all.extend(["--size", "640x360", "-o", &png_arg]);
+        let out = lightcone(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{all:?}: {stderr}");
+        Image::load_png(&png).unwrap()
+    };
+    let scene = "assets/scenes/paper_carom.toml";
+    let with = shot(&[scene, "--at", "1.5"], "with.png");
+    let bare = shot(&[scene, "--at", "1.5", "--no-overlays"], "bare.png");
+    let (w, b) = (label_pixels(&with), label_pixels(&bare));
+    assert!(
+        w > b + 150,
+        "overlays add label pixels: {w} against {b} bare"
+    );
+    let top = shot(&[scene, "--at", "1.5", "--top", "--no-overlays"], "top.png");
+    assert_ne!(top.rgba, bare.rgba, "--top moves the camera");
+    let lesson = shot(
+        &["scripts/lessons/contraction.py", "--at", "1"],
+        "lesson.png",
+    );
+    // The magnifier sits in the top-right corner with its caption.
+    let corner = (0..120u32)
+        .flat_map(|y| (480..640u32).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let p = lesson.pixel(x, y);
+            p[0] > 200 && p[1] > 150 && p[2] < 80
+        })
+        .count();
+    assert!(corner > 300, "the magnified yellow puck: {corner} px");
+    let out = lightcone(&[
+        "render", scene, "--at", "1", "--views", "nosuch", "-o", "x.png",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("nosuch"));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -45,22 +45,8 @@ enum Command {
         /// scene only.
         #[arg(long)]
         at: Option<f64>,
-        /// Open on this view.
-        #[arg(long, value_enum)]
-        view: Option<PlayView>,
-        /// Show several pictures side by side, each its own view: a
-        /// comma-separated list of `seen`, `truth` (through the eye looked
-        /// through), `you` or an observer's name (what that eye sees), or
-        /// `EYE:seen` / `EYE:truth`. E.g. `seen,truth` or `you,observer`.
-        #[arg(long, conflicts_with = "view")]
-        views: Option<String>,
-        /// Open with the camera straight above the table.
-        #[arg(long)]
-        top: bool,
-        /// Effects shown: `scene` (default), `all`, `none`, or a
-        /// comma-separated list, as for `observe`.
-        #[arg(long)]
-        effects: Option<String>,
+        #[command(flatten)]
+        looks: LookArgs,
         /// Open with the live space-time diagram shown.
         #[arg(long)]
         diagram: bool,
@@ -172,14 +158,17 @@ enum Command {
         #[arg(long, default_value = "scene", value_parser = args::effects)]
         effects: String,
     },
-    /// Render what an observer sees to a PNG, headless.
+    /// Render what an observer sees to a PNG, headless: the window's
+    /// pictures with its overlays (rings, names, clocks, trails, arrows,
+    /// arcs, captions, the magnifier), without its panels.
     Render {
-        /// Scene file (TOML).
+        /// Scene file (TOML), or a lesson (.py: run to --at, its questions
+        /// answered with its own answers).
         scene: PathBuf,
-        /// Board time, s (−1e9 to 1e9).
+        /// Board time, s (−1e9 to 1e9; a lesson from 0).
         #[arg(long, allow_negative_numbers = true, value_parser = args::time)]
         at: f64,
-        /// Observer name (default: the scene's first).
+        /// Observer looked through, by name (default: the scene's first).
         #[arg(long)]
         observer: Option<String>,
         /// Output PNG (a .png file).
@@ -188,9 +177,11 @@ enum Command {
         /// Image size, WIDTHxHEIGHT (each 1 to 16384).
         #[arg(long, default_value = "1280x720", value_parser = args::size)]
         size: String,
-        /// `seen` (the scene's effects) or `truth` (board-simultaneous).
-        #[arg(long, value_enum, default_value = "seen")]
-        view: ViewArg,
+        #[command(flatten)]
+        looks: LookArgs,
+        /// The bare pictures: no rings, names, clocks, trails or captions.
+        #[arg(long)]
+        no_overlays: bool,
     },
     /// Draw the space-time diagram at board time T to a PNG: worldlines
     /// (board x across, time up), the eye's past light cone along each
@@ -222,7 +213,8 @@ enum Command {
     /// Record what an observer sees from board time 0 to T, headless, as
     /// an animated GIF, an MP4 (through ffmpeg) or a directory of PNGs.
     Record {
-        /// Scene file (TOML).
+        /// Scene file (TOML), or a lesson (.py: its hooks run and its
+        /// questions are answered with its own answers).
         scene: PathBuf,
         /// Last board time, s (0 to 1e9).
         #[arg(long, allow_negative_numbers = true, value_parser = args::time_from_zero)]
@@ -230,7 +222,7 @@ enum Command {
         /// Frames per second of board time (1 to 120).
         #[arg(long, default_value_t = 25.0, allow_negative_numbers = true, value_parser = commands::record::fps)]
         fps: f64,
-        /// Observer name (default: the scene's first).
+        /// Observer looked through, by name (default: the scene's first).
         #[arg(long)]
         observer: Option<String>,
         /// `out.gif`, `out.mp4` (needs ffmpeg), or `DIR/` for
@@ -240,9 +232,11 @@ enum Command {
         /// Frame size, WIDTHxHEIGHT (each 1 to 16384).
         #[arg(long, default_value = "640x360", value_parser = args::size)]
         size: String,
-        /// `seen` (the scene's effects) or `truth` (board-simultaneous).
-        #[arg(long, value_enum, default_value = "seen")]
-        view: ViewArg,
+        #[command(flatten)]
+        looks: LookArgs,
+        /// The bare pictures: no rings, names, clocks, trails or captions.
+        #[arg(long)]
+        no_overlays: bool,
     },
     /// Run a Python lesson headless: its hooks, questions answered with
     /// the lesson's answer, and its claims checked. Fails if the lesson
@@ -296,12 +290,44 @@ enum Command {
     },
 }
 
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum ViewArg {
-    /// What the observer sees.
-    Seen,
-    /// The board-frame truth.
-    Truth,
+/// How the pictures look: `play`, `render` and `record` take the same
+/// flags.
+#[derive(clap::Args)]
+struct LookArgs {
+    /// The view: `seen` (default: what the eye sees, the scene's
+    /// effects), `truth` (board-simultaneous) or `split` (both).
+    #[arg(long, value_enum)]
+    view: Option<PlayView>,
+    /// Show several pictures side by side, each its own view: a
+    /// comma-separated list of `seen`, `truth` (through the eye looked
+    /// through), `you` or an observer's name (what that eye sees), or
+    /// `EYE:seen` / `EYE:truth`. E.g. `seen,truth` or `you,observer`.
+    #[arg(long, conflicts_with = "view")]
+    views: Option<String>,
+    /// The camera straight above the table.
+    #[arg(long)]
+    top: bool,
+    /// Effects shown: `scene` (default), `all`, `none`, or a
+    /// comma-separated list, as for `observe`.
+    #[arg(long)]
+    effects: Option<String>,
+}
+
+impl LookArgs {
+    /// The looks, looking through scene observer `observer` (by name).
+    fn looks(self, observer: Option<String>) -> commands::looks::Looks {
+        commands::looks::Looks {
+            view: self.view.map(|v| match v {
+                PlayView::Seen => lightcone::model::ViewMode::Seen,
+                PlayView::Truth => lightcone::model::ViewMode::Truth,
+                PlayView::Split => lightcone::model::ViewMode::Split,
+            }),
+            views: self.views,
+            effects: self.effects,
+            top: self.top,
+            observer,
+        }
+    }
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -366,14 +392,16 @@ fn main() -> ExitCode {
             observer,
             out,
             size,
-            view,
-        }) => {
-            let kind = match view {
-                ViewArg::Seen => lightcone_render::frame::ViewKind::Seen,
-                ViewArg::Truth => lightcone_render::frame::ViewKind::Truth,
-            };
-            commands::render::run(&scene, at, observer.as_deref(), &out, &size, kind)
-        }
+            looks,
+            no_overlays,
+        }) => commands::render::run(commands::render::Request {
+            path: &scene,
+            at,
+            out: &out,
+            size: &size,
+            looks: looks.looks(observer),
+            overlays: overlays(no_overlays),
+        }),
         Some(Command::Diagram {
             scene,
             at,
@@ -401,17 +429,15 @@ fn main() -> ExitCode {
             observer,
             out,
             size,
-            view,
+            looks,
+            no_overlays,
         }) => commands::record::run(commands::record::Request {
             scene: &scene,
             until,
             fps,
             size: &size,
-            observer: observer.as_deref(),
-            view: match view {
-                ViewArg::Seen => lightcone_render::frame::ViewKind::Seen,
-                ViewArg::Truth => lightcone_render::frame::ViewKind::Truth,
-            },
+            looks: looks.looks(observer),
+            overlays: overlays(no_overlays),
             out,
         }),
         Some(Command::Lesson {
@@ -450,10 +476,7 @@ fn main() -> ExitCode {
             tracker,
             cave,
             at,
-            view,
-            views,
-            top,
-            effects,
+            looks,
             diagram,
             diagram_frame,
             serve,
@@ -466,14 +489,7 @@ fn main() -> ExitCode {
                 tracker,
                 cave,
                 at,
-                view: view.map(|v| match v {
-                    PlayView::Seen => lightcone::model::ViewMode::Seen,
-                    PlayView::Truth => lightcone::model::ViewMode::Truth,
-                    PlayView::Split => lightcone::model::ViewMode::Split,
-                }),
-                views,
-                top,
-                effects,
+                looks: looks.looks(None),
                 diagram,
                 diagram_frame,
                 serve,
@@ -500,5 +516,14 @@ fn main() -> ExitCode {
             scale,
         ),
         None => commands::play::run(None, commands::play::Extras::default()),
+    }
+}
+
+/// `--no-overlays` as a slide's overlays.
+fn overlays(none: bool) -> lightcone::play::slide::Overlays {
+    if none {
+        lightcone::play::slide::Overlays::Hidden
+    } else {
+        lightcone::play::slide::Overlays::Shown
     }
 }

@@ -338,6 +338,22 @@ impl GameState {
         }
     }
 
+    /// Goes to board time `t` (s) and pauses there, live: the physics is
+    /// run to `t`, and the intro put away. A time before the scene began
+    /// (`t` < 0) is shown as a replay of the live edge at 0: what the eye
+    /// saw of the pucks before the start (`before_start`).
+    pub fn show_at(&mut self, t: f64) {
+        if !t.is_finite() {
+            return;
+        }
+        let live = t.max(self.live_time).max(0.0);
+        self.physics_mut().advance_to(live);
+        self.live_time = live;
+        self.view_time = t.min(live);
+        self.paused = true;
+        self.intro = false;
+    }
+
     /// Shows board time `t` (clamped to [0, live time]) and pauses.
     pub fn replay_to(&mut self, t: f64) {
         if t.is_finite() {

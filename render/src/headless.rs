@@ -11,7 +11,7 @@ use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::Scene;
 
 /// The colour format of headless images (sRGB, 8 bits per channel).
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// The background: a dark room.
 pub const BACKGROUND: wgpu::Color = wgpu::Color {
     r: 0.01,
@@ -87,20 +87,19 @@ impl Image {
     }
 }
 
-/// An offscreen target with its renderer and readback buffer, reused
-/// from frame to frame.
-pub struct Offscreen {
+/// A texture to draw into and the buffer it is read back through, reused
+/// from frame to frame: what any windowless picture is drawn onto.
+pub struct Target {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
-    renderer: Renderer,
     readback: wgpu::Buffer,
     padded: u32,
     width: u32,
     height: u32,
 }
 
-impl Offscreen {
-    /// A `width × height` target on `gpu`.
+impl Target {
+    /// A `width × height` target of [`FORMAT`] on `gpu`.
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
         let device = &gpu.device;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
@@ -129,7 +128,6 @@ impl Offscreen {
         Self {
             texture,
             view,
-            renderer: Renderer::new(device, FORMAT, width, height),
             readback,
             padded,
             width,
@@ -137,43 +135,20 @@ impl Offscreen {
         }
     }
 
-    /// Draws `vertices` with `camera` and reads the image back.
-    pub fn draw(
-        &mut self,
-        gpu: &Gpu,
-        vertices: &[FrameVertex],
-        camera: &Camera,
-    ) -> Result<Image, String> {
-        let view_proj = camera.view_proj(self.width as f32 / self.height as f32);
-        self.draw_with(gpu, vertices, view_proj)
+    /// The view to draw into.
+    pub fn view(&self) -> &wgpu::TextureView {
+        &self.view
     }
 
-    /// Draws `vertices` (eye-relative, observer's frame) with any
-    /// view-projection matrix, such as a CAVE wall's off-axis one, and reads
-    /// the image back.
-    pub fn draw_with(
-        &mut self,
-        gpu: &Gpu,
-        vertices: &[FrameVertex],
-        view_proj: glam::Mat4,
-    ) -> Result<Image, String> {
-        let device = &gpu.device;
+    /// Its size, (width, height) px.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Copies the texture out (after what `encoder` holds) and reads the
+    /// image back, waiting for the GPU.
+    pub fn read(&self, gpu: &Gpu, mut encoder: wgpu::CommandEncoder) -> Result<Image, String> {
         let (width, height, padded) = (self.width, self.height, self.padded);
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("headless frame"),
-        });
-        self.renderer.render(
-            device,
-            &gpu.queue,
-            &mut encoder,
-            &self.view,
-            super::pipeline::Draw {
-                vertices,
-                view_proj,
-                clear: Some(BACKGROUND),
-                viewport: None,
-            },
-        );
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture: &self.texture,
@@ -202,6 +177,62 @@ impl Offscreen {
             height,
             rgba,
         })
+    }
+}
+
+/// An offscreen target with its renderer, reused from frame to frame.
+pub struct Offscreen {
+    target: Target,
+    renderer: Renderer,
+}
+
+impl Offscreen {
+    /// A `width × height` target on `gpu`.
+    pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
+        Self {
+            target: Target::new(gpu, width, height),
+            renderer: Renderer::new(&gpu.device, FORMAT, width, height),
+        }
+    }
+
+    /// Draws `vertices` with `camera` and reads the image back.
+    pub fn draw(
+        &mut self,
+        gpu: &Gpu,
+        vertices: &[FrameVertex],
+        camera: &Camera,
+    ) -> Result<Image, String> {
+        let (width, height) = self.target.size();
+        let view_proj = camera.view_proj(width as f32 / height as f32);
+        self.draw_with(gpu, vertices, view_proj)
+    }
+
+    /// Draws `vertices` (eye-relative, observer's frame) with any
+    /// view-projection matrix, such as a CAVE wall's off-axis one, and reads
+    /// the image back.
+    pub fn draw_with(
+        &mut self,
+        gpu: &Gpu,
+        vertices: &[FrameVertex],
+        view_proj: glam::Mat4,
+    ) -> Result<Image, String> {
+        let device = &gpu.device;
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("headless frame"),
+        });
+        self.renderer.render(
+            device,
+            &gpu.queue,
+            &mut encoder,
+            self.target.view(),
+            super::pipeline::Draw {
+                vertices,
+                view_proj,
+                clear: Some(BACKGROUND),
+                viewport: None,
+            },
+        );
+        self.target.read(gpu, encoder)
     }
 }
 

@@ -62,7 +62,7 @@ pub fn run(
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
-    let index = match super::render::observer_index(&scene, path, observer) {
+    let index = match super::names::observer_index(&scene, path, observer) {
         Ok(i) => i,
         Err(e) => return fail(e),
     };

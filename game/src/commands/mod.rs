@@ -9,6 +9,8 @@ pub mod cave;
 pub mod check;
 pub mod diagram;
 pub mod lesson;
+pub mod looks;
+pub mod names;
 pub mod observe;
 pub mod play;
 pub mod record;

@@ -81,7 +81,7 @@ pub fn run(path: &Path, at: f64, observer: &str, vertices: bool, effects: &str) 
             return ExitCode::FAILURE;
         }
     };
-    let index = match super::render::observer_index(&scene, path, Some(observer)) {
+    let index = match super::names::observer_index(&scene, path, Some(observer)) {
         Ok(i) => i,
         Err(e) => {
             crate::errln!("{e}");

@@ -3,10 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use lightcone_engine::scene;
-
-use crate::lesson::LessonHost;
-use crate::model::{GameState, ViewMode};
+use super::looks::{Looks, open};
 use crate::play::app::{self, Options};
 
 /// The options of `play` beyond the scene.
@@ -22,14 +19,8 @@ pub struct Extras {
     pub cave: Option<PathBuf>,
     /// Open a scene at this board time, paused.
     pub at: Option<f64>,
-    /// Open on this view.
-    pub view: Option<ViewMode>,
-    /// Pictures side by side (`--views`, see [`crate::model::Pane::parse_list`]).
-    pub views: Option<String>,
-    /// Open with the camera above the table.
-    pub top: bool,
-    /// Effects shown (`observe`'s syntax), instead of the scene's.
-    pub effects: Option<String>,
+    /// How the pictures look (`--view`, `--views`, `--effects`, `--top`).
+    pub looks: Looks,
     /// Show the live space-time diagram.
     pub diagram: bool,
     /// Show it in this puck's frame (implies `diagram`).
@@ -49,10 +40,7 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         tracker,
         cave,
         at,
-        view,
-        views,
-        top,
-        effects,
+        looks,
         diagram,
         diagram_frame,
         serve,
@@ -96,54 +84,11 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
         }
         (None, _) => None,
     };
-    let (mut game, lesson) = if let Some(path) = path
-        && path.extension().is_some_and(|e| e == "py")
-    {
-        if !path.is_file() {
-            crate::errln!("{}: no such lesson file", path.display());
+    let (mut game, lesson) = match open(path) {
+        Ok(opened) => opened,
+        Err(e) => {
+            crate::errln!("{e}");
             return ExitCode::FAILURE;
-        }
-        // A lesson that fails before it starts a game leaves the default
-        // scene on the table, with the traceback beside it.
-        let fallback = || match crate::assets::default_scene() {
-            Ok(s) => GameState::new(s),
-            Err(_) => GameState::new(
-                scene::Scene::empty(glam::DVec2::new(2.84, 1.42), None)
-                    .unwrap_or_else(|_| unreachable!("a carom table is a valid scene")),
-            ),
-        };
-        // The lesson runs in its own process: nothing it does ends the game.
-        let isolation = match crate::lesson::supervise::window_isolation() {
-            Ok(i) => i,
-            Err(e) => {
-                crate::errln!("{e}");
-                return ExitCode::FAILURE;
-            }
-        };
-        match LessonHost::load_isolated(path, fallback, isolation) {
-            Ok((host, game)) => (game, Some(host)),
-            Err(e) => {
-                crate::errln!("{e}");
-                return ExitCode::FAILURE;
-            }
-        }
-    } else {
-        let loaded = match path {
-            Some(path) => scene::load(path),
-            None => crate::assets::default_scene(),
-        };
-        match loaded {
-            Ok(s) => {
-                // A scene opens paused on its title and description.
-                let mut game = GameState::new(s);
-                game.paused = true;
-                game.intro = true;
-                (game, None)
-            }
-            Err(e) => {
-                crate::errln!("{e}");
-                return ExitCode::FAILURE;
-            }
         }
     };
     if let Some(t) = at {
@@ -151,39 +96,15 @@ pub fn run(path: Option<&Path>, extras: Extras) -> ExitCode {
             crate::errln!("--at is for scenes: a lesson runs its own time");
             return ExitCode::FAILURE;
         }
-        game.physics_mut().advance_to(t);
-        game.live_time = t;
-        game.view_time = t;
-        game.paused = true;
-        game.intro = false;
+        game.show_at(t);
     }
-    if let Some(v) = view {
-        game.set_view(v);
-    }
-    if let Some(spec) = views {
-        match crate::model::Pane::parse_list(&spec, &game.scene) {
-            Ok(p) => game.panes = Some(p),
-            Err(e) => {
-                crate::errln!("{e}");
-                return ExitCode::FAILURE;
-            }
-        }
-    }
-    if let Some(spec) = effects {
-        match crate::commands::observe::parse_effects(&spec, game.effects) {
-            Ok(e) => game.effects = e,
-            Err(e) => {
-                crate::errln!("{e}");
-                return ExitCode::FAILURE;
-            }
-        }
-    }
-    if top {
-        game.top_view();
+    let file = path.unwrap_or(Path::new("the default scene"));
+    if let Err(e) = looks.apply(&mut game, file) {
+        crate::errln!("{e}");
+        return ExitCode::FAILURE;
     }
     game.show.diagram = diagram || diagram_frame.is_some();
     if let Some(name) = diagram_frame {
-        let file = path.unwrap_or(Path::new("the default scene"));
         match crate::commands::diagram::puck_index(&game.scene, file, "--diagram-frame", &name) {
             Ok(i) => game.show.diagram_frame = Some(i),
             Err(e) => {

@@ -1,7 +1,9 @@
-//! `lightcone record SCENE --until T [--fps F] [--size WxH] [--observer NAME]
-//! [--view seen|truth] -o out.gif|out.mp4|DIR/`: what an observer sees from
-//! board time 0 to `T`, frame after frame through the headless renderer
-//! (the one `lightcone render` uses), for a teacher's slides.
+//! `lightcone record SCENE|LESSON.py --until T [--fps F] [--size WxH]
+//! [--observer NAME] [--view seen|truth|split | --views LIST] [--effects
+//! LIST] [--top] [--no-overlays] -o out.gif|out.mp4|DIR/`: the game's
+//! pictures from board time 0 to `T`, frame after frame, with the window's
+//! overlays, drawn as `lightcone render` draws one
+//! ([`crate::play::slide`]), for a teacher's slides.
 //!
 //! The output is chosen by `-o`: a `.gif` (the `gif` crate: each frame
 //! quantised to its own 256-colour palette, looping), an `.mp4` (the frames
@@ -13,10 +15,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 
-use lightcone_engine::scene;
+use lightcone_render::headless::Image;
 
-use lightcone_render::frame::{self, ViewKind, ViewMeshes};
-use lightcone_render::headless::{Image, Offscreen};
+use crate::play::slide::Slide;
 
 /// Most frames one recording makes (`--until` × `--fps`): a recording
 /// must end on a desk (100 000 frames at 1280×720 are 370 GB of pixels).
@@ -71,10 +72,10 @@ pub struct Request<'a> {
     pub fps: f64,
     /// `WxH`.
     pub size: &'a str,
-    /// Observer name (default: the first).
-    pub observer: Option<&'a str>,
-    /// Seen or truth.
-    pub view: ViewKind,
+    /// How the pictures look (and the observer looked through).
+    pub looks: super::looks::Looks,
+    /// With the window's overlays or bare.
+    pub overlays: crate::play::slide::Overlays,
     /// Where to.
     pub out: Output,
 }
@@ -226,12 +227,8 @@ pub fn run(req: Request<'_>) -> ExitCode {
     if let Err(e) = crate::output::not_the_input(file, req.scene) {
         return fail(e);
     }
-    let scene = match scene::load(req.scene) {
-        Ok(s) => s,
-        Err(e) => return fail(e.to_string()),
-    };
-    let index = match super::render::observer_index(&scene, req.scene, req.observer) {
-        Ok(i) => i,
+    let (mut game, mut lesson) = match super::looks::open_at(req.scene, req.looks, 0.0) {
+        Ok(g) => g,
         Err(e) => return fail(e),
     };
     let gpu = match lightcone_render::gpu::headless() {
@@ -242,28 +239,22 @@ pub fn run(req: Request<'_>) -> ExitCode {
         Ok(s) => s,
         Err(e) => return fail(e),
     };
-    // One simulation with the view to record; each frame runs its schedule.
-    let aspect = f64::from(width) / f64::from(height);
-    let (mut sim, view) = frame::scene_view(&scene, index, 0.0, req.view, aspect);
-    // Only what the view can still see is kept, to the last frame.
-    let keep = sim.history_needed(view, 0.0, req.until);
-    sim.physics_mut().set_history(Some(keep));
-    let meshes = ViewMeshes::new(&mut sim);
-    let mut target = Offscreen::new(&gpu, width, height);
-    let mut vertices = Vec::new();
+    // The window's pictures and overlays, frame after frame.
+    let mut slide = Slide::new(&gpu, width, height);
     let progress = crate::progress::steps(count, "record");
     for k in 0..count {
         let t = k as f64 / req.fps;
         progress.step(&format!("t = {t:.3} s"));
-        sim.advance_to(t);
-        let (Some(apparent), Some(camera)) = (sim.apparent(view), sim.camera(view)) else {
-            progress.finish();
-            return fail("the recorded view is gone".into());
+        let moved = match &mut lesson {
+            Some(host) => crate::lesson::headless::run_to(host, &mut game, t)
+                .map_err(|e| format!("{}: {e}", req.scene.display())),
+            None => {
+                game.show_at(t);
+                Ok(())
+            }
         };
-        frame::build_view(apparent, &meshes, &mut vertices);
-        let camera = frame::Camera::from(camera);
-        let pushed = target
-            .draw(&gpu, &vertices, &camera)
+        let pushed = moved
+            .and_then(|()| slide.draw(&gpu, &mut game, req.overlays))
             .and_then(|mut image| sink.push(&mut image));
         if let Err(e) = pushed {
             progress.finish();

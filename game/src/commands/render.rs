@@ -1,13 +1,16 @@
-//! `lightcone render SCENE --at T --observer NAME -o out.png [--size WxH]
-//! [--view seen|truth]`: a headless image of what an observer sees.
+//! `lightcone render SCENE|LESSON.py --at T [--observer NAME] -o out.png
+//! [--size WxH] [--view seen|truth|split | --views LIST] [--effects LIST]
+//! [--top] [--no-overlays]`: a headless image of the game's pictures, with
+//! the window's overlays, drawn by the window's own code
+//! ([`crate::play::slide`]).
 
 use std::path::Path;
 use std::process::ExitCode;
 
-use lightcone_engine::scene;
+use lightcone_render::gpu;
 
-use lightcone_render::frame::ViewKind;
-use lightcone_render::{gpu, headless};
+use super::looks::{Looks, open_at};
+use crate::play::slide::{Overlays, Slide};
 
 /// Parses `WxH` for a picture drawn on the GPU (`render`, `record`): each
 /// side from 1 to 16 384 px and the readback within wgpu's buffer.
@@ -48,71 +51,50 @@ pub fn parse_sides(s: &str) -> Result<(u32, u32), String> {
 /// wgpu's largest buffer by default, bytes: the readback of a picture.
 const MAX_READBACK: u64 = 1 << 28;
 
-/// Renders and writes the PNG.
-pub fn run(
-    path: &Path,
-    at: f64,
-    observer: Option<&str>,
-    out: &Path,
-    size: &str,
-    view: ViewKind,
-) -> ExitCode {
-    let fail = |msg: String| {
-        crate::errln!("{msg}");
-        ExitCode::FAILURE
-    };
-    if !at.is_finite() {
-        return fail(format!("--at {at}: give a finite board time in seconds"));
-    }
-    let (width, height) = match parse_size(size) {
-        Ok(s) => s,
-        Err(e) => return fail(e),
-    };
-    if let Err(e) = crate::output::not_the_input(out, path) {
-        return fail(e);
-    }
-    let scene = match scene::load(path) {
-        Ok(s) => s,
-        Err(e) => return fail(e.to_string()),
-    };
-    let index = match observer_index(&scene, path, observer) {
-        Ok(i) => i,
-        Err(e) => return fail(e),
-    };
-    let gpu = match gpu::headless() {
-        Ok(g) => g,
-        Err(e) => return fail(e),
-    };
-    match headless::render_scene(&gpu, &scene, at, index, view, width, height)
-        .and_then(|img| img.save_png(out))
-    {
+/// What `render` was asked for.
+pub struct Request<'a> {
+    /// The scene file (TOML) or lesson (`.py`).
+    pub path: &'a Path,
+    /// Board time, s.
+    pub at: f64,
+    /// The PNG to write.
+    pub out: &'a Path,
+    /// `WxH`.
+    pub size: &'a str,
+    /// How the pictures look.
+    pub looks: Looks,
+    /// With the window's overlays or bare.
+    pub overlays: Overlays,
+}
+
+/// Renders and writes the PNG; exit 0, or 1 with a message (a bad scene,
+/// lesson, observer or list, no graphics adapter, a failed write).
+pub fn run(req: Request<'_>) -> ExitCode {
+    match render(req) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => fail(e),
+        Err(e) => {
+            crate::errln!("{e}");
+            ExitCode::FAILURE
+        }
     }
 }
 
-/// Index of the observer `name` in `scene` (the first when `None`), or a
-/// message naming the file and the observers it has.
-pub fn observer_index(
-    scene: &lightcone_engine::scene::Scene,
-    path: &Path,
-    name: Option<&str>,
-) -> Result<usize, String> {
-    let Some(name) = name else {
-        return Ok(0);
-    };
-    scene
-        .observers
-        .iter()
-        .position(|o| o.name == name)
-        .ok_or_else(|| {
-            let names: Vec<_> = scene.observers.iter().map(|o| o.name.as_str()).collect();
-            format!(
-                "{}: no observer named \"{name}\"; the scene has: {}",
-                path.display(),
-                names.join(", ")
-            )
-        })
+fn render(req: Request<'_>) -> Result<(), String> {
+    if !req.at.is_finite() {
+        return Err(format!(
+            "--at {}: give a finite board time in seconds",
+            req.at
+        ));
+    }
+    let (width, height) = parse_size(req.size)?;
+    crate::output::not_the_input(req.out, req.path)?;
+    let (mut game, mut lesson) = open_at(req.path, req.looks, req.at)?;
+    let gpu = gpu::headless()?;
+    let mut slide = Slide::new(&gpu, width, height);
+    let image = slide.draw(&gpu, &mut game, req.overlays)?;
+    // The lesson's process ends with its host, after the picture.
+    drop(lesson.take());
+    image.save_png(req.out)
 }
 
 #[cfg(test)]

@@ -182,45 +182,20 @@ fn drive(
         && frames < max_frames
         && !crate::interrupt::interrupted()
     {
-        let (finished, question) = host.with_ui(|ui| {
-            let q = ui
-                .question
-                .as_ref()
-                .filter(|q| q.chosen.is_none())
-                .map(|q| {
-                    let i = q.answer.unwrap_or(0);
-                    (q.text.clone(), q.choices[i].clone(), i)
-                });
-            (ui.closing().is_some(), q)
+        let turned = turn(&mut host, &mut game, fps, until, &mut |t| {
+            frames += 1;
+            // Before the hooks: should one of them take the process down,
+            // the parent knows the frame was reached.
+            report(Progress::Frame { t, frames });
         });
-        if finished {
-            break;
+        match turned {
+            Turn::Finished | Turn::Reached => break,
+            Turn::Answered(text, choice) => {
+                report(Progress::Answer(text.clone(), choice.clone()));
+                answers.push((text, choice));
+            }
+            Turn::Stepped => {}
         }
-        if let Some((text, choice, i)) = question {
-            report(Progress::Answer(text.clone(), choice.clone()));
-            answers.push((text, choice));
-            host.answer(&mut game, i);
-            host.settle(&mut game);
-            new_claims(&host, &mut claims_seen, report);
-            continue;
-        }
-        if game.live_time >= until {
-            break;
-        }
-        // Nobody is there to press play.
-        game.paused = false;
-        let before = game.live_time;
-        game.step(1.0 / fps);
-        frames += 1;
-        // Before the hooks: should one of them take the process down, the
-        // parent knows the frame was reached.
-        report(Progress::Frame {
-            t: game.live_time,
-            frames,
-        });
-        host.after_step(&mut game, before);
-        host.settle(&mut game);
-        host.watch_light(&game);
         new_claims(&host, &mut claims_seen, report);
     }
     let (claims, finished) = host.with_ui(|ui| {
@@ -246,4 +221,110 @@ fn drive(
         claims,
         answers,
     }
+}
+
+/// What one turn of a lesson run without a student did.
+pub enum Turn {
+    /// The lesson has finished (its closing message is up): nothing done.
+    Finished,
+    /// Board time had reached the end asked for: nothing done.
+    Reached,
+    /// The open question was answered with the lesson's own answer (the
+    /// first choice when it names none): its text and the choice's.
+    Answered(String, String),
+    /// Board time moved one frame (`1 / fps` real seconds) and the hooks
+    /// that frame raised ran to their end.
+    Stepped,
+}
+
+/// One turn of a lesson with nobody at the window: answers its open
+/// question, or, before board time `until`, presses play and steps one
+/// frame; `stepped(t)` hears the frame's board time before its hooks run.
+pub fn turn(
+    host: &mut LessonHost,
+    game: &mut crate::model::GameState,
+    fps: f64,
+    until: f64,
+    stepped: &mut dyn FnMut(f64),
+) -> Turn {
+    let (finished, question) = host.with_ui(|ui| {
+        let q = ui
+            .question
+            .as_ref()
+            .filter(|q| q.chosen.is_none())
+            .map(|q| {
+                let i = q.answer.unwrap_or(0);
+                (q.text.clone(), q.choices[i].clone(), i)
+            });
+        (ui.closing().is_some(), q)
+    });
+    if finished {
+        return Turn::Finished;
+    }
+    if let Some((text, choice, i)) = question {
+        host.answer(game, i);
+        host.settle(game);
+        return Turn::Answered(text, choice);
+    }
+    if game.live_time >= until {
+        return Turn::Reached;
+    }
+    game.paused = false;
+    let before = game.live_time;
+    game.step(1.0 / fps);
+    stepped(game.live_time);
+    host.after_step(game, before);
+    host.settle(game);
+    host.watch_light(game);
+    Turn::Stepped
+}
+
+/// Frames a lesson may go without moving board time while it is run to a
+/// time (`render`, `record`): 10 minutes at 60 frames a second.
+const STILL_FRAMES: u32 = 36_000;
+
+/// Runs `game` with its lesson `host` to board time `t` (s), as the
+/// window would with a student who gives the lesson's own answers, at 60
+/// frames a real second: the hooks run, questions are answered, and once
+/// the lesson has finished (or failed: its error is on `host`) the board
+/// goes on without it. Returns at the first frame at or past `t`, or an
+/// error when board time stands still for [`STILL_FRAMES`] frames (the
+/// lesson paused it, or set no time scale) or Ctrl-C is pressed.
+pub fn run_to(
+    host: &mut LessonHost,
+    game: &mut crate::model::GameState,
+    t: f64,
+) -> Result<(), String> {
+    const FPS: f64 = 60.0;
+    let mut still = 0u32;
+    while game.live_time < t {
+        if crate::interrupt::interrupted() {
+            return Err("interrupted".to_owned());
+        }
+        let before = game.live_time;
+        let lesson_on = host.running() || host.awaiting_light();
+        let turned = if lesson_on {
+            turn(host, game, FPS, t, &mut |_| {})
+        } else {
+            Turn::Finished
+        };
+        if matches!(turned, Turn::Finished) {
+            game.paused = false;
+            game.step(1.0 / FPS);
+        }
+        if game.live_time > before {
+            still = 0;
+        } else {
+            still += 1;
+            if still >= STILL_FRAMES {
+                return Err(format!(
+                    "the lesson's board time stands still at {:.3} s (paused, or a time scale of 0), \
+                     before {t} s",
+                    game.live_time
+                ));
+            }
+        }
+    }
+    game.view_time = game.live_time;
+    Ok(())
 }

@@ -31,7 +31,10 @@ pub mod scene_menu;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod screenshot;
 pub mod shown;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod slide;
 pub mod trails;
+pub mod ui_paint;
 #[cfg(target_arch = "wasm32")]
 pub mod web_app;
 pub mod window;

@@ -149,6 +149,20 @@ pub fn markers(state: &GameState, rects: &[([f32; 4], Pane)]) -> Vec<Marker> {
     out
 }
 
+/// The clocks, names and marks over the desktop pictures, between the
+/// panels' edges `left` and `right` (physical px) of a window `h` high:
+/// under windows (the diagram) and the intro, in the background layer.
+/// The window and the windowless slides (`render`, `record`) both draw
+/// them here.
+pub fn layer(ctx: &egui::Context, state: &GameState, left: f32, right: f32, h: f32) {
+    let painter = ctx.layer_painter(egui::LayerId::new(
+        egui::Order::Background,
+        egui::Id::unique("clocks"),
+    ));
+    let rects = super::layout::layout(&state.pane_list(), left, right - left, h);
+    overlays(state, &painter, &rects, ctx.pixels_per_point());
+}
+
 /// What is drawn over the views: each puck ringed in its colour (at least
 /// [`MARKER_PX`] across) with its name and the proper time its clock shows
 /// in the picture; the cue line with the stroke's β and γ; with several

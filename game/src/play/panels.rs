@@ -7,8 +7,7 @@
 use lightcone_engine::scene::Effect;
 
 use super::actions::{Overlay, UiAction};
-use super::layout::{SceneArea, layout};
-use super::overlay::overlays;
+use super::layout::SceneArea;
 #[cfg(not(target_arch = "wasm32"))]
 use crate::lesson::LessonHost;
 use crate::model::{GameState, ViewMode};
@@ -79,7 +78,7 @@ pub fn panels(
         intro(state, &ctx, (left + right) / 2.0 / ppp, 12.0, actions);
     }
     if hud.clocks {
-        clocks(&ctx, state, left, right, size.1 as f32);
+        super::overlay::layer(&ctx, state, left, right, size.1 as f32);
     }
     SceneArea { left, right }
 }
@@ -406,18 +405,6 @@ fn intro(state: &GameState, ctx: &egui::Context, x: f32, y: f32, actions: &mut V
                 }
             });
         });
-}
-
-/// The clocks, names and marks over the desktop pictures, between the
-/// panels' edges `left` and `right` (physical px) of a window `h` high:
-/// under windows (the diagram) and the intro, in the background layer.
-fn clocks(ctx: &egui::Context, state: &GameState, left: f32, right: f32, h: f32) {
-    let painter = ctx.layer_painter(egui::LayerId::new(
-        egui::Order::Background,
-        egui::Id::unique("clocks"),
-    ));
-    let rects = layout(&state.pane_list(), left, right - left, h);
-    overlays(state, &painter, &rects, ctx.pixels_per_point());
 }
 
 /// A render node's one line of status (it shows only its walls).

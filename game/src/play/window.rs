@@ -13,6 +13,8 @@ use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::window::{Window, WindowId};
 
+use super::ui_paint::UiPainter;
+
 /// What a game run in the window tells the framework after a frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Flow {
@@ -78,7 +80,7 @@ pub struct Gfx {
     pub config: wgpu::SurfaceConfiguration,
     egui: egui::Context,
     egui_state: egui_winit::State,
-    egui_renderer: egui_wgpu::Renderer,
+    egui_painter: UiPainter,
 }
 
 /// The panels of one frame, run but not yet painted.
@@ -127,8 +129,7 @@ impl Gfx {
             None,
             Some(gpu.device.limits().max_texture_dimension_2d as usize),
         );
-        let egui_renderer =
-            egui_wgpu::Renderer::new(&gpu.device, config.format, Default::default());
+        let egui_painter = UiPainter::new(&gpu, config.format);
         Ok(Self {
             window,
             surface,
@@ -136,7 +137,7 @@ impl Gfx {
             config,
             egui,
             egui_state,
-            egui_renderer,
+            egui_painter,
         })
     }
 
@@ -184,52 +185,13 @@ impl Gfx {
     /// to date), and hands egui's requests (cursor, clipboard) to the
     /// window.
     pub fn paint_ui(&mut self, ui: Ui, target: Option<&wgpu::TextureView>) {
-        let Ui(output) = ui;
+        let Ui(mut output) = ui;
+        let platform = std::mem::take(&mut output.platform_output);
         self.egui_state
-            .handle_platform_output(&self.window, output.platform_output);
-        let jobs = self.egui.tessellate(output.shapes, output.pixels_per_point);
-        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
-        for (id, deltas) in &output.textures_delta.set {
-            for delta in deltas {
-                self.egui_renderer.update_texture(device, queue, *id, delta);
-            }
-        }
-        let Some(target) = target else {
-            return;
-        };
-        let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: [self.config.width, self.config.height],
-            pixels_per_point: output.pixels_per_point,
-        };
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("egui"),
-        });
-        self.egui_renderer
-            .update_buffers(device, queue, &mut encoder, &jobs, &screen);
-        {
-            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("egui pass"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            self.egui_renderer
-                .render(&mut pass.forget_lifetime(), &jobs, &screen);
-        }
-        queue.submit([encoder.finish()]);
-        for id in &output.textures_delta.free {
-            self.egui_renderer.free_texture(id);
-        }
+            .handle_platform_output(&self.window, platform);
+        let size = (self.config.width, self.config.height);
+        self.egui_painter
+            .paint(&self.gpu, &self.egui, output, size, target);
     }
 }
 
