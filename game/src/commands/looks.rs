@@ -84,9 +84,7 @@ impl Looks {
 }
 
 /// The game of the scene or lesson at `path`, looking as `looks` says,
-/// at board time `t`: a scene is run there and paused; a lesson is run
-/// there from 0 with its hooks, questions answered with its own answers
-/// ([`crate::lesson::headless::run_to`]). `record` goes on from it.
+/// at board time `t` ([`go_to`]). `record` goes on from it.
 pub fn open_at(
     path: &Path,
     looks: Looks,
@@ -94,21 +92,39 @@ pub fn open_at(
 ) -> Result<(GameState, Option<LessonHost>), String> {
     let (mut game, mut lesson) = open(Some(path))?;
     looks.apply(&mut game, path)?;
-    match &mut lesson {
-        Some(host) => {
-            if t < 0.0 {
-                return Err(format!(
-                    "--at {t}: a lesson starts at board time 0; give 0 s or more"
-                ));
-            }
-            game.intro = false;
-            crate::lesson::headless::run_to(host, &mut game, t)
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-            if let Some(e) = &host.error {
-                crate::errln!("{}: the lesson failed: {e}", path.display());
-            }
-        }
-        None => game.show_at(t),
-    }
+    go_to(&mut game, lesson.as_mut(), path, t)?;
     Ok((game, lesson))
+}
+
+/// Takes `game` (opened from `path`) to board time `t`: a scene is run
+/// there and paused; with its lesson, board time runs there with the
+/// hooks, questions answered with the lesson's own answers
+/// ([`crate::lesson::headless::run_to`]; a lesson starts at 0, so `t` < 0
+/// is an error; one that fails is left behind, see [`say_if_failed`]).
+/// Errors name the file.
+pub fn go_to(
+    game: &mut GameState,
+    lesson: Option<&mut LessonHost>,
+    path: &Path,
+    t: f64,
+) -> Result<(), String> {
+    let Some(host) = lesson else {
+        game.show_at(t);
+        return Ok(());
+    };
+    if t < 0.0 {
+        return Err(format!(
+            "--at {t}: a lesson starts at board time 0; give 0 s or more"
+        ));
+    }
+    game.intro = false;
+    crate::lesson::headless::run_to(host, game, t).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Says on stderr that the lesson opened from `path` failed, if it did
+/// (the board went on without it): once, after the pictures.
+pub fn say_if_failed(lesson: Option<&LessonHost>, path: &Path) {
+    if let Some(e) = lesson.and_then(|host| host.error.as_ref()) {
+        crate::errln!("{}: the lesson failed: {e}", path.display());
+    }
 }

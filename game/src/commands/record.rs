@@ -245,14 +245,7 @@ pub fn run(req: Request<'_>) -> ExitCode {
     for k in 0..count {
         let t = k as f64 / req.fps;
         progress.step(&format!("t = {t:.3} s"));
-        let moved = match &mut lesson {
-            Some(host) => crate::lesson::headless::run_to(host, &mut game, t)
-                .map_err(|e| format!("{}: {e}", req.scene.display())),
-            None => {
-                game.show_at(t);
-                Ok(())
-            }
-        };
+        let moved = super::looks::go_to(&mut game, lesson.as_mut(), req.scene, t);
         let pushed = moved
             .and_then(|()| slide.draw(&gpu, &mut game, req.overlays))
             .and_then(|mut image| sink.push(&mut image));
@@ -263,6 +256,7 @@ pub fn run(req: Request<'_>) -> ExitCode {
         progress.inc();
     }
     progress.finish();
+    super::looks::say_if_failed(lesson.as_ref(), req.scene);
     match sink.finish() {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => fail(e),

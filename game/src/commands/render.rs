@@ -9,7 +9,7 @@ use std::process::ExitCode;
 
 use lightcone_render::gpu;
 
-use super::looks::{Looks, open_at};
+use super::looks::{Looks, open_at, say_if_failed};
 use crate::play::slide::{Overlays, Slide};
 
 /// Parses `WxH` for a picture drawn on the GPU (`render`, `record`): each
@@ -88,13 +88,15 @@ fn render(req: Request<'_>) -> Result<(), String> {
     }
     let (width, height) = parse_size(req.size)?;
     crate::output::not_the_input(req.out, req.path)?;
-    let (mut game, mut lesson) = open_at(req.path, req.looks, req.at)?;
+    // The lesson's process (if any) ends with its host, after the picture.
+    let (mut game, lesson) = open_at(req.path, req.looks, req.at)?;
     let gpu = gpu::headless()?;
     let mut slide = Slide::new(&gpu, width, height);
-    let image = slide.draw(&gpu, &mut game, req.overlays)?;
-    // The lesson's process ends with its host, after the picture.
-    drop(lesson.take());
-    image.save_png(req.out)
+    slide
+        .draw(&gpu, &mut game, req.overlays)?
+        .save_png(req.out)?;
+    say_if_failed(lesson.as_ref(), req.path);
+    Ok(())
 }
 
 #[cfg(test)]
