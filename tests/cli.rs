@@ -1096,6 +1096,33 @@ fn render_draws_the_windows_overlays_and_takes_plays_flags() {
         w > b + 150,
         "overlays add label pixels: {w} against {b} bare"
     );
+    // Beside each picture, its layout (as `play --screenshot` writes it):
+    // the one view fills the slide, every puck is placed, and the labels
+    // drawn (none without overlays) lie inside the picture.
+    let layout = |name: &str| -> serde_json::Value {
+        let text = std::fs::read_to_string(dir.join(name)).unwrap();
+        serde_json::from_str(&text).unwrap()
+    };
+    let (with_layout, bare_layout) = (layout("with.json"), layout("bare.json"));
+    assert_eq!(
+        with_layout["views"][0]["rect"],
+        serde_json::json!([0.0, 0.0, 640.0, 360.0])
+    );
+    assert_eq!(
+        with_layout["pucks"].as_array().unwrap().len(),
+        3,
+        "{with_layout}"
+    );
+    let labels = with_layout["labels"].as_array().unwrap();
+    assert!(!labels.is_empty(), "{with_layout}");
+    for l in labels {
+        let r: Vec<f64> = serde_json::from_value(l["rect"].clone()).unwrap();
+        assert!(
+            r[0] >= 0.0 && r[1] >= 0.0 && r[0] + r[2] <= 640.0 && r[1] + r[3] <= 360.0,
+            "{l}"
+        );
+    }
+    assert!(bare_layout["labels"].as_array().unwrap().is_empty());
     let top = shot(&[scene, "--at", "1.5", "--top", "--no-overlays"], "top.png");
     assert_ne!(top.rgba, bare.rgba, "--top moves the camera");
     let lesson = shot(
@@ -1117,4 +1144,59 @@ fn render_draws_the_windows_overlays_and_takes_plays_flags() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("nosuch"));
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `lightcone link`: the link's fragment carries the scene file itself,
+/// read back here by Python's zlib (raw DEFLATE) and base64 (an
+/// implementation other than the game's); bad files make no link.
+#[test]
+fn link_carries_the_scene_file_that_another_inflater_reads_back() {
+    let file = "assets/scenes/ten_pucks.toml";
+    let out = lightcone(&["link", file, "--base", "https://school.example/lightcone/"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let data = stdout
+        .trim()
+        .strip_prefix("https://school.example/lightcone/#scene=")
+        .unwrap_or_else(|| panic!("{stdout}"));
+    let script = "import base64, sys, zlib\n\
+        d = sys.argv[1]\n\
+        sys.stdout.write(zlib.decompress(base64.urlsafe_b64decode(d + '=' * (-len(d) % 4)), -15).decode())";
+    let back = std::process::Command::new("python3")
+        .args(["-c", script, data])
+        .output()
+        .expect("python3 runs");
+    assert!(
+        back.status.success(),
+        "{}",
+        String::from_utf8_lossy(&back.stderr)
+    );
+    let text = std::fs::read_to_string(repo().join(file)).unwrap();
+    assert_eq!(String::from_utf8_lossy(&back.stdout), text);
+    assert!(data.len() < text.len(), "{} ≥ {}", data.len(), text.len());
+
+    // A scene with an error: check's located message, no link.
+    let dir = temp_dir("link");
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        text.replace("size = [2.84, 1.42]", "size = [2.84, -1.42]"),
+    )
+    .unwrap();
+    let out = lightcone(&["link", bad.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(out.stdout.is_empty());
+    assert!(stderr.contains("bad.toml:6:"), "{stderr}");
+    // A lesson (the browser build runs none yet) and a base that is no page.
+    let out = lightcone(&["link", "scripts/lessons/contraction.py"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("lesson"));
+    let out = lightcone(&["link", file, "--base", "school.example"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--base school.example"));
 }

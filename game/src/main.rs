@@ -127,6 +127,16 @@ enum Command {
         /// Scene files (TOML); the default scene when none is given.
         scenes: Vec<PathBuf>,
     },
+    /// Print the link that opens a scene file in the browser build
+    /// (`#scene=`: the file itself, compressed, in the link's fragment),
+    /// after checking it as `check` does.
+    Link {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// The address the browser build is served at.
+        #[arg(long, default_value = lightcone::commands::link::DEFAULT_BASE)]
+        base: String,
+    },
     /// Run the physics headless; print every collision, then the final
     /// state, as JSON lines (schema: docs/guide/src/commands.md).
     Simulate {
@@ -376,6 +386,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Check { scenes }) => commands::check::run(&scenes),
+        Some(Command::Link { scene, base }) => commands::link::run(&scene, &base),
         Some(Command::Simulate { scene, until, out }) => {
             commands::simulate::run(&scene, until, out.as_ref())
         }

@@ -189,6 +189,9 @@ pub struct GameState {
     pub intro: bool,
     /// The scene menu (key M).
     pub scene_menu: SceneMenu,
+    /// Where the scene came from (a shipped scene, a file's text), for a
+    /// link that opens it again; `None` for a scene made in code.
+    pub source: Option<crate::links::SceneSource>,
     /// Which simulation this is: a number no other game or restart in this
     /// process had (a CAVE cluster's master sends a new snapshot when it
     /// changes).
@@ -294,6 +297,7 @@ impl GameState {
             intro: false,
             show: Overlays::default(),
             scene_menu: Default::default(),
+            source: None,
             generation: next_generation(),
         }
     }

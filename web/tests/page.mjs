@@ -83,7 +83,104 @@ async function check(query, screenshot) {
   await page.close();
 }
 
+// Links, dropped files and the share key (K). The links are made here by
+// the browser's own CompressionStream("deflate-raw") and base64url, and
+// the share link is read back by its DecompressionStream: the format of
+// game/src/links.rs, checked against another implementation both ways.
+async function links() {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+  const errors = [];
+  page.on("console", (m) => {
+    if (m.type() === "error") errors.push(m.text());
+  });
+  page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
+  const started = () =>
+    page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
+  const titled = (title) =>
+    page.waitForFunction((t) => document.title === t, title, { timeout: 30_000 }).then(
+      () => true,
+      () => false,
+    );
+  await page.goto(base);
+  await started();
+  const helpers = `
+    window.packLink = async (text) => {
+      const s = new Blob([text]).stream().pipeThrough(new CompressionStream("deflate-raw"));
+      const bytes = new Uint8Array(await new Response(s).arrayBuffer());
+      let bin = ""; for (const b of bytes) bin += String.fromCharCode(b);
+      return btoa(bin).replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
+    };
+    window.unpackLink = async (data) => {
+      const b64 = data.replace(/-/g, "+").replace(/_/g, "/");
+      const bin = atob(b64 + "===".slice((b64.length + 3) % 4));
+      const bytes = Uint8Array.from(bin, (c) => c.charCodeAt(0));
+      const s = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
+      return await new Response(s).text();
+    };`;
+  await page.evaluate(helpers);
+  const shipped = await page.evaluate(async () => (await fetch("scenes/ten_pucks.toml")).text());
+  const retitled = (title) => shipped.replace(/^title = .*$/m, `title = "${title}"`);
+
+  // 1. A scene carried in the link's fragment opens (the tab's title is
+  // the scene's).
+  const data = await page.evaluate((t) => window.packLink(t), retitled("Linked by a test"));
+  await page.goto(base + "#scene=" + data);
+  await started();
+  if (!(await titled("Lightcone: Linked by a test")))
+    fail(`#scene= link: title ${JSON.stringify(await page.title())}`);
+
+  // 2. A scene file dropped on the page opens; K copies the link of what
+  // is open, which carries the dropped file's text unchanged.
+  await page.evaluate(helpers);
+  const dropped = retitled("Dropped by a test");
+  const drop = async (name, text) =>
+    page.evaluate(
+      ([name, text]) => {
+        const dt = new DataTransfer();
+        dt.items.add(new File([text], name, { type: "text/plain" }));
+        window.dispatchEvent(new DragEvent("drop", { dataTransfer: dt, bubbles: true, cancelable: true }));
+      },
+      [name, text],
+    );
+  await drop("mine.toml", dropped);
+  if (!(await titled("Lightcone: Dropped by a test")))
+    fail(`dropped file: title ${JSON.stringify(await page.title())}`);
+  await page.focus("canvas");
+  await page.keyboard.press("KeyK");
+  try {
+    await page.waitForFunction(() => window.lightconeShareLink !== undefined, null, { timeout: 10_000 });
+    const link = await page.evaluate(() => window.lightconeShareLink);
+    const back = await page.evaluate((l) => window.unpackLink(l.split("#scene=")[1]), link);
+    if (back !== dropped) fail(`share link: carries ${JSON.stringify(back.slice(0, 80))}…`);
+    if (!(await page.evaluate(() => location.hash.startsWith("#scene="))))
+      fail("share link: not in the address bar");
+    console.log(JSON.stringify({ share: link.length + " characters" }));
+  } catch {
+    fail("K: no share link");
+  }
+  if (errors.length) fail(`links: console errors: ${JSON.stringify(errors)}`);
+
+  // 3. A bad dropped scene: check's located error in the console (and the
+  // scene menu), the game goes on with the scene it had.
+  errors.length = 0;
+  await drop("bad.toml", dropped.replace(/^size = .*$/m, "size = [2.84, -1.42]"));
+  await page.waitForTimeout(1500);
+  if (!errors.some((e) => /bad\.toml:\d+:\d+/.test(e)))
+    fail(`bad dropped scene: no located error (${JSON.stringify(errors)})`);
+  if ((await page.title()) !== "Lightcone: Dropped by a test") fail("bad dropped scene replaced the game");
+
+  // 4. A link cut short: said, and the default scene drawn.
+  errors.length = 0;
+  await page.goto(base + "#scene=" + data.slice(0, 20));
+  await started();
+  if (!errors.some((e) => e.includes("cut short")))
+    fail(`cut link: no message (${JSON.stringify(errors)})`);
+  console.log(JSON.stringify({ links: "checked", messages: errors }));
+  await page.close();
+}
+
 await check("", shot);
 await check("?scene=ten_pucks", shot.replace(/\.png$/, "_ten_pucks.png"));
+await links();
 await browser.close();
 process.exit(failed ? 1 : 0);

@@ -9,6 +9,7 @@ pub mod cave;
 pub mod check;
 pub mod diagram;
 pub mod lesson;
+pub mod link;
 pub mod looks;
 pub mod names;
 pub mod observe;

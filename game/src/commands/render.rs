@@ -88,6 +88,8 @@ fn render(req: Request<'_>) -> Result<(), String> {
     }
     let (width, height) = parse_size(req.size)?;
     crate::output::not_the_input(req.out, req.path)?;
+    let sidecar = req.out.with_extension("json");
+    crate::output::not_the_input(&sidecar, req.path)?;
     // The lesson's process (if any) ends with its host, after the picture.
     let (mut game, lesson) = open_at(req.path, req.looks, req.at)?;
     let gpu = gpu::headless()?;
@@ -95,6 +97,11 @@ fn render(req: Request<'_>) -> Result<(), String> {
     slide
         .draw(&gpu, &mut game, req.overlays)?
         .save_png(req.out)?;
+    // Beside the picture, where its views, pucks and labels are, as
+    // `play --screenshot` writes it.
+    let size = (width as f32, height as f32);
+    let drawn = slide.drawn();
+    crate::play::screenshot::save_layout(&game, None, slide.area(), None, &sidecar, size, &drawn)?;
     say_if_failed(lesson.as_ref(), req.path);
     Ok(())
 }

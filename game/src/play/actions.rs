@@ -78,6 +78,9 @@ pub enum UiAction {
     SceneOpened,
     /// The CAVE walls for the next eye (mono, left, right).
     CycleCaveEye,
+    /// Copy the link that opens this scene (key K, the browser page's
+    /// *share* button; the page builds the link, [`crate::links`]).
+    Share,
     /// Load the lesson file again.
     ReloadLesson,
     /// Answer `i` to the lesson's open question.
@@ -122,6 +125,7 @@ pub const KEYS: &[(KeyCode, UiAction)] = &[
     (KeyCode::F5, UiAction::ReloadLesson),
     (KeyCode::KeyT, UiAction::CycleView),
     (KeyCode::KeyM, UiAction::SceneMenu),
+    (KeyCode::KeyK, UiAction::Share),
     (KeyCode::KeyC, UiAction::CueNext),
     (KeyCode::BracketLeft, UiAction::CueTurn(FIVE_DEGREES)),
     (KeyCode::BracketRight, UiAction::CueTurn(-FIVE_DEGREES)),
@@ -222,6 +226,7 @@ impl UiAction {
                 };
             }
             UiAction::CycleCaveEye
+            | UiAction::Share
             | UiAction::ReloadLesson
             | UiAction::Answer(_)
             | UiAction::SceneOpened => {

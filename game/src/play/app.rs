@@ -5,7 +5,6 @@
 //! how `play` and `lightcone wall` start it in [`super::window`].
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use winit::event::WindowEvent;
 use winit::event_loop::ActiveEventLoop;
@@ -14,18 +13,16 @@ use winit::window::WindowId;
 use super::actions::UiAction;
 use super::cave_role::Immersion;
 use super::cluster_role::{self, FrameLog, NodeRole, NodeStep};
-use super::input::Input;
 use super::layout::SceneArea;
 use super::lesson_host::HostedLesson;
 use super::panels::{self, Hud};
-use super::pictures::Pictures;
 use super::screenshot;
-use super::shown::aspect;
+use super::stage::{Host, Stage};
 use super::window::{self, Flow, Gfx};
 use crate::cluster::master::ClusterMaster;
 use crate::cluster::node::{ClusterNode, Headless, Stamps};
 use crate::lesson::LessonHost;
-use crate::model::{GameState, Pane};
+use crate::model::GameState;
 use lightcone_tracker::cave::CaveConfig;
 
 /// How `play` runs.
@@ -82,28 +79,17 @@ pub fn run_node(mut node: ClusterNode, options: &Headless) -> Result<u64, String
     Ok(app.node.as_ref().map_or(0, |r| r.shown))
 }
 
-/// The game in its window.
+/// The game in its window: the shared frame ([`Stage`]) and what the
+/// desktop adds to it ([`Desk`]), with the screenshot, the frame log and
+/// a render node's role.
 struct App {
-    state: GameState,
-    lesson: HostedLesson,
-    /// The tracked head and the CAVE.
-    immersion: Immersion,
-    input: Input,
-    /// The scene renderer (made once the GPU is open).
-    pictures: Option<Pictures>,
+    stage: Stage,
+    desk: Desk,
     /// Screenshot path and frame count (see [`Options`]).
     screenshot: Option<PathBuf>,
     frames: u32,
     /// Frames run so far.
     frame: u32,
-    /// When the last frame began.
-    last: Instant,
-    /// The area the last frame's panels left for the pictures.
-    area: SceneArea,
-    /// Where the last frame's panels drew the space-time diagram.
-    diagram: Option<super::diagram::Placed>,
-    /// The render cluster this game is the master of.
-    cluster: Option<ClusterMaster>,
     /// Where each frame's CAVE eyes are logged.
     frame_log: Option<FrameLog>,
     /// The render node this window is (`lightcone wall`).
@@ -111,6 +97,77 @@ struct App {
     /// This frame's views were run before drawing (a render node runs them
     /// before the swap lock).
     views_done: bool,
+}
+
+/// What the desktop window adds to the shared frame: the lesson, the
+/// tracked head and the CAVE, the render cluster it is the master of,
+/// and where the panels drew the diagram (for the screenshot's sidecar).
+struct Desk {
+    lesson: HostedLesson,
+    /// The tracked head and the CAVE.
+    immersion: Immersion,
+    /// The render cluster this game is the master of.
+    cluster: Option<ClusterMaster>,
+    /// Where the last frame's panels drew the space-time diagram.
+    diagram: Option<super::diagram::Placed>,
+}
+
+impl Host for Desk {
+    fn run_views(&mut self, state: &mut GameState) -> bool {
+        self.immersion.run_stereo(state)
+    }
+
+    /// The player's panels, or a render node's one line of status.
+    fn panels(
+        &mut self,
+        ui: &mut egui::Ui,
+        state: &mut GameState,
+        size: (u32, u32),
+        actions: &mut Vec<UiAction>,
+    ) -> SceneArea {
+        if self.immersion.node_head.is_some() {
+            panels::node_status(ui, &state.message);
+            self.diagram = None;
+            return SceneArea {
+                left: 0.0,
+                right: size.0 as f32,
+            };
+        }
+        let hud = Hud {
+            tracker: self
+                .immersion
+                .status_line(self.cluster.as_ref().map(ClusterMaster::status_line)),
+            tracker_colour: self.immersion.status_colour(),
+            clocks: self.immersion.cave.is_none(),
+            lesson: self.lesson.host.as_ref().map(LessonHost::name),
+            lessons: true,
+            share: false,
+        };
+        let area = panels::panels(ui, state, &hud, self.lesson.host.as_ref(), size, actions);
+        self.diagram = state
+            .show
+            .diagram
+            .then(|| super::diagram::placed(ui.ctx()))
+            .flatten();
+        area
+    }
+
+    fn act(&mut self, action: UiAction, state: &mut GameState) {
+        match action {
+            UiAction::CycleCaveEye => self.immersion.cycle_eye(),
+            UiAction::Share => {
+                state.message = "links are for the browser build: `lightcone link SCENE.toml` prints the link of a scene file".to_owned();
+            }
+            other => self.lesson.act(other, state),
+        }
+    }
+
+    fn walls(&self) -> Option<super::pictures::Walls<'_>> {
+        self.immersion
+            .cave
+            .as_ref()
+            .map(|c| (c, &self.immersion.stereo[..]))
+    }
 }
 
 impl App {
@@ -127,101 +184,66 @@ impl App {
         } = options;
         let frame_log = frame_log.as_deref().map(FrameLog::create).transpose()?;
         Ok(Self {
-            immersion: Immersion::new(tracker, cave, game.scene.table.size),
+            desk: Desk {
+                immersion: Immersion::new(tracker, cave, game.scene.table.size),
+                lesson: HostedLesson::new(lesson, crate::lesson::supervise::window_isolation()),
+                cluster,
+                diagram: None,
+            },
             // The desktop game starts lessons from the scene menu.
-            input: Input::new(true),
-            lesson: HostedLesson::new(lesson, crate::lesson::supervise::window_isolation()),
-            state: game,
-            pictures: None,
+            stage: Stage::new(game, true),
             screenshot,
             frames,
             frame: 0,
-            last: Instant::now(),
-            area: SceneArea::default(),
-            diagram: None,
-            cluster,
             frame_log,
             node: None,
             views_done: false,
         })
     }
 
-    /// Carries out what the keys and panels asked, in order.
-    fn act(&mut self, actions: Vec<UiAction>) {
-        for action in actions {
-            match action.apply(&mut self.state) {
-                Some(UiAction::CycleCaveEye) => self.immersion.cycle_eye(),
-                Some(other) => self.lesson.act(other, &mut self.state),
-                None => {}
-            }
-        }
-    }
-
-    /// The pictures' rectangles in a window of `size`, between the edges
-    /// the last frame's panels left.
-    fn rects(&self, (w, h): (u32, u32)) -> Vec<([f32; 4], Pane)> {
-        self.area.rects(&self.state.pane_list(), w as f32, h as f32)
-    }
-
-    /// Runs the game's frame schedule for what this frame draws: the
-    /// desktop pictures (laid out as the last frame's panels left room in
-    /// a window of `size`), or the CAVE's stereo eyes. Everything drawn
-    /// next (the views, the clocks, labels and picking) reads what it
-    /// wrote.
-    fn run_views(&mut self, size: (u32, u32)) {
-        if self.immersion.run_stereo(&mut self.state) {
-            return;
-        }
-        let panes: Vec<(Pane, f64)> = self
-            .rects(size)
-            .into_iter()
-            .map(|(r, p)| (p, aspect(r)))
-            .collect();
-        self.state.run_frame(&panes);
-    }
-
     /// The player's frame: time moves (the eye flies, the lesson runs, the
     /// tracked head is placed), the cluster is sent it, then it is drawn.
     fn player_frame(&mut self, gfx: &mut Gfx) -> Result<Flow, String> {
-        let now = Instant::now();
-        let dt = (now - self.last).as_secs_f64().min(0.1);
-        self.last = now;
+        let (now, dt) = self.stage.tick();
         self.fly(dt);
-        self.lesson.step(&mut self.state, dt, now);
-        self.immersion.place_eye(&mut self.state, now);
+        let state = &mut self.stage.state;
+        self.desk.lesson.step(state, dt, now);
+        self.desk.immersion.place_eye(state, now);
         self.frame += 1;
         let shot = self.screenshot.is_some() && self.frame >= self.frames;
-        if let Some(master) = &mut self.cluster {
-            cluster_role::publish(master, &self.state, &self.immersion);
+        if let Some(master) = &mut self.desk.cluster {
+            cluster_role::publish(master, state, &self.desk.immersion);
         }
         // The frame log reads the views of the state just published: they
         // are run before the panels (drawn next) can change it.
-        if self.frame_log.is_some() && self.immersion.cave.is_some() {
-            self.run_views((0, 0));
+        if self.frame_log.is_some() && self.desk.immersion.cave.is_some() {
+            self.stage.run_views(&mut self.desk, (0, 0));
             self.views_done = true;
             self.log_frame();
         }
         self.draw(gfx, shot)?;
-        if let Some(master) = &mut self.cluster {
+        let state = &mut self.stage.state;
+        if let Some(master) = &mut self.desk.cluster {
             for line in master.take_news() {
                 crate::errln!("{line}");
-                self.state.message = line;
+                state.message = line;
             }
         }
-        self.lesson.after_draw(&mut self.state);
+        self.desk.lesson.after_draw(state);
         Ok(if shot { Flow::Exit } else { Flow::Continue })
     }
 
-    /// Held keys fly the eye at a proper acceleration of 0.5 c per second
-    /// (W/S, A/D, R/F); with a tracked head or a CAVE they carry the
-    /// tracked space at 1 m/s instead.
+    /// Held keys fly the eye (see [`Stage::fly_free`]); with a tracked
+    /// head or a CAVE they carry the tracked space at 1 m/s instead.
     fn fly(&mut self, dt: f64) {
-        let dir = self.input.flight(self.state.forward());
-        if self.immersion.tracked() {
-            let running = !(self.state.paused || self.state.replaying());
-            self.immersion.fly(dir, dt, running);
-        } else if dir != glam::DVec3::ZERO {
-            self.state.thrust(dir * 0.5 * dt, dir * 1.0 * dt);
+        let immersion = &mut self.desk.immersion;
+        if immersion.tracked() {
+            let state = &self.stage.state;
+            let dir = self.stage.input.flight(state.forward());
+            let running = !(state.paused || state.replaying());
+            immersion.fly(dir, dt, running);
+        } else {
+            self.stage.fly_free(dt);
         }
     }
 
@@ -229,21 +251,23 @@ impl App {
     /// render node logs them (after the frame's views were run); stops
     /// logging when the log cannot be written.
     fn log_frame(&mut self) {
-        let (Some(log), Some(cave)) = (&mut self.frame_log, &self.immersion.cave) else {
+        let immersion = &self.desk.immersion;
+        let (Some(log), Some(cave)) = (&mut self.frame_log, &immersion.cave) else {
             return;
         };
         let seq = self
+            .desk
             .cluster
             .as_ref()
             .map_or(u64::from(self.frame), ClusterMaster::seq);
         let stamps = Stamps {
-            sample_ns: self.immersion.newest_sample_ns(),
+            sample_ns: immersion.newest_sample_ns(),
             sent_ns: 0,
             shown_ns: crate::cluster::now_ns(),
         };
-        let head = self.immersion.own_head().0;
-        let stereo = &self.immersion.stereo;
-        if let Err(e) = log.write(seq, head, stamps, &self.state, cave, stereo) {
+        let head = immersion.own_head().0;
+        let stereo = &immersion.stereo;
+        if let Err(e) = log.write(seq, head, stamps, &self.stage.state, cave, stereo) {
             crate::errln!("--frame-log: {e}; no longer logging");
             self.frame_log = None;
         }
@@ -255,33 +279,35 @@ impl App {
         let Some(role) = &mut self.node else {
             return Ok(Flow::Continue);
         };
-        let frame = match role.next(&mut self.state)? {
+        let frame = match role.next(&mut self.stage.state)? {
             NodeStep::Show(frame) => frame,
             NodeStep::Wait => return Ok(Flow::Continue),
             NodeStep::Stop => return Ok(Flow::Exit),
         };
+        let immersion = &mut self.desk.immersion;
         if let Some(c) = &role.node.cave
-            && self.immersion.cave.as_ref() != Some(c)
+            && immersion.cave.as_ref() != Some(c)
         {
-            self.immersion.cave = Some(c.clone());
+            immersion.cave = Some(c.clone());
         }
-        self.immersion.flight = frame.view.flight;
-        self.immersion.node_head = Some(frame.view.head());
+        immersion.flight = frame.view.flight;
+        immersion.node_head = Some(frame.view.head());
         self.frame += 1;
-        self.run_views(gfx.size());
+        self.stage.run_views(&mut self.desk, gfx.size());
         self.views_done = true;
         let shown_ns = self.node.as_mut().map_or(0, |r| r.swap(frame.seq));
         let shot = self.screenshot.is_some() && self.frame >= self.frames;
         self.draw(gfx, shot)?;
-        if let (Some(log), Some(cave)) = (&mut self.frame_log, &self.immersion.cave) {
+        let immersion = &self.desk.immersion;
+        if let (Some(log), Some(cave)) = (&mut self.frame_log, &immersion.cave) {
             let stamps = Stamps {
                 sample_ns: frame.sample_ns,
                 sent_ns: frame.sent_ns,
                 shown_ns,
             };
-            let (head, stereo) = (frame.view.head_position, &self.immersion.stereo);
+            let (head, stereo) = (frame.view.head_position, &immersion.stereo);
             if log
-                .write(frame.seq, head, stamps, &self.state, cave, stereo)
+                .write(frame.seq, head, stamps, &self.stage.state, cave, stereo)
                 .is_err()
             {
                 crate::errln!("--frame-log: cannot write; no longer logging");
@@ -292,51 +318,25 @@ impl App {
         Ok(if done { Flow::Exit } else { Flow::Continue })
     }
 
-    /// Draws the frame: the views (run again if the panels took another
-    /// width), the panels, the pictures under them, then the screenshot
-    /// (with `screenshot`) and the CAVE's outputs.
+    /// Draws the frame ([`Stage::draw`]), then the screenshot (with
+    /// `screenshot`) and the CAVE's outputs.
     fn draw(&mut self, gfx: &mut Gfx, screenshot: bool) -> Result<(), String> {
-        let size = gfx.size();
-        if !std::mem::take(&mut self.views_done) {
-            self.run_views(size);
-        }
-        let (ui, area, actions) = self.panels(gfx);
-        if area != self.area {
-            // The panels took another width (the first frame, a resize):
-            // frame the views for the room they now leave.
-            self.area = area;
-            self.run_views(size);
-        }
-        self.act(actions);
-        let texture = gfx.next_texture();
-        let target = texture.as_ref().map(|t| {
-            t.texture
-                .create_view(&wgpu::TextureViewDescriptor::default())
-        });
-        if let (Some(target), Some(pictures)) = (&target, &mut self.pictures) {
-            let (w, h) = (size.0 as f32, size.1 as f32);
-            let cave = self.immersion.cave.as_ref();
-            let plans = self.area.plans(cave, &self.state.pane_list(), w, h);
-            let walls = cave.map(|c| (c, &self.immersion.stereo[..]));
-            pictures.draw(&gfx.gpu, target, size, &plans, &self.state, walls);
-        }
-        gfx.paint_ui(ui, target.as_ref());
-        let Some(texture) = texture else {
+        let views_done = std::mem::take(&mut self.views_done);
+        let Some(texture) = self.stage.draw(&mut self.desk, gfx, views_done) else {
             return Ok(());
         };
         let shot = self.screenshot.as_deref().filter(|_| screenshot);
         if let Some(path) = shot {
             screenshot::save_frame(&gfx.gpu, &gfx.config, &texture.texture, path)?;
-            let (w, h) = (size.0 as f32, size.1 as f32);
-            let cave = self.immersion.cave.as_ref();
+            let (w, h) = (gfx.size().0 as f32, gfx.size().1 as f32);
+            let cave = self.desk.immersion.cave.as_ref();
             let sidecar = path.with_extension("json");
             let drawn = super::overlay::drawn(gfx.egui_context());
-            let diagram = self.diagram;
             screenshot::save_layout(
-                &self.state,
+                &self.stage.state,
                 cave,
-                self.area,
-                diagram,
+                self.stage.area,
+                self.desk.diagram,
                 &sidecar,
                 (w, h),
                 &drawn,
@@ -344,54 +344,18 @@ impl App {
         }
         gfx.gpu.queue.present(texture);
         // The outputs: the same frame's views, each output's wall.
-        self.immersion.draw_outputs(&gfx.gpu, &self.state, shot)
-    }
-
-    /// Runs this frame's panels (a render node's: one line of status).
-    /// Returns them to paint, the area they leave and what they asked.
-    fn panels(&mut self, gfx: &mut Gfx) -> (window::Ui, SceneArea, Vec<UiAction>) {
-        let size = gfx.size();
-        let mut area = self.area;
-        let mut actions = Vec::new();
-        let hud = Hud {
-            tracker: self
-                .immersion
-                .status_line(self.cluster.as_ref().map(ClusterMaster::status_line)),
-            tracker_colour: self.immersion.status_colour(),
-            clocks: self.immersion.cave.is_none(),
-            lesson: self.lesson.host.as_ref().map(LessonHost::name),
-            lessons: true,
-        };
-        let node = self.immersion.node_head.is_some();
-        let (state, lesson) = (&mut self.state, self.lesson.host.as_ref());
-        let mut diagram = None;
-        let ui = gfx.run_ui(|ui| {
-            if node {
-                panels::node_status(ui, &state.message);
-                area = SceneArea {
-                    left: 0.0,
-                    right: size.0 as f32,
-                };
-            } else {
-                area = panels::panels(ui, state, &hud, lesson, size, &mut actions);
-                diagram = state
-                    .show
-                    .diagram
-                    .then(|| super::diagram::placed(ui.ctx()))
-                    .flatten();
-            }
-        });
-        self.diagram = diagram;
-        (ui, area, actions)
+        self.desk
+            .immersion
+            .draw_outputs(&gfx.gpu, &self.stage.state, shot)
     }
 }
 
 impl window::Game for App {
     fn title(&self) -> String {
-        match (&self.lesson.host, &self.node) {
+        match (&self.desk.lesson.host, &self.node) {
             (_, Some(role)) => format!("Lightcone render node: {}", role.node.name),
             (Some(l), None) => format!("Lightcone lesson: {}", l.name()),
-            (None, None) => format!("Lightcone: {}", self.state.scene.title),
+            (None, None) => format!("Lightcone: {}", self.stage.state.scene.title),
         }
     }
 
@@ -400,12 +364,12 @@ impl window::Game for App {
         event_loop: &ActiveEventLoop,
         instance: &wgpu::Instance,
     ) -> Result<(), String> {
-        self.immersion.open_outputs(event_loop, instance)
+        self.desk.immersion.open_outputs(event_loop, instance)
     }
 
     fn ready(&mut self, gfx: &Gfx) -> Result<(), String> {
-        self.immersion.configure_outputs(&gfx.gpu)?;
-        self.pictures = Some(Pictures::new(&gfx.gpu, gfx.config.format, gfx.size()));
+        self.desk.immersion.configure_outputs(&gfx.gpu)?;
+        self.stage.ready(gfx);
         Ok(())
     }
 
@@ -415,11 +379,7 @@ impl window::Game for App {
     }
 
     fn input(&mut self, gfx: &Gfx, event: &WindowEvent, consumed: bool) {
-        let rects = self.rects(gfx.size());
-        let mut actions = Vec::new();
-        self.input
-            .event(event, consumed, &mut self.state, &rects, &mut actions);
-        self.act(actions);
+        self.stage.input(&mut self.desk, gfx, event, consumed);
     }
 
     fn other_window(
@@ -432,7 +392,7 @@ impl window::Game for App {
         // window's frame, and keys pressed in it fly the head as in the
         // main window. Closing one ends the game, as closing the main
         // window does.
-        let output = self.immersion.output(id)?;
+        let output = self.desk.immersion.output(id)?;
         match event {
             WindowEvent::Resized(_) => {
                 if let Err(e) = output.configure(&gfx.gpu) {
@@ -442,8 +402,9 @@ impl window::Game for App {
             WindowEvent::CloseRequested => return Some(Ok(Flow::Exit)),
             WindowEvent::KeyboardInput { event, .. } if self.node.is_none() => {
                 let mut actions = Vec::new();
-                self.input.keyboard(event, &mut self.state, &mut actions);
-                self.act(actions);
+                let stage = &mut self.stage;
+                stage.input.keyboard(event, &mut stage.state, &mut actions);
+                stage.act(&mut self.desk, actions);
             }
             _ => {}
         }

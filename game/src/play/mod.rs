@@ -33,6 +33,7 @@ pub mod screenshot;
 pub mod shown;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod slide;
+pub mod stage;
 pub mod trails;
 pub mod ui_paint;
 #[cfg(target_arch = "wasm32")]

@@ -30,6 +30,9 @@ pub struct Hud {
     /// The window can start lessons (the desktop game: they need Python);
     /// the scene menu lists them then.
     pub lessons: bool,
+    /// Offer a *share* button (the browser page: it copies the link that
+    /// opens this scene, see [`crate::links`]).
+    pub share: bool,
 }
 
 /// The panels and the clocks drawn on the pucks, in a window of `size`
@@ -92,9 +95,21 @@ fn controls(ui: &mut egui::Ui, s: &GameState, hud: &Hud, actions: &mut Vec<UiAct
     } else {
         "other scenes… (M)"
     };
-    if ui.small_button(menu).clicked() {
-        actions.push(UiAction::SceneMenu);
-    }
+    ui.horizontal(|ui| {
+        if ui.small_button(menu).clicked() {
+            actions.push(UiAction::SceneMenu);
+        }
+        if hud.share
+            && ui
+                .small_button("share")
+                .on_hover_text(
+                    "copy a link that opens this scene (a file of your own travels in the link)",
+                )
+                .clicked()
+        {
+            actions.push(UiAction::Share);
+        }
+    });
     ui.separator();
     time_controls(ui, s, actions);
     ui.separator();

@@ -15,6 +15,7 @@ use lightcone_engine::scene::{self, Scene};
 use winit::keyboard::KeyCode;
 
 use crate::assets::{LESSONS, SCENES};
+use crate::links::SceneSource;
 use crate::model::GameState;
 
 /// What the scene menu opens.
@@ -60,10 +61,11 @@ pub enum MenuKey {
     Open(Choice),
 }
 
-/// Starts `scene` in place of the current one: board time 0, paused on
-/// its title and description; the view, time scale and overlays the
-/// player chose are kept, the eye goes to the new scene's first observer.
-pub fn switch(state: &mut GameState, scene: Scene) {
+/// Starts `scene` (from `source`) in place of the current one: board
+/// time 0, paused on its title and description; the view, time scale and
+/// overlays the player chose are kept, the eye goes to the new scene's
+/// first observer.
+pub fn switch(state: &mut GameState, scene: Scene, source: Option<SceneSource>) {
     let mut fresh = GameState::new(scene);
     fresh.paused = true;
     fresh.intro = true;
@@ -74,6 +76,7 @@ pub fn switch(state: &mut GameState, scene: Scene) {
     fresh.scene_menu = std::mem::take(&mut state.scene_menu);
     fresh.scene_menu.open = false;
     fresh.scene_menu.error = None;
+    fresh.source = source;
     *state = fresh;
 }
 
@@ -99,7 +102,7 @@ fn open_shipped(state: &mut GameState, i: usize) -> Opened {
     };
     match crate::assets::shipped_scene(name) {
         Some(Ok(scene)) => {
-            switch(state, scene);
+            switch(state, scene, Some(SceneSource::Shipped((*name).to_owned())));
             Opened::Scene
         }
         Some(Err(e)) => {
@@ -139,7 +142,9 @@ pub fn open_path(state: &mut GameState, path: &str) -> Opened {
     }
     match scene::load(Path::new(path)) {
         Ok(scene) => {
-            switch(state, scene);
+            let text = std::fs::read_to_string(path).unwrap_or_default();
+            let name = path.to_owned();
+            switch(state, scene, Some(SceneSource::Text { name, text }));
             Opened::Scene
         }
         Err(e) => {

@@ -60,10 +60,7 @@ impl Slide {
     ) -> Result<Image, String> {
         let size = self.target.size();
         let (w, h) = (size.0 as f32, size.1 as f32);
-        let area = SceneArea {
-            left: 0.0,
-            right: w,
-        };
+        let area = self.area();
         let panes: Vec<(Pane, f64)> = area
             .rects(&state.pane_list(), w, h)
             .into_iter()
@@ -87,6 +84,22 @@ impl Slide {
                 label: Some("slide readback"),
             });
         self.target.read(gpu, encoder)
+    }
+}
+
+impl Slide {
+    /// What the overlays drew on the last slide (labels, the magnifier),
+    /// for its layout sidecar ([`super::screenshot::save_layout`]).
+    pub fn drawn(&self) -> super::overlay::Drawn {
+        super::overlay::drawn(&self.egui)
+    }
+
+    /// The room the pictures take: the whole slide.
+    pub fn area(&self) -> SceneArea {
+        SceneArea {
+            left: 0.0,
+            right: self.target.size().0 as f32,
+        }
     }
 }
 

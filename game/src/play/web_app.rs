@@ -1,37 +1,79 @@
-//! The game's frame in a browser tab (wasm32): what [`super::app`] does
-//! for the desktop window, without what needs the desktop (a lesson's
-//! Python process, the tracked head, CAVE outputs, the render cluster,
-//! screenshots to files). The same model, frame schedule, renderer,
-//! panels, keys, cue, camera and split views, in [`super::window`] on
-//! the page's canvas.
+//! The game in a browser tab (wasm32): the shared frame
+//! ([`super::stage`]) with what the page adds: scenes opened by link
+//! (`?scene=NAME`, `#scene=DATA`, [`crate::links`]) or by a file dropped
+//! on the page, and a *share* button that copies the link of what is
+//! open. What needs the desktop (a lesson's Python process, the tracked
+//! head, CAVE outputs, the render cluster, screenshots to files) is not
+//! here.
 
-use web_time::Instant;
+use std::cell::RefCell;
+
+use lightcone_engine::scene::{self, Scene};
 use winit::event::WindowEvent;
 use winit::window::WindowId;
 
 use super::actions::UiAction;
-use super::input::Input;
 use super::layout::SceneArea;
 use super::panels::{self, Hud};
-use super::pictures::Pictures;
-use super::shown::aspect;
+use super::stage::{Host, Stage};
 use super::window::{self, Flow, Gfx};
-use crate::model::{GameState, Pane};
+use crate::links::{self, Kind, SceneSource};
+use crate::model::GameState;
 
-/// Starts the game on the page: the shipped scene `scene` (a file name of
-/// [`crate::assets::SCENES`], `.toml` optional), or the default one when
-/// `scene` is `None`. A scene that is not shipped, or does not parse, is
-/// an error naming it (the page shows it). Returns once the event loop
-/// is running (the browser drives it).
-pub fn start(scene: Option<&str>) -> Result<(), String> {
-    let game = GameState::new(load(scene)?);
-    window::spawn(WebApp::new(game))
+/// Largest file the page opens when dropped on it, bytes (the page checks
+/// the size before reading the file).
+pub const MAX_DROPPED: usize = links::MAX_TEXT;
+
+/// What the page opens: the link's query (`location.search`) and fragment
+/// (`location.hash`).
+pub struct Address<'a> {
+    /// `?scene=NAME`, if given.
+    pub scene: Option<&'a str>,
+    /// The fragment, with or without its `#` (`#scene=DATA`).
+    pub fragment: &'a str,
 }
 
-/// The shipped scene named `name`, or the default one.
-fn load(name: Option<&str>) -> Result<lightcone_engine::scene::Scene, String> {
-    let Some(name) = name else {
-        return crate::assets::default_scene().map_err(|e| e.to_string());
+/// Starts the game on the page: the scene the address names (a file
+/// carried in the fragment first, then `?scene=NAME` of a shipped scene),
+/// else the default one. What the address names but cannot be opened (a
+/// scene that is not shipped, a link cut short, a scene with errors, a
+/// lesson) is said in the scene menu over the default scene, with the
+/// errors located as `lightcone check` locates them. Returns once the
+/// event loop is running (the browser drives it).
+pub fn start(address: &Address<'_>) -> Result<(), String> {
+    let mut state = default_game()?;
+    if let Err(e) = open_address(&mut state, address) {
+        web_sys::console::error_1(&format!("lightcone: {e}").into());
+        say_in_menu(&mut state, e);
+    }
+    window::spawn(WebApp {
+        stage: Stage::new(state, false),
+        page: Page,
+    })
+}
+
+/// The default scene, paused on its title.
+fn default_game() -> Result<GameState, String> {
+    let scene = crate::assets::default_scene().map_err(|e| e.to_string())?;
+    let mut state = GameState::new(scene);
+    let name = crate::assets::DEFAULT_SCENE
+        .rsplit('/')
+        .next()
+        .unwrap_or_default();
+    state.source = Some(SceneSource::Shipped(name.to_owned()));
+    Ok(state)
+}
+
+/// Opens what `address` names in `state` (nothing: the default scene
+/// stays).
+fn open_address(state: &mut GameState, address: &Address<'_>) -> Result<(), String> {
+    if let Some(carried) = links::from_fragment(address.fragment) {
+        let (kind, text) = carried.map_err(|e| e.to_string())?;
+        let name = format!("the link's {}", kind.key());
+        return open_text(state, kind, &name, text);
+    }
+    let Some(name) = address.scene else {
+        return Ok(());
     };
     let file = if name.ends_with(".toml") {
         name.to_owned()
@@ -39,7 +81,11 @@ fn load(name: Option<&str>) -> Result<lightcone_engine::scene::Scene, String> {
         format!("{name}.toml")
     };
     match crate::assets::shipped_scene(&file) {
-        Some(scene) => scene.map_err(|e| e.to_string()),
+        Some(scene) => {
+            let scene = scene.map_err(|e| e.to_string())?;
+            open_scene(state, scene, SceneSource::Shipped(file));
+            Ok(())
+        }
         None => {
             let names: Vec<&str> = crate::assets::SCENES.iter().map(|(n, _)| *n).collect();
             Err(format!(
@@ -50,92 +96,157 @@ fn load(name: Option<&str>) -> Result<lightcone_engine::scene::Scene, String> {
     }
 }
 
-/// The game in the page's canvas.
-struct WebApp {
-    state: GameState,
-    input: Input,
-    /// The scene renderer (made once the GPU is open).
-    pictures: Option<Pictures>,
-    /// When the last frame began.
-    last: Instant,
-    /// The area the last frame's panels left for the pictures.
-    area: SceneArea,
-    /// Frames drawn so far (the page's test waits for the first).
-    frames: u64,
+/// Opens a file's `text` (a scene, checked as `lightcone check` does; or a
+/// lesson, which the page cannot run yet), named `name` in messages.
+fn open_text(state: &mut GameState, kind: Kind, name: &str, text: String) -> Result<(), String> {
+    if kind == Kind::Lesson {
+        return Err(format!(
+            "{name} is a lesson: lessons run in the desktop game for now (`lightcone play LESSON.py`)"
+        ));
+    }
+    let scene = scene::parse(&text, name).map_err(|e| e.to_string())?;
+    let source = SceneSource::Text {
+        name: name.to_owned(),
+        text,
+    };
+    open_scene(state, scene, source);
+    Ok(())
 }
 
-impl WebApp {
-    fn new(state: GameState) -> Self {
-        Self {
-            state,
-            input: Input::new(false),
-            pictures: None,
-            last: Instant::now(),
-            area: SceneArea::default(),
-            frames: 0,
-        }
-    }
+/// `scene` in place of the game, paused on its title, as the scene menu
+/// opens one.
+fn open_scene(state: &mut GameState, scene: Scene, source: SceneSource) {
+    super::scene_menu::switch(state, scene, Some(source));
+}
 
-    /// Carries out what the keys and panels asked; the window's own
-    /// actions (the CAVE's eye, a lesson's) have nothing to act on here.
-    fn act(&mut self, actions: Vec<UiAction>) {
-        for action in actions {
-            let _ = action.apply(&mut self.state);
-        }
-    }
+/// Shows `message` in the scene menu (opened), where a scene that cannot
+/// be opened is reported; the game behind it goes on.
+fn say_in_menu(state: &mut GameState, message: String) {
+    state.scene_menu.open = true;
+    state.scene_menu.error = Some(message);
+}
 
-    /// The pictures' rectangles in a canvas of `size`.
-    fn rects(&self, (w, h): (u32, u32)) -> Vec<([f32; 4], Pane)> {
-        self.area.rects(&self.state.pane_list(), w as f32, h as f32)
-    }
+/// A file dropped on the page, waiting for the next frame: its name, and
+/// its text (`None` when it was larger than [`MAX_DROPPED`] and not
+/// read).
+type Dropped = (String, Option<String>);
 
-    /// Runs the frame schedule for the pictures laid out in `size`.
-    fn run_views(&mut self, size: (u32, u32)) {
-        let panes: Vec<(Pane, f64)> = self
-            .rects(size)
-            .into_iter()
-            .map(|(r, p)| (p, aspect(r)))
-            .collect();
-        self.state.run_frame(&panes);
-    }
+thread_local! {
+    /// The newest file dropped on the page and not yet opened (one: a
+    /// second drop before the next frame replaces the first).
+    static DROPPED: RefCell<Option<Dropped>> = const { RefCell::new(None) };
+}
 
-    /// Runs the panels; returns them to paint, the area they leave and
-    /// what they asked.
-    fn panels(&mut self, gfx: &mut Gfx) -> (window::Ui, SceneArea, Vec<UiAction>) {
-        let size = gfx.size();
-        let mut area = self.area;
-        let mut actions = Vec::new();
+/// Hands the game a file dropped on the page (the page's `drop` handler
+/// calls it): opened at the next frame. `text` is `None` for a file the
+/// page did not read because it is larger than [`MAX_DROPPED`].
+pub fn drop_file(name: String, text: Option<String>) {
+    DROPPED.with(|d| *d.borrow_mut() = Some((name, text)));
+}
+
+/// What the page adds to the shared frame: the share button.
+struct Page;
+
+impl Host for Page {
+    fn panels(
+        &mut self,
+        ui: &mut egui::Ui,
+        state: &mut GameState,
+        size: (u32, u32),
+        actions: &mut Vec<UiAction>,
+    ) -> SceneArea {
         let hud = Hud {
             tracker: None,
             tracker_colour: egui::Color32::GRAY,
             clocks: true,
             lesson: None,
             lessons: false,
+            share: true,
         };
-        let state = &mut self.state;
-        let ui = gfx.run_ui(|ui| {
-            area = panels::panels(ui, state, &hud, None, size, &mut actions);
-        });
-        (ui, area, actions)
+        panels::panels(ui, state, &hud, None, size, actions)
+    }
+
+    fn act(&mut self, action: UiAction, state: &mut GameState) {
+        if matches!(action, UiAction::Share) {
+            share(state);
+        }
+        // The CAVE's eye and a lesson's actions have nothing to act on
+        // in the page.
+    }
+}
+
+/// Puts the link of what is open in the address bar and the clipboard,
+/// and says so (the link is also `window.lightconeShareLink`, for the
+/// browser test).
+fn share(state: &mut GameState) {
+    let Some(page) = web_sys::window() else {
+        return;
+    };
+    let Some(source) = &state.source else {
+        state.message = "this scene was not opened from a file: nothing to share".to_owned();
+        return;
+    };
+    let location = page.location();
+    let base = match (location.origin(), location.pathname()) {
+        (Ok(origin), Ok(path)) => format!("{origin}{path}"),
+        _ => return,
+    };
+    let link = links::link(&base, source);
+    if let Ok(history) = page.history() {
+        let _ =
+            history.replace_state_with_url(&web_sys::wasm_bindgen::JsValue::NULL, "", Some(&link));
+    }
+    let _ = page.navigator().clipboard().write_text(&link);
+    let _ =
+        web_sys::js_sys::Reflect::set(&page, &"lightconeShareLink".into(), &link.as_str().into());
+    state.message = format!(
+        "link copied ({} characters): it opens this scene for whoever you send it to",
+        link.len()
+    );
+}
+
+/// The game in the page's canvas.
+struct WebApp {
+    stage: Stage,
+    page: Page,
+    /// Frames drawn so far (the page's test waits for the first).
+    frames: u64,
+}
+
+impl WebApp {
+    /// Opens the file dropped on the page since the last frame, if any;
+    /// what cannot be opened is said in the scene menu.
+    fn open_dropped(&mut self) {
+        let Some((name, text)) = DROPPED.with(|d| d.borrow_mut().take()) else {
+            return;
+        };
+        let state = &mut self.stage.state;
+        let opened = match text {
+            None => Err(format!(
+                "{name}: larger than the {} MiB the page opens",
+                MAX_DROPPED >> 20
+            )),
+            Some(text) => open_text(state, Kind::of_file(&name), &name, text),
+        };
+        if let Err(e) = opened {
+            web_sys::console::error_1(&format!("lightcone: {e}").into());
+            say_in_menu(state, e);
+        }
     }
 }
 
 impl window::Game for WebApp {
     fn title(&self) -> String {
-        format!("Lightcone: {}", self.state.scene.title)
+        format!("Lightcone: {}", self.stage.state.scene.title)
     }
 
     fn ready(&mut self, gfx: &Gfx) -> Result<(), String> {
-        self.pictures = Some(Pictures::new(&gfx.gpu, gfx.config.format, gfx.size()));
+        self.stage.ready(gfx);
         Ok(())
     }
 
     fn input(&mut self, gfx: &Gfx, event: &WindowEvent, consumed: bool) {
-        let rects = self.rects(gfx.size());
-        let mut actions = Vec::new();
-        self.input
-            .event(event, consumed, &mut self.state, &rects, &mut actions);
-        self.act(actions);
+        self.stage.input(&mut self.page, gfx, event, consumed);
     }
 
     fn other_window(
@@ -148,36 +259,11 @@ impl window::Game for WebApp {
     }
 
     fn frame(&mut self, gfx: &mut Gfx) -> Result<Flow, String> {
-        let now = Instant::now();
-        let dt = (now - self.last).as_secs_f64().min(0.1);
-        self.last = now;
-        // Held keys fly the eye at a proper acceleration of 0.5 c per
-        // second, as in the window.
-        let dir = self.input.flight(self.state.forward());
-        if dir != glam::DVec3::ZERO {
-            self.state.thrust(dir * 0.5 * dt, dir * 1.0 * dt);
-        }
-        self.state.step(dt);
-        let size = gfx.size();
-        self.run_views(size);
-        let (ui, area, actions) = self.panels(gfx);
-        if area != self.area {
-            self.area = area;
-            self.run_views(size);
-        }
-        self.act(actions);
-        let texture = gfx.next_texture();
-        let target = texture.as_ref().map(|t| {
-            t.texture
-                .create_view(&wgpu::TextureViewDescriptor::default())
-        });
-        if let (Some(target), Some(pictures)) = (&target, &mut self.pictures) {
-            let (w, h) = (size.0 as f32, size.1 as f32);
-            let plans = self.area.plans(None, &self.state.pane_list(), w, h);
-            pictures.draw(&gfx.gpu, target, size, &plans, &self.state, None);
-        }
-        gfx.paint_ui(ui, target.as_ref());
-        if let Some(texture) = texture {
+        self.open_dropped();
+        let (_, dt) = self.stage.tick();
+        self.stage.fly_free(dt);
+        self.stage.state.step(dt);
+        if let Some(texture) = self.stage.draw(&mut self.page, gfx, false) {
             gfx.gpu.queue.present(texture);
             self.frames += 1;
             if self.frames == 1 {

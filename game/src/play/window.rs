@@ -72,6 +72,8 @@ pub trait Game {
 pub struct Gfx {
     /// The window.
     pub window: Arc<Window>,
+    /// Its title as last set.
+    title: String,
     /// Its surface.
     pub surface: wgpu::Surface<'static>,
     /// The GPU.
@@ -89,7 +91,8 @@ pub struct Ui(egui::FullOutput);
 impl Gfx {
     /// Opens the main window titled `title`, the GPU, and egui on it.
     fn open(event_loop: &ActiveEventLoop, game: &mut impl Game) -> Result<Self, String> {
-        let attributes = Window::default_attributes().with_title(game.title());
+        let title = game.title();
+        let attributes = Window::default_attributes().with_title(&title);
         #[cfg(not(target_arch = "wasm32"))]
         let attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
         // In a browser: a canvas appended to the page's body, sized by the
@@ -132,6 +135,7 @@ impl Gfx {
         let egui_painter = UiPainter::new(&gpu, config.format);
         Ok(Self {
             window,
+            title,
             surface,
             gpu,
             config,
@@ -291,6 +295,13 @@ impl<G: Game> ApplicationHandler for Runner<'_, G> {
             WindowEvent::Resized(size) => gfx.resize(size),
             WindowEvent::RedrawRequested => {
                 let flow = self.game.frame(gfx);
+                // The title follows the game (a scene or lesson opened from
+                // the menu, a file dropped on the page).
+                let title = self.game.title();
+                if title != gfx.title {
+                    gfx.window.set_title(&title);
+                    gfx.title = title;
+                }
                 self.obey(event_loop, flow);
             }
             event if takes_input => self.game.input(gfx, &event, consumed),
