@@ -159,7 +159,7 @@ fn error(field: &str, message: impl Into<String>, bytes: &[u8]) -> ProtocolError
     }
 }
 
-/// The cookie this client sends: [`MAGIC`], two spaces, log mode 0, NULs.
+/// The cookie this client sends: `MAGIC`, two spaces, log mode 0, NULs.
 pub fn cookie() -> [u8; COOKIE_LEN] {
     let mut c = [0u8; COOKIE_LEN];
     c[..MAGIC.len()].copy_from_slice(MAGIC);

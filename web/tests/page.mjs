@@ -103,12 +103,15 @@ async function links() {
     );
   await page.goto(base);
   await started();
-  const helpers = `
+  // On every page of this tab: the link's DATA both ways, by the browser's
+  // own streams.
+  const helpers = () => {
     window.packLink = async (text) => {
       const s = new Blob([text]).stream().pipeThrough(new CompressionStream("deflate-raw"));
       const bytes = new Uint8Array(await new Response(s).arrayBuffer());
-      let bin = ""; for (const b of bytes) bin += String.fromCharCode(b);
-      return btoa(bin).replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
+      let bin = "";
+      for (const b of bytes) bin += String.fromCharCode(b);
+      return btoa(bin).replace(/[+]/g, "-").replace(/[/]/g, "_").replace(/=+$/, "");
     };
     window.unpackLink = async (data) => {
       const b64 = data.replace(/-/g, "+").replace(/_/g, "/");
@@ -116,7 +119,9 @@ async function links() {
       const bytes = Uint8Array.from(bin, (c) => c.charCodeAt(0));
       const s = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
       return await new Response(s).text();
-    };`;
+    };
+  };
+  await page.addInitScript(helpers);
   await page.evaluate(helpers);
   const shipped = await page.evaluate(async () => (await fetch("scenes/ten_pucks.toml")).text());
   const retitled = (title) => shipped.replace(/^title = .*$/m, `title = "${title}"`);
@@ -131,7 +136,6 @@ async function links() {
 
   // 2. A scene file dropped on the page opens; K copies the link of what
   // is open, which carries the dropped file's text unchanged.
-  await page.evaluate(helpers);
   const dropped = retitled("Dropped by a test");
   const drop = async (name, text) =>
     page.evaluate(

@@ -36,7 +36,7 @@ pub struct WallArgs {
     #[arg(long, default_value_t = 10.0)]
     pub silence: f64,
     /// Save a screenshot of the node's windows (the main one, and one
-    /// per output as FILE.<output>.png) after --frames frames, then stop.
+    /// per output as FILE.OUTPUT.png) after --frames frames, then stop.
     #[arg(long, value_parser = super::args::png_file)]
     pub screenshot: Option<PathBuf>,
 }

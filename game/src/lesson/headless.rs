@@ -288,7 +288,7 @@ const STILL_FRAMES: u32 = 36_000;
 /// frames a real second: the hooks run, questions are answered, and once
 /// the lesson has finished (or failed: its error is on `host`) the board
 /// goes on without it. Returns at the first frame at or past `t`, or an
-/// error when board time stands still for [`STILL_FRAMES`] frames (the
+/// error when board time stands still for `STILL_FRAMES` frames (the
 /// lesson paused it, or set no time scale) or Ctrl-C is pressed.
 pub fn run_to(
     host: &mut LessonHost,

@@ -22,7 +22,7 @@
 //! while it is drawn; the next frame takes their ends, waiting at most
 //! [`FRAME_BUDGET`] (`LessonHost::serve`); while a hook is out, board time
 //! waits (the window keeps drawing). Nothing the lesson
-//! sends is trusted: a line over [`MAX_LINE`](super::line::MAX_LINE) bytes, a message that is not
+//! sends is trusted: a line over `line::MAX_LINE` bytes, a message that is not
 //! an `Up`, a request for something the game does not serve, or a
 //! message when no call is out ends the lesson's process, with the reason.
 //!

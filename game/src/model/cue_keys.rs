@@ -17,7 +17,7 @@ const MIN_KEY_STROKE: f64 = 0.01;
 impl GameState {
     /// Puts the cue on the next puck (the first one when none is cued),
     /// aimed from it towards the table's middle (along +x from the middle
-    /// itself) with a proper velocity γv of [`KEY_STROKE`] m/s, or the
+    /// itself) with a proper velocity γv of `KEY_STROKE` m/s, or the
     /// strength the cue had.
     pub fn cue_next(&mut self) {
         let n = self.physics().len();

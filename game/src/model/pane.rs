@@ -8,7 +8,7 @@ use lightcone_render::frame::ViewKind;
 /// Whose eye a picture looks through.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EyeChoice {
-    /// The eye the player looks through ([`GameState::observer`]: the
+    /// The eye the player looks through ([`crate::model::GameState::observer`]: the
     /// free eye, or the scene observer chosen in the panel).
     Current,
     /// The free eye ("you").

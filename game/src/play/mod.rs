@@ -2,7 +2,7 @@
 //! the game's logic (time, replay, cue, flight, effects), testable without
 //! a window; [`window`] is the framework (winit, wgpu, egui) and [`app`]
 //! the game's frame in it, put together from one file per concern. The
-//! browser build (wasm32) has [`web_app`] in place of `app`: the same
+//! browser build (wasm32) has `web_app` in place of `app`: the same
 //! frame without lessons, tracker, CAVE outputs, cluster or screenshots.
 
 pub mod actions;

@@ -1,5 +1,5 @@
 //! The game's frame as the desktop window ([`super::app`]) and the
-//! browser page ([`super::web_app`]) both draw it: the views run for the
+//! browser page (`web_app`) both draw it: the views run for the
 //! room the panels leave, the panels, what they asked carried out, the
 //! pictures under them, the panels painted over. Each front end is a
 //! [`Host`] that adds its own parts (a lesson, the CAVE's walls, a share

@@ -49,6 +49,7 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
     window::spawn(WebApp {
         stage: Stage::new(state, false),
         page: Page,
+        frames: 0,
     })
 }
 
@@ -56,10 +57,10 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
 fn default_game() -> Result<GameState, String> {
     let scene = crate::assets::default_scene().map_err(|e| e.to_string())?;
     let mut state = GameState::new(scene);
-    let name = crate::assets::DEFAULT_SCENE
-        .rsplit('/')
-        .next()
-        .unwrap_or_default();
+    // As `play` opens a scene: paused on its title and description.
+    state.paused = true;
+    state.intro = true;
+    let name = crate::DEFAULT_SCENE.rsplit('/').next().unwrap_or_default();
     state.source = Some(SceneSource::Shipped(name.to_owned()));
     Ok(state)
 }

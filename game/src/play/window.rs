@@ -107,6 +107,7 @@ impl Gfx {
                 .create_window(attributes)
                 .map_err(|e| format!("cannot open a window: {e}"))?,
         );
+        set_title(&window, &title);
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: wgpu::Backends::VULKAN | wgpu::Backends::GL,
             ..wgpu::InstanceDescriptor::new_without_display_handle()
@@ -196,6 +197,16 @@ impl Gfx {
         let size = (self.config.width, self.config.height);
         self.egui_painter
             .paint(&self.gpu, &self.egui, output, size, target);
+    }
+}
+
+/// Titles the window (in a browser, the tab: winit titles only the
+/// canvas there).
+fn set_title(window: &Window, title: &str) {
+    window.set_title(title);
+    #[cfg(target_arch = "wasm32")]
+    if let Some(document) = web_sys::window().and_then(|w| w.document()) {
+        document.set_title(title);
     }
 }
 
@@ -299,7 +310,7 @@ impl<G: Game> ApplicationHandler for Runner<'_, G> {
                 // the menu, a file dropped on the page).
                 let title = self.game.title();
                 if title != gfx.title {
-                    gfx.window.set_title(&title);
+                    set_title(&gfx.window, &title);
                     gfx.title = title;
                 }
                 self.obey(event_loop, flow);

@@ -1,5 +1,5 @@
 //! The diagram's grid: lines at a round step (0.5, 1, 2, 5, 10, … m or s)
-//! chosen so that a range holds at most [`MAX_LINES`] of them, every line
+//! chosen so that a range holds at most `MAX_LINES` of them, every line
 //! or every other one labelled with its value and unit.
 
 use super::{GRID_RGB, Mark, Place, Role};
@@ -23,7 +23,7 @@ pub struct GridAxis {
 
 impl GridAxis {
     /// The grid over `range` (m or s): the smallest step of the sequence
-    /// whose multiples in the range number at most [`MAX_LINES`]; no lines
+    /// whose multiples in the range number at most `MAX_LINES`; no lines
     /// where the numbers are too large for a step to change them (a
     /// diagram at board time −10¹⁸ s: the count stays bounded).
     pub fn over(range: (f64, f64)) -> Self {

@@ -9,7 +9,7 @@
 //! One description, two painters: [`plot_with`] lists every mark in
 //! diagram coordinates (board x or y in m, board time in s) with the
 //! legend's keys, and the painters only map those to pixels
-//! ([`Plot::to_px`], [`dashes`]): [`draw_with`] into an [`Image`] on the CPU
+//! ([`Plot::to_px`], [`dashes`]): [`draw_with`] into an [`Image`](crate::headless::Image) on the CPU
 //! (no GPU needed), the game's window with egui's painter.
 //!
 //! The light cone of an eye at a height above the board is not a pair of
