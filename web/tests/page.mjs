@@ -183,8 +183,52 @@ async function links() {
   await page.close();
 }
 
+// The cue by pointer and by touch: a drag from a puck strikes it. The
+// pucks of the default scene at 1280×720 (white and red, as drawn in
+// docs/web_default.png): the press picks the puck seen within 30 px.
+async function cue() {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 720 }, hasTouch: true });
+  const page = await context.newPage();
+  const errors = [];
+  page.on("console", (m) => {
+    if (m.type() === "error") errors.push(m.text());
+  });
+  page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
+  await page.goto(base);
+  await page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
+  await page.waitForTimeout(1000);
+  const struck = async (n) =>
+    page
+      .waitForFunction((n) => window.lightconeStrokes === n, n, { timeout: 10_000 })
+      .then(() => page.evaluate(() => window.lightconeStruck), () => null);
+  // The mouse: press on white, pull back 90 px, release.
+  await page.mouse.move(607, 362);
+  await page.mouse.down();
+  await page.mouse.move(560, 362, { steps: 4 });
+  await page.mouse.move(517, 362, { steps: 4 });
+  await page.mouse.up();
+  const byMouse = await struck(1);
+  if (byMouse !== "white") fail(`mouse drag from white: struck ${byMouse}`);
+  // A finger: touch red, pull 80 px, lift.
+  const cdp = await context.newCDPSession(page);
+  const touch = (type, x, y) =>
+    cdp.send("Input.dispatchTouchEvent", { type, touchPoints: type === "touchEnd" ? [] : [{ x, y }] });
+  await touch("touchStart", 933, 332);
+  for (const x of [953, 973, 993, 1013]) {
+    await touch("touchMove", x, 332);
+    await page.waitForTimeout(50);
+  }
+  await touch("touchEnd", 1013, 332);
+  const byTouch = await struck(2);
+  if (byTouch !== "red") fail(`touch drag from red: struck ${byTouch}`);
+  console.log(JSON.stringify({ cue: { mouse: byMouse, touch: byTouch } }));
+  if (errors.length) fail(`cue: console errors: ${JSON.stringify(errors)}`);
+  await context.close();
+}
+
 await check("", shot);
 await check("?scene=ten_pucks", shot.replace(/\.png$/, "_ten_pucks.png"));
 await links();
+await cue();
 await browser.close();
 process.exit(failed ? 1 : 0);

@@ -1,10 +1,14 @@
 //! The player's hands: keys become [`UiAction`]s (held ones fly the eye),
-//! the mouse aims the cue, turns, orbits and zooms.
+//! the mouse aims the cue, turns, orbits and zooms; on a touch screen
+//! (a tablet, a Chromebook) one finger aims and strikes the cue as the
+//! left button does.
 
 use std::collections::HashSet;
 
 use glam::{DVec2, DVec3};
-use winit::event::{ElementState, KeyEvent, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event::{
+    ElementState, KeyEvent, MouseButton, MouseScrollDelta, Touch, TouchPhase, WindowEvent,
+};
 use winit::keyboard::{KeyCode, PhysicalKey};
 
 use super::actions::{self, UiAction};
@@ -27,6 +31,8 @@ pub struct Input {
     orbiting: bool,
     /// Puck being aimed and where the drag started (physical px).
     aiming: Option<(usize, DVec2)>,
+    /// The finger that aims the cue (the first one down), by its id.
+    finger: Option<u64>,
 }
 
 impl Input {
@@ -73,6 +79,7 @@ impl Input {
                 };
                 actions.push(UiAction::Zoom(1.1f64.powf(lines)));
             }
+            WindowEvent::Touch(touch) => self.touch(touch, consumed, state, rects),
             &WindowEvent::MouseInput {
                 state: s, button, ..
             } if !consumed || s == ElementState::Released => match (button, s) {
@@ -145,6 +152,42 @@ impl Input {
             .copied()
             .find(|(r, _)| x >= r[0] && x < r[0] + r[2] && y >= r[1] && y < r[1] + r[3])
             .or_else(|| rects.last().copied())
+    }
+
+    /// A finger on the screen: the first one down (not on a panel) is the
+    /// cursor with the left button held, so it aims and strikes the cue;
+    /// a lifted finger strikes, a cancelled touch drops the aim.
+    fn touch(
+        &mut self,
+        touch: &Touch,
+        consumed: bool,
+        state: &mut GameState,
+        rects: &[([f32; 4], Pane)],
+    ) {
+        let at = DVec2::new(touch.location.x, touch.location.y);
+        match touch.phase {
+            TouchPhase::Started if self.finger.is_none() && !consumed => {
+                self.finger = Some(touch.id);
+                self.cursor = at;
+                self.press(state, rects);
+            }
+            _ if self.finger != Some(touch.id) => {}
+            TouchPhase::Started | TouchPhase::Moved => {
+                self.cursor = at;
+                self.drag(state, rects);
+            }
+            TouchPhase::Ended => {
+                self.finger = None;
+                self.cursor = at;
+                self.release(state);
+            }
+            TouchPhase::Cancelled => {
+                self.finger = None;
+                if self.aiming.take().is_some() {
+                    state.cue = None;
+                }
+            }
+        }
     }
 
     /// Left press: the puck seen nearest the cursor (within 30 px) is aimed.

@@ -50,6 +50,7 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
         stage: Stage::new(state, false),
         page: Page,
         frames: 0,
+        stroke: None,
     })
 }
 
@@ -212,6 +213,8 @@ struct WebApp {
     page: Page,
     /// Frames drawn so far (the page's test waits for the first).
     frames: u64,
+    /// The last stroke of the cue the page was told of.
+    stroke: Option<crate::model::Stroke>,
 }
 
 impl WebApp {
@@ -264,6 +267,13 @@ impl window::Game for WebApp {
         let (_, dt) = self.stage.tick();
         self.stage.fly_free(dt);
         self.stage.state.step(dt);
+        let state = &self.stage.state;
+        if state.last_stroke != self.stroke {
+            self.stroke = state.last_stroke;
+            if let Some(stroke) = self.stroke {
+                stroke_made(&state.scene.pucks[stroke.puck].name);
+            }
+        }
         if let Some(texture) = self.stage.draw(&mut self.page, gfx, false) {
             gfx.gpu.queue.present(texture);
             self.frames += 1;
@@ -273,6 +283,22 @@ impl window::Game for WebApp {
         }
         Ok(Flow::Continue)
     }
+}
+
+/// Notes on the page that the cue struck `puck`: `window.lightconeStrokes`
+/// counts the strokes and `window.lightconeStruck` names the last puck
+/// struck (for the browser test of the pointer and touch cue).
+fn stroke_made(puck: &str) {
+    let Some(page) = web_sys::window() else {
+        return;
+    };
+    let key = "lightconeStrokes".into();
+    let n = web_sys::js_sys::Reflect::get(&page, &key)
+        .ok()
+        .and_then(|v| v.as_f64())
+        .unwrap_or(0.0);
+    let _ = web_sys::js_sys::Reflect::set(&page, &key, &(n + 1.0).into());
+    let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeStruck".into(), &puck.into());
 }
 
 /// Notes on the page that the first frame was drawn: its time since the
