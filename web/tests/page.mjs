@@ -54,6 +54,7 @@ async function check(query, screenshot) {
   // A few more frames: the panels' fonts, the views framed for the room
   // the panels leave.
   await page.waitForTimeout(2000);
+
   const png = await page.screenshot({ path: screenshot });
   // The screenshot's pixels, read back by the page itself (no PNG decoder
   // needed here): distinct colours (4 bits a channel) and the share of
@@ -76,7 +77,33 @@ async function check(query, screenshot) {
     const top = Math.max(...counts.values());
     return { colours: counts.size, commonest: top / (px.length / 4) };
   }, png.toString("base64"));
-  console.log(JSON.stringify({ url, firstFrameMs, ...stats, errors }));
+  // Frame times: the game draws once per animation frame (winit's redraw
+  // on the web), so the gaps between animation frames over 3 s are its
+  // frame times (ms; the game running, not paused on its title).
+  await page.focus("canvas");
+  await page.keyboard.press("Space");
+  const frames = await page.evaluate(
+    () =>
+      new Promise((done) => {
+        const gaps = [];
+        let last = performance.now();
+        const end = last + 3000;
+        const tick = (now) => {
+          gaps.push(now - last);
+          last = now;
+          if (now < end) requestAnimationFrame(tick);
+          else {
+            gaps.sort((a, b) => a - b);
+            const q = (f) => Math.round(gaps[Math.floor(f * (gaps.length - 1))] * 10) / 10;
+            done({ n: gaps.length, p50: q(0.5), p95: q(0.95), max: q(1) });
+          }
+        };
+        requestAnimationFrame(tick);
+      }),
+  );
+  await page.keyboard.press("Space");
+  const cpu = await page.evaluate(() => window.lightconeFrameCpuMs);
+  console.log(JSON.stringify({ url, firstFrameMs, frameMs: frames, frameCpuMs: cpu, ...stats, errors }));
   if (errors.length) fail(`${url}: console errors: ${JSON.stringify(errors)}`);
   if (stats.colours < 16 || stats.commonest > 0.95)
     fail(`${url}: the page looks blank (${stats.colours} colours, commonest ${stats.commonest})`);

@@ -51,6 +51,7 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
         page: Page,
         frames: 0,
         stroke: None,
+        cpu_ms: std::collections::VecDeque::with_capacity(CPU_FRAMES),
     })
 }
 
@@ -215,7 +216,13 @@ struct WebApp {
     frames: u64,
     /// The last stroke of the cue the page was told of.
     stroke: Option<crate::model::Stroke>,
+    /// The page's time each of the last [`CPU_FRAMES`] frames took on its
+    /// thread, ms (`window.lightconeFrameCpuMs` is their median).
+    cpu_ms: std::collections::VecDeque<f64>,
 }
+
+/// How many frames the page's frame-time median is over.
+const CPU_FRAMES: usize = 64;
 
 impl WebApp {
     /// Opens the file dropped on the page since the last frame, if any;
@@ -263,6 +270,7 @@ impl window::Game for WebApp {
     }
 
     fn frame(&mut self, gfx: &mut Gfx) -> Result<Flow, String> {
+        let start = page_ms();
         self.open_dropped();
         let (_, dt) = self.stage.tick();
         self.stage.fly_free(dt);
@@ -281,7 +289,35 @@ impl window::Game for WebApp {
                 first_frame_drawn();
             }
         }
+        self.frame_took(page_ms() - start);
         Ok(Flow::Continue)
+    }
+}
+
+/// The page's clock, ms (`performance.now()`; NaN without one).
+fn page_ms() -> f64 {
+    web_sys::window()
+        .and_then(|w| w.performance())
+        .map_or(f64::NAN, |p| p.now())
+}
+
+impl WebApp {
+    /// Keeps the time one frame took on the page's thread (`ms`: the game's
+    /// work and its WebGL calls, not the browser's compositing) and
+    /// publishes the median of the last [`CPU_FRAMES`] as
+    /// `window.lightconeFrameCpuMs`.
+    fn frame_took(&mut self, ms: f64) {
+        if self.cpu_ms.len() == CPU_FRAMES {
+            self.cpu_ms.pop_front();
+        }
+        self.cpu_ms.push_back(ms);
+        let mut sorted: Vec<f64> = self.cpu_ms.iter().copied().collect();
+        sorted.sort_by(f64::total_cmp);
+        let median = sorted[sorted.len() / 2];
+        if let Some(page) = web_sys::window() {
+            let key = "lightconeFrameCpuMs".into();
+            let _ = web_sys::js_sys::Reflect::set(&page, &key, &median.into());
+        }
     }
 }
 
