@@ -19,13 +19,21 @@ fi
 port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 python3 -m http.server -b 127.0.0.1 -d web/dist "$port" >/dev/null 2>&1 &
 server=$!
-trap 'kill $server' EXIT
+trap 'kill $server; [ -z "${native:-}" ] || rm -f "$native" "${native%.png}.json"' EXIT
 for _ in $(seq 50); do
   python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/')" 2>/dev/null && break
   sleep 0.1
 done
 
-node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
+# The window's own screenshot of the default scene, for the parity test
+# (when the native game is built and Xvfb is here: after scripts/test.sh).
+native=""
+if [ -x target/release/lightcone ] && command -v xvfb-run >/dev/null; then
+  native=$(mktemp --suffix=.png)
+  xvfb-run -a -s "-screen 0 1280x720x24" target/release/lightcone play --screenshot "$native" --frames 30 >/dev/null 2>&1 ||
+    native=""
+fi
+NATIVE_PNG="$native" node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
 # The download: the wasm gzipped (as a server sends it), and the JS glue.
 wasm=web/dist/lightcone_web_bg.wasm
 echo "wasm $(stat -c %s $wasm) bytes, gzipped $(gzip -9 -c $wasm | wc -c) bytes; JS glue $(stat -c %s web/dist/lightcone_web.js) bytes"
