@@ -30,8 +30,10 @@ done
 native=""
 if [ -x target/release/lightcone ] && command -v xvfb-run >/dev/null; then
   native=$(mktemp --suffix=.png)
-  xvfb-run -a -s "-screen 0 1280x720x24" target/release/lightcone play --screenshot "$native" --frames 30 >/dev/null 2>&1 ||
+  if ! xvfb-run -a -s "-screen 0 1280x720x24" target/release/lightcone play --screenshot "$native" --frames 30 >/dev/null 2>&1; then
+    rm -f "$native" "${native%.png}.json"
     native=""
+  fi
 fi
 NATIVE_PNG="$native" node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
 # The download: the wasm gzipped (as a server sends it), and the JS glue.

@@ -1123,6 +1123,23 @@ fn render_draws_the_windows_overlays_and_takes_plays_flags() {
         );
     }
     assert!(bare_layout["labels"].as_array().unwrap().is_empty());
+    // A picture sent to /dev/null has no layout beside it.
+    let out = lightcone(&[
+        "render",
+        scene,
+        "--at",
+        "1",
+        "--size",
+        "64x36",
+        "-o",
+        "/dev/null",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(!std::path::Path::new("/dev/null.json").exists());
     let top = shot(&[scene, "--at", "1.5", "--top", "--no-overlays"], "top.png");
     assert_ne!(top.rgba, bare.rgba, "--top moves the camera");
     let lesson = shot(
@@ -1192,6 +1209,31 @@ fn link_carries_the_scene_file_that_another_inflater_reads_back() {
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(out.stdout.is_empty());
     assert!(stderr.contains("bad.toml:6:"), "{stderr}");
+    // A pipe is read once: its link carries the scene, not an empty one.
+    let fifo = dir.join("piped.toml");
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let writer = {
+        let (fifo, text) = (fifo.clone(), text.clone());
+        std::thread::spawn(move || std::fs::write(fifo, text).unwrap())
+    };
+    let out = lightcone(&["link", fifo.to_str().unwrap()]);
+    writer.join().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let piped = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        piped.trim().rsplit_once('#').unwrap().1,
+        format!("scene={data}")
+    );
     // A lesson (the browser build runs none yet) and a base that is no page.
     let out = lightcone(&["link", "scripts/lessons/contraction.py"]);
     assert_eq!(out.status.code(), Some(1));

@@ -181,7 +181,8 @@ enum Command {
         /// Observer looked through, by name (default: the scene's first).
         #[arg(long)]
         observer: Option<String>,
-        /// Output PNG (a .png file).
+        /// Output PNG (a .png file); its layout (views, pucks, labels) is
+        /// written beside it as the same name with .json.
         #[arg(short, long, value_parser = args::png_file)]
         out: PathBuf,
         /// Image size, WIDTHxHEIGHT (each 1 to 16384).

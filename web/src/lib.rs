@@ -24,11 +24,12 @@ pub fn start() -> Result<(), JsValue> {
         .as_ref()
         .and_then(|l| l.hash().ok())
         .unwrap_or_default();
-    let scene = web_sys::UrlSearchParams::new_with_str(&search)
-        .ok()
-        .and_then(|p| p.get("scene"));
+    let query = web_sys::UrlSearchParams::new_with_str(&search).ok();
+    let scene = query.as_ref().and_then(|p| p.get("scene"));
+    let lesson = query.as_ref().and_then(|p| p.get("lesson"));
     let address = lightcone::play::web_app::Address {
         scene: scene.as_deref(),
+        lesson: lesson.as_deref(),
         fragment: &fragment,
     };
     lightcone::play::web_app::start(&address).map_err(|e| JsValue::from_str(&e))

@@ -23,6 +23,9 @@ const browser = await chromium.launch({
     "--enable-unsafe-swiftshader",
     "--ignore-gpu-blocklist",
     "--no-sandbox",
+    // A school's server by name: a page not served over https or from
+    // localhost, which has no clipboard (the share test below).
+    "--host-resolver-rules=MAP school.test 127.0.0.1",
   ],
 });
 
@@ -306,9 +309,36 @@ async function parity(nativePath) {
   await page.close();
 }
 
+// Share on a page with no clipboard (served over http by name, as a school
+// would): the link goes to the address bar, the game goes on drawing.
+async function shareWithoutClipboard() {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+  const errors = [];
+  page.on("console", (m) => {
+    if (m.type() === "error") errors.push(m.text());
+  });
+  page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
+  const url = base.replace("127.0.0.1", "school.test") + "?scene=ten_pucks";
+  await page.goto(url);
+  await page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
+  if (await page.evaluate(() => window.isSecureContext)) fail(`${url}: expected a page without a clipboard`);
+  await page.focus("canvas");
+  await page.keyboard.press("KeyK");
+  const before = await page.evaluate(() => window.lightconeFrames);
+  await page.waitForTimeout(1500);
+  const after = await page.evaluate(() => window.lightconeFrames);
+  const link = await page.evaluate(() => window.lightconeShareLink);
+  if (!(after > before)) fail(`share without a clipboard: the game stopped drawing (${before} -> ${after} frames)`);
+  if (!link || !link.endsWith("?scene=ten_pucks")) fail(`share without a clipboard: link ${link}`);
+  if (errors.length) fail(`share without a clipboard: console errors: ${JSON.stringify(errors)}`);
+  console.log(JSON.stringify({ shareWithoutClipboard: { link, frames: after - before } }));
+  await page.close();
+}
+
 await check("", shot);
 await check("?scene=ten_pucks", shot.replace(/\.png$/, "_ten_pucks.png"));
 await links();
+await shareWithoutClipboard();
 await cue();
 if (process.env.NATIVE_PNG && defaultPng) await parity(process.env.NATIVE_PNG);
 else console.log("parity with the window: skipped (no NATIVE_PNG)");

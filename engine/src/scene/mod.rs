@@ -39,6 +39,14 @@ pub const MAX_SCENE_BYTES: u64 = 256 << 20;
 /// Reads and validates the scene file at `path` (at most
 /// [`MAX_SCENE_BYTES`]).
 pub fn load(path: &Path) -> Result<Scene, SceneErrors> {
+    let text = read_text(path)?;
+    parse(&text, &path.display().to_string())
+}
+
+/// The text of the scene file at `path` (at most [`MAX_SCENE_BYTES`],
+/// UTF-8), read once: what [`load`] parses, for a caller that keeps the
+/// text too.
+pub fn read_text(path: &Path) -> Result<String, SceneErrors> {
     use std::io::Read;
     let file = path.display().to_string();
     let cannot = |e: std::io::Error| {
@@ -54,8 +62,9 @@ pub fn load(path: &Path) -> Result<Scene, SceneErrors> {
             format!("more than {} MiB: not a scene file", MAX_SCENE_BYTES >> 20),
         )));
     }
-    let text = utf8(&bytes, &file)?;
-    parse(text, &file)
+    utf8(&bytes, &file)?;
+    // UTF-8, checked just above (with the error located).
+    Ok(String::from_utf8(bytes).unwrap_or_default())
 }
 
 /// The bytes as text, or an error at the line and column of the first byte

@@ -3,6 +3,7 @@
 //! teacher to share. The scene is checked first, as `lightcone check`
 //! does, so a broken file is never shared.
 
+use std::io::Read as _;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -17,7 +18,8 @@ pub const DEFAULT_BASE: &str = "http://localhost:8000/";
 
 /// Prints the link of `path` under `base`. Exit 1 with `check`'s located
 /// errors for a bad scene, a message for a lesson (the browser build does
-/// not run lessons yet) or a file too large for a link.
+/// not run lessons yet), a file too large for a link, or a base that is not
+/// a web address.
 pub fn run(path: &Path, base: &str) -> ExitCode {
     match link(path, base) {
         Ok(link) => match output::print(&format!("{link}\n")) {
@@ -39,21 +41,30 @@ fn link(path: &Path, base: &str) -> Result<String, String> {
             "{name}: a lesson: the browser build does not run lessons yet; share the file (`lightcone play {name}`)"
         ));
     }
-    if !base.starts_with("http://") && !base.starts_with("https://") && !base.starts_with("file://")
+    let page = ["http://", "https://", "file://"]
+        .iter()
+        .find_map(|scheme| base.strip_prefix(scheme));
+    if !page.is_some_and(|rest| !rest.is_empty() && !rest.contains(char::is_whitespace))
+        || base.contains(['?', '#'])
     {
         return Err(format!(
-            "--base {base}: not the address of a page (http://, https:// or file://)"
+            "--base {base}: not the address of a page (http://, https:// or file://, no spaces, no ? or #)"
         ));
     }
-    // `scene::load` bounds the file's size and locates its errors.
-    scene::load(path).map_err(|e| e.to_string())?;
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{name}: {e}"))?;
-    if text.len() > links::MAX_TEXT {
+    // Read once, and no more than a link carries (a pipe can be read only
+    // once; a file may change between two reads).
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(links::MAX_TEXT as u64 + 1).read_to_end(&mut bytes))
+        .map_err(|e| format!("{name}: cannot read: {e}"))?;
+    if bytes.len() > links::MAX_TEXT {
         return Err(format!(
-            "{name}: {} bytes, more than the {} a link may carry",
-            text.len(),
-            links::MAX_TEXT
+            "{name}: more than the {} MiB a link may carry",
+            links::MAX_TEXT >> 20
         ));
     }
-    Ok(links::file_link(base, &name, &text))
+    // Checked as `lightcone check` checks it, errors located.
+    let text = scene::utf8(&bytes, &name).map_err(|e| e.to_string())?;
+    scene::parse(text, &name).map_err(|e| e.to_string())?;
+    Ok(links::file_link(base, &name, text))
 }

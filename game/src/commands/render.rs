@@ -88,8 +88,10 @@ fn render(req: Request<'_>) -> Result<(), String> {
     }
     let (width, height) = parse_size(req.size)?;
     crate::output::not_the_input(req.out, req.path)?;
-    let sidecar = req.out.with_extension("json");
-    crate::output::not_the_input(&sidecar, req.path)?;
+    let sidecar = layout_path(req.out)?;
+    if let Some(sidecar) = &sidecar {
+        crate::output::not_the_input(sidecar, req.path)?;
+    }
     // The lesson's process (if any) ends with its host, after the picture.
     let (mut game, lesson) = open_at(req.path, req.looks, req.at)?;
     let gpu = gpu::headless()?;
@@ -101,9 +103,39 @@ fn render(req: Request<'_>) -> Result<(), String> {
     // `play --screenshot` writes it.
     let size = (width as f32, height as f32);
     let drawn = slide.drawn();
-    crate::play::screenshot::save_layout(&game, None, slide.area(), None, &sidecar, size, &drawn)?;
+    if let Some(sidecar) = &sidecar {
+        crate::play::screenshot::save_layout(
+            &game,
+            None,
+            slide.area(),
+            None,
+            sidecar,
+            size,
+            &drawn,
+        )
+        .map_err(|e| format!("the layout beside the picture: {e}"))?;
+    }
     say_if_failed(lesson.as_ref(), req.path);
     Ok(())
+}
+
+/// Where the layout sidecar of a picture written to `out` goes: `out`
+/// with the extension `.json`, or `None` when `out` is not a file (a
+/// picture sent to `/dev/null` or a pipe has no layout beside it). A
+/// sidecar path taken by a directory is refused before anything is drawn.
+fn layout_path(out: &Path) -> Result<Option<std::path::PathBuf>, String> {
+    if std::fs::metadata(out).is_ok_and(|m| !m.is_file()) {
+        return Ok(None);
+    }
+    let sidecar = out.with_extension("json");
+    if sidecar.is_dir() {
+        return Err(format!(
+            "{}: is a directory; `render` writes the picture's layout there (beside {}): choose another -o",
+            sidecar.display(),
+            out.display()
+        ));
+    }
+    Ok(Some(sidecar))
 }
 
 #[cfg(test)]

@@ -140,9 +140,11 @@ pub fn open_path(state: &mut GameState, path: &str) -> Opened {
             Opened::Lesson
         };
     }
-    match scene::load(Path::new(path)) {
-        Ok(scene) => {
-            let text = std::fs::read_to_string(path).unwrap_or_default();
+    // Read once: the text parsed is the text a link would carry.
+    let opened = scene::read_text(Path::new(path))
+        .and_then(|text| scene::parse(&text, path).map(|scene| (scene, text)));
+    match opened {
+        Ok((scene, text)) => {
             let name = path.to_owned();
             switch(state, scene, Some(SceneSource::Text { name, text }));
             Opened::Scene

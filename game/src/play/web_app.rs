@@ -29,6 +29,8 @@ pub const MAX_DROPPED: usize = links::MAX_TEXT;
 pub struct Address<'a> {
     /// `?scene=NAME`, if given.
     pub scene: Option<&'a str>,
+    /// `?lesson=NAME`, if given (the page says lessons are desktop-only).
+    pub lesson: Option<&'a str>,
     /// The fragment, with or without its `#` (`#scene=DATA`).
     pub fragment: &'a str,
 }
@@ -74,6 +76,11 @@ fn open_address(state: &mut GameState, address: &Address<'_>) -> Result<(), Stri
         let (kind, text) = carried.map_err(|e| e.to_string())?;
         let name = format!("the link's {}", kind.key());
         return open_text(state, kind, &name, text);
+    }
+    if let Some(name) = address.lesson {
+        return Err(format!(
+            "?lesson={name}: lessons run in the desktop game for now (`lightcone play LESSON.py`); the browser shows scenes"
+        ));
     }
     let Some(name) = address.scene else {
         return Ok(());
@@ -199,13 +206,48 @@ fn share(state: &mut GameState) {
         let _ =
             history.replace_state_with_url(&web_sys::wasm_bindgen::JsValue::NULL, "", Some(&link));
     }
-    let _ = page.navigator().clipboard().write_text(&link);
     let _ =
         web_sys::js_sys::Reflect::set(&page, &"lightconeShareLink".into(), &link.as_str().into());
+    let copied = if copy_text(&page, &link) {
+        "copied, and in the address bar"
+    } else {
+        "in the address bar: copy it from there (this page has no clipboard: it is not served over https or from localhost)"
+    };
     state.message = format!(
-        "link copied ({} characters): it opens this scene for whoever you send it to",
+        "the link of this scene ({} characters) is {copied}; it opens this scene for whoever you send it to",
         link.len()
     );
+}
+
+/// Asks the browser to copy `text` to the clipboard; `false` when the page
+/// has no clipboard (`navigator.clipboard` exists only on pages served
+/// over https or from localhost). A refusal later (no permission) is
+/// caught, not thrown into the game's frame.
+fn copy_text(page: &web_sys::Window, text: &str) -> bool {
+    use web_sys::js_sys::{Function, Promise, Reflect};
+    use web_sys::wasm_bindgen::{JsCast, JsValue, closure::Closure};
+    let navigator = page.navigator();
+    let Ok(clipboard) = Reflect::get(&navigator, &"clipboard".into()) else {
+        return false;
+    };
+    let write = Reflect::get(&clipboard, &"writeText".into())
+        .ok()
+        .and_then(|f| f.dyn_into::<Function>().ok());
+    let Some(write) = write.filter(|_| clipboard.is_object()) else {
+        return false;
+    };
+    match write.call1(&clipboard, &JsValue::from_str(text)) {
+        Ok(promise) => {
+            if let Ok(promise) = promise.dyn_into::<Promise>() {
+                // A few bytes a share, kept for the page's life.
+                let ignore = Closure::wrap(Box::new(|_: JsValue| {}) as Box<dyn FnMut(JsValue)>);
+                let _ = promise.catch(&ignore);
+                ignore.forget();
+            }
+            true
+        }
+        Err(_) => false,
+    }
 }
 
 /// The game in the page's canvas.
@@ -305,7 +347,8 @@ impl WebApp {
     /// Keeps the time one frame took on the page's thread (`ms`: the game's
     /// work and its WebGL calls, not the browser's compositing) and
     /// publishes the median of the last [`CPU_FRAMES`] as
-    /// `window.lightconeFrameCpuMs`.
+    /// `window.lightconeFrameCpuMs` (and the frames drawn as
+    /// `window.lightconeFrames`).
     fn frame_took(&mut self, ms: f64) {
         if self.cpu_ms.len() == CPU_FRAMES {
             self.cpu_ms.pop_front();
@@ -317,6 +360,8 @@ impl WebApp {
         if let Some(page) = web_sys::window() {
             let key = "lightconeFrameCpuMs".into();
             let _ = web_sys::js_sys::Reflect::set(&page, &key, &median.into());
+            let frames = self.frames as f64;
+            let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeFrames".into(), &frames.into());
         }
     }
 }
