@@ -206,7 +206,14 @@ async function links() {
     fail(`bad dropped scene: no located error (${JSON.stringify(errors)})`);
   if ((await page.title()) !== "Lightcone: Dropped by a test") fail("bad dropped scene replaced the game");
 
-  // 4. A link cut short: said, and the default scene drawn.
+  // 4. Another file dropped after the share: the address bar no longer
+  // carries the shared scene (a reload would bring it back).
+  await drop("second.toml", retitled("Second drop"));
+  if (!(await titled("Lightcone: Second drop"))) fail(`second drop: title ${JSON.stringify(await page.title())}`);
+  if ((await page.evaluate(() => location.hash)) !== "")
+    fail("after a second drop the address bar still carries the shared scene");
+
+  // 5. A link cut short: said, and the default scene drawn.
   errors.length = 0;
   await page.goto(base + "#scene=" + data.slice(0, 20));
   await started();

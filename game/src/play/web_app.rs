@@ -48,7 +48,9 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
         web_sys::console::error_1(&format!("lightcone: {e}").into());
         say_in_menu(&mut state, e);
     }
+    let addressed = (state.generation, state.source.clone());
     window::spawn(WebApp {
+        addressed,
         stage: Stage::new(state, false),
         page: Page,
         frames: 0,
@@ -196,16 +198,11 @@ fn share(state: &mut GameState) {
         state.message = "this scene was not opened from a file: nothing to share".to_owned();
         return;
     };
-    let location = page.location();
-    let base = match (location.origin(), location.pathname()) {
-        (Ok(origin), Ok(path)) => format!("{origin}{path}"),
-        _ => return,
+    let Some(base) = page_address(&page) else {
+        return;
     };
     let link = links::link(&base, source);
-    if let Ok(history) = page.history() {
-        let _ =
-            history.replace_state_with_url(&web_sys::wasm_bindgen::JsValue::NULL, "", Some(&link));
-    }
+    show_address(&page, &link);
     let _ =
         web_sys::js_sys::Reflect::set(&page, &"lightconeShareLink".into(), &link.as_str().into());
     let copied = if copy_text(&page, &link) {
@@ -217,6 +214,24 @@ fn share(state: &mut GameState) {
         "the link of this scene ({} characters) is {copied}; it opens this scene for whoever you send it to",
         link.len()
     );
+}
+
+/// The page's address without its query or fragment.
+fn page_address(page: &web_sys::Window) -> Option<String> {
+    let location = page.location();
+    Some(format!(
+        "{}{}",
+        location.origin().ok()?,
+        location.pathname().ok()?
+    ))
+}
+
+/// Puts `url` in the address bar (no reload, no new history entry).
+fn show_address(page: &web_sys::Window, url: &str) {
+    if let Ok(history) = page.history() {
+        let _ =
+            history.replace_state_with_url(&web_sys::wasm_bindgen::JsValue::NULL, "", Some(url));
+    }
 }
 
 /// Asks the browser to copy `text` to the clipboard; `false` when the page
@@ -256,6 +271,8 @@ struct WebApp {
     page: Page,
     /// Frames drawn so far (the page's test waits for the first).
     frames: u64,
+    /// The game (its generation) and scene the address bar names.
+    addressed: (u64, Option<SceneSource>),
     /// The last stroke of the cue the page was told of.
     stroke: Option<crate::model::Stroke>,
     /// The page's time each of the last [`CPU_FRAMES`] frames took on its
@@ -267,6 +284,34 @@ struct WebApp {
 const CPU_FRAMES: usize = 64;
 
 impl WebApp {
+    /// Once another scene is open (from the menu, a dropped file), the
+    /// address bar no longer names the one the page was opened with or
+    /// shared: it names a shipped scene (`?scene=NAME`), else the bare
+    /// page (a file's link is long: *share* makes it), so a reload never
+    /// brings back a scene that was left.
+    fn follow_address(&mut self) {
+        let state = &self.stage.state;
+        if state.generation == self.addressed.0 {
+            return;
+        }
+        self.addressed.0 = state.generation;
+        if state.source == self.addressed.1 {
+            return;
+        }
+        self.addressed.1 = state.source.clone();
+        let Some(page) = web_sys::window() else {
+            return;
+        };
+        let Some(base) = page_address(&page) else {
+            return;
+        };
+        let url = match &state.source {
+            Some(shipped @ SceneSource::Shipped(_)) => links::link(&base, shipped),
+            _ => base,
+        };
+        show_address(&page, &url);
+    }
+
     /// Opens the file dropped on the page since the last frame, if any;
     /// what cannot be opened is said in the scene menu.
     fn open_dropped(&mut self) {
@@ -314,6 +359,7 @@ impl window::Game for WebApp {
     fn frame(&mut self, gfx: &mut Gfx) -> Result<Flow, String> {
         let start = page_ms();
         self.open_dropped();
+        self.follow_address();
         let (_, dt) = self.stage.tick();
         self.stage.fly_free(dt);
         self.stage.state.step(dt);
