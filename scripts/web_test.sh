@@ -19,7 +19,7 @@ fi
 port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 python3 -m http.server -b 127.0.0.1 -d web/dist "$port" >/dev/null 2>&1 &
 server=$!
-trap 'kill $server; [ -z "${native:-}" ] || rm -f "$native" "${native%.png}.json"' EXIT
+trap 'kill $server; [ -z "${native:-}" ] || rm -f "$native" "${native%.png}.json"; [ -z "${observed:-}" ] || rm -f "$observed"' EXIT
 for _ in $(seq 50); do
   python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/')" 2>/dev/null && break
   sleep 0.1
@@ -35,7 +35,14 @@ if [ -x target/release/lightcone ] && command -v xvfb-run >/dev/null; then
     native=""
   fi
 fi
-NATIVE_PNG="$native" node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
+# And what the native build sees of ten_pucks at 3 s, for the same-numbers
+# test.
+observed=""
+if [ -x target/release/lightcone ]; then
+  observed=$(mktemp --suffix=.json)
+  target/release/lightcone observe assets/scenes/ten_pucks.toml --at 3 >"$observed" || observed=""
+fi
+NATIVE_OBSERVE="$observed" NATIVE_PNG="$native" node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
 # The download: the wasm gzipped (as a server sends it), and the JS glue.
 wasm=web/dist/lightcone_web_bg.wasm
 echo "wasm $(stat -c %s $wasm) bytes, gzipped $(gzip -9 -c $wasm | wc -c) bytes; JS glue $(stat -c %s web/dist/lightcone_web.js) bytes"

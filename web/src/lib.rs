@@ -7,7 +7,8 @@ use wasm_bindgen::prelude::*;
 
 /// Starts the game on the page's canvas: the scene file the link's
 /// fragment carries (`#scene=DATA`), else the shipped scene named by
-/// `?scene=NAME` (`.toml` optional), else the default (see
+/// `?scene=NAME` (`.toml` optional), else the default, at `?at=T` if given
+/// (see
 /// `lightcone::links` and `lightcone::play::web_app::start`).
 #[wasm_bindgen(start)]
 pub fn start() -> Result<(), JsValue> {
@@ -27,9 +28,11 @@ pub fn start() -> Result<(), JsValue> {
     let query = web_sys::UrlSearchParams::new_with_str(&search).ok();
     let scene = query.as_ref().and_then(|p| p.get("scene"));
     let lesson = query.as_ref().and_then(|p| p.get("lesson"));
+    let at = query.as_ref().and_then(|p| p.get("at"));
     let address = lightcone::play::web_app::Address {
         scene: scene.as_deref(),
         lesson: lesson.as_deref(),
+        at: at.as_deref(),
         fragment: &fragment,
     };
     lightcone::play::web_app::start(&address).map_err(|e| JsValue::from_str(&e))

@@ -342,11 +342,41 @@ async function shareWithoutClipboard() {
   await page.close();
 }
 
+// The same numbers: what the page's first picture shows of each puck of
+// ten_pucks at board time 3 s (?at=3, its frame schedule compiled to
+// wasm32, optics sequential) against lightcone observe of the native
+// build (AVX2 batches, rayon): each centre's emission event to 1e-9 s and
+// 1e-9 m.
+async function sameNumbers(observedPath) {
+  const fs = await import("node:fs");
+  const native = JSON.parse(fs.readFileSync(observedPath, "utf8"));
+  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+  await page.goto(base + "?scene=ten_pucks&at=3");
+  await page.waitForFunction(() => window.lightconeSeen !== undefined, null, { timeout: 120_000 });
+  const seen = JSON.parse(await page.evaluate(() => window.lightconeSeen));
+  let worst = { t: 0, x: 0 };
+  for (const p of native.pucks) {
+    const q = seen.find((s) => s.name === p.name);
+    if (!q) {
+      fail(`same numbers: ${p.name} not in the page's picture`);
+      continue;
+    }
+    worst.t = Math.max(worst.t, Math.abs(q.t - p.emission.t));
+    for (let k = 0; k < 3; k++) worst.x = Math.max(worst.x, Math.abs(q.position[k] - p.emission.position[k]));
+  }
+  console.log(JSON.stringify({ sameNumbers: { pucks: seen.length, worst } }));
+  if (seen.length !== native.pucks.length) fail(`same numbers: ${seen.length} pucks against ${native.pucks.length}`);
+  if (!(worst.t <= 1e-9 && worst.x <= 1e-9)) fail(`same numbers: off by ${JSON.stringify(worst)}`);
+  await page.close();
+}
+
 await check("", shot);
 await check("?scene=ten_pucks", shot.replace(/\.png$/, "_ten_pucks.png"));
 await links();
 await shareWithoutClipboard();
 await cue();
+if (process.env.NATIVE_OBSERVE) await sameNumbers(process.env.NATIVE_OBSERVE);
+else console.log("same numbers as observe: skipped (no NATIVE_OBSERVE)");
 if (process.env.NATIVE_PNG && defaultPng) await parity(process.env.NATIVE_PNG);
 else console.log("parity with the window: skipped (no NATIVE_PNG)");
 await browser.close();

@@ -31,9 +31,17 @@ pub struct Address<'a> {
     pub scene: Option<&'a str>,
     /// `?lesson=NAME`, if given (the page says lessons are desktop-only).
     pub lesson: Option<&'a str>,
+    /// `?at=T`: open paused at board time `T` s (as `play --at`), from
+    /// [`AT_RANGE`].
+    pub at: Option<&'a str>,
     /// The fragment, with or without its `#` (`#scene=DATA`).
     pub fragment: &'a str,
 }
+
+/// The board times `?at=` may name, s (the replay window's length ahead,
+/// a minute of the time before the start behind): the page runs the
+/// physics to it before its first frame.
+pub const AT_RANGE: std::ops::RangeInclusive<f64> = -60.0..=600.0;
 
 /// Starts the game on the page: the scene the address names (a file
 /// carried in the fragment first, then `?scene=NAME` of a shipped scene),
@@ -48,6 +56,11 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
         web_sys::console::error_1(&format!("lightcone: {e}").into());
         say_in_menu(&mut state, e);
     }
+    let at = address.at.map(|at| go_to(&mut state, at));
+    if let Some(Err(e)) = &at {
+        web_sys::console::error_1(&format!("lightcone: {e}").into());
+        say_in_menu(&mut state, e.clone());
+    }
     let addressed = (state.generation, state.source.clone());
     window::spawn(WebApp {
         addressed,
@@ -55,8 +68,26 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
         page: Page,
         frames: 0,
         stroke: None,
+        publish_seen: matches!(at, Some(Ok(()))),
         cpu_ms: std::collections::VecDeque::with_capacity(CPU_FRAMES),
     })
+}
+
+/// Goes to the board time `at` names (`?at=T`), paused there.
+fn go_to(state: &mut GameState, at: &str) -> Result<(), String> {
+    let t: f64 = at
+        .trim()
+        .parse()
+        .map_err(|_| format!("?at={at}: not a board time in seconds"))?;
+    if !AT_RANGE.contains(&t) {
+        return Err(format!(
+            "?at={at}: give a board time from {} to {} s",
+            AT_RANGE.start(),
+            AT_RANGE.end()
+        ));
+    }
+    state.show_at(t);
+    Ok(())
 }
 
 /// The default scene, paused on its title.
@@ -271,6 +302,10 @@ struct WebApp {
     page: Page,
     /// Frames drawn so far (the page's test waits for the first).
     frames: u64,
+    /// Publish what the first picture shows (`window.lightconeSeen`) each
+    /// frame: the page was opened at a board time (`?at=`), for the
+    /// browser test's comparison with `lightcone observe`.
+    publish_seen: bool,
     /// The game (its generation) and scene the address bar names.
     addressed: (u64, Option<SceneSource>),
     /// The last stroke of the cue the page was told of.
@@ -377,6 +412,9 @@ impl window::Game for WebApp {
                 first_frame_drawn();
             }
         }
+        if self.publish_seen {
+            publish_seen(&self.stage.state);
+        }
         self.frame_took(page_ms() - start);
         Ok(Flow::Continue)
     }
@@ -409,6 +447,32 @@ impl WebApp {
             let frames = self.frames as f64;
             let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeFrames".into(), &frames.into());
         }
+    }
+}
+
+/// Puts on the page, as `window.lightconeSeen`, what the first picture
+/// shows of each puck this frame: a JSON array of `{"name", "t",
+/// "position": [x, y, z]}`, the emission event of its centre (board
+/// frame, s and m), which `lightcone observe` reports as `emission`.
+fn publish_seen(state: &GameState) {
+    let Some(view) = state.pane_list().first().and_then(|&p| state.view_of(p)) else {
+        return;
+    };
+    let seen: Vec<serde_json::Value> = state
+        .centres(view)
+        .iter()
+        .map(|c| {
+            let e = c.emission.event;
+            serde_json::json!({
+                "name": state.scene.pucks[c.puck].name,
+                "t": e.t,
+                "position": [e.position.x, e.position.y, e.position.z],
+            })
+        })
+        .collect();
+    if let Some(page) = web_sys::window() {
+        let text = serde_json::Value::Array(seen).to_string();
+        let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeSeen".into(), &text.into());
     }
 }
 
