@@ -24,7 +24,7 @@ cargo build --release --target wasm32-unknown-unknown -p lightcone-web
 rm -rf web/dist
 mkdir -p web/dist/scenes
 wasm-bindgen --target web --no-typescript --out-dir web/dist \
-  target/wasm32-unknown-unknown/release/lightcone_web.wasm
+  "${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/release/lightcone_web.wasm"
 cp web/static/index.html web/dist/
 cp assets/scenes/*.toml web/dist/scenes/
 ls -l web/dist

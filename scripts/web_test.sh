@@ -27,10 +27,11 @@ done
 
 # The window's own screenshot of the default scene, for the parity test
 # (when the native game is built and Xvfb is here: after scripts/test.sh).
+lightcone="${CARGO_TARGET_DIR:-target}/release/lightcone"
 native=""
-if [ -x target/release/lightcone ] && command -v xvfb-run >/dev/null; then
+if [ -x "$lightcone" ] && command -v xvfb-run >/dev/null; then
   native=$(mktemp --suffix=.png)
-  if ! xvfb-run -a -s "-screen 0 1280x720x24" target/release/lightcone play --screenshot "$native" --frames 30 >/dev/null 2>&1; then
+  if ! xvfb-run -a -s "-screen 0 1280x720x24" "$lightcone" play --screenshot "$native" --frames 30 >/dev/null 2>&1; then
     rm -f "$native" "${native%.png}.json"
     native=""
   fi
@@ -38,9 +39,9 @@ fi
 # And what the native build sees of ten_pucks at 3 s, for the same-numbers
 # test.
 observed=""
-if [ -x target/release/lightcone ]; then
+if [ -x "$lightcone" ]; then
   observed=$(mktemp --suffix=.json)
-  target/release/lightcone observe assets/scenes/ten_pucks.toml --at 3 >"$observed" || observed=""
+  "$lightcone" observe assets/scenes/ten_pucks.toml --at 3 >"$observed" || observed=""
 fi
 NATIVE_OBSERVE="$observed" NATIVE_PNG="$native" node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
 # The download: the wasm gzipped (as a server sends it), and the JS glue.
