@@ -177,21 +177,29 @@ pub enum SceneSource {
 /// (the page's address without query or fragment, for instance
 /// `http://localhost:8000/`).
 pub fn link(base: &str, source: &SceneSource) -> String {
-    let base = base.split(['?', '#']).next().unwrap_or(base);
     match source {
         SceneSource::Shipped(name) => {
             let name = name.strip_suffix(".toml").unwrap_or(name);
-            format!("{base}?scene={name}")
+            format!("{}?scene={name}", page(base))
         }
-        SceneSource::Text { text, .. } => format!("{base}#scene={}", encode(text)),
+        SceneSource::Text { name, text } => file_link(base, name, text),
     }
 }
 
 /// The link that opens the file `name` with `text` (a scene, or a lesson
 /// by its `.py`) in the browser build served at `base`.
 pub fn file_link(base: &str, name: &str, text: &str) -> String {
-    let base = base.split(['?', '#']).next().unwrap_or(base);
-    format!("{base}#{}={}", Kind::of_file(name).key(), encode(text))
+    format!(
+        "{}#{}={}",
+        page(base),
+        Kind::of_file(name).key(),
+        encode(text)
+    )
+}
+
+/// `base` without its query or fragment.
+fn page(base: &str) -> &str {
+    base.split(['?', '#']).next().unwrap_or(base)
 }
 
 #[cfg(test)]

@@ -37,19 +37,28 @@ function fail(what) {
   failed = true;
 }
 
-async function check(query, screenshot) {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+// A page of 1280×720 (in `context`, else a new one) and the console errors
+// and uncaught exceptions it will have.
+async function openPage(context = null) {
+  const page = context ? await context.newPage() : await browser.newPage({ viewport: { width: 1280, height: 720 } });
   const errors = [];
   page.on("console", (m) => {
     if (m.type() === "error") errors.push(m.text());
   });
   page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
+  return { page, errors };
+}
+
+// Waits for the game's first frame on `page`.
+const firstFrame = (page) =>
+  page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
+
+async function check(query, screenshot) {
+  const { page, errors } = await openPage();
   const url = base + query;
   await page.goto(url);
   try {
-    await page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, {
-      timeout: 120_000,
-    });
+    await firstFrame(page);
   } catch {
     fail(`${url}: no first frame in 120 s; console errors: ${JSON.stringify(errors)}`);
     await page.close();
@@ -121,14 +130,8 @@ async function check(query, screenshot) {
 // the share link is read back by its DecompressionStream: the format of
 // game/src/links.rs, checked against another implementation both ways.
 async function links() {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
-  const errors = [];
-  page.on("console", (m) => {
-    if (m.type() === "error") errors.push(m.text());
-  });
-  page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
-  const started = () =>
-    page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
+  const { page, errors } = await openPage();
+  const started = () => firstFrame(page);
   const titled = (title) =>
     page.waitForFunction((t) => document.title === t, title, { timeout: 30_000 }).then(
       () => true,
@@ -228,14 +231,9 @@ async function links() {
 // docs/web_default.png): the press picks the puck seen within 30 px.
 async function cue() {
   const context = await browser.newContext({ viewport: { width: 1280, height: 720 }, hasTouch: true });
-  const page = await context.newPage();
-  const errors = [];
-  page.on("console", (m) => {
-    if (m.type() === "error") errors.push(m.text());
-  });
-  page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
+  const { page, errors } = await openPage(context);
   await page.goto(base);
-  await page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
+  await firstFrame(page);
   await page.waitForTimeout(1000);
   const struck = async (n) =>
     page
@@ -319,15 +317,10 @@ async function parity(nativePath) {
 // Share on a page with no clipboard (served over http by name, as a school
 // would): the link goes to the address bar, the game goes on drawing.
 async function shareWithoutClipboard() {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
-  const errors = [];
-  page.on("console", (m) => {
-    if (m.type() === "error") errors.push(m.text());
-  });
-  page.on("pageerror", (e) => errors.push(`uncaught: ${e.message}`));
+  const { page, errors } = await openPage();
   const url = base.replace("127.0.0.1", "school.test") + "?scene=ten_pucks";
   await page.goto(url);
-  await page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
+  await firstFrame(page);
   if (await page.evaluate(() => window.isSecureContext)) fail(`${url}: expected a page without a clipboard`);
   await page.focus("canvas");
   await page.keyboard.press("KeyK");

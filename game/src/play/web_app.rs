@@ -53,12 +53,10 @@ pub const AT_RANGE: std::ops::RangeInclusive<f64> = -60.0..=600.0;
 pub fn start(address: &Address<'_>) -> Result<(), String> {
     let mut state = default_game()?;
     if let Err(e) = open_address(&mut state, address) {
-        web_sys::console::error_1(&format!("lightcone: {e}").into());
         say_in_menu(&mut state, e);
     }
     let at = address.at.map(|at| go_to(&mut state, at));
     if let Some(Err(e)) = &at {
-        web_sys::console::error_1(&format!("lightcone: {e}").into());
         say_in_menu(&mut state, e.clone());
     }
     let addressed = (state.generation, state.source.clone());
@@ -163,8 +161,9 @@ fn open_scene(state: &mut GameState, scene: Scene, source: SceneSource) {
 }
 
 /// Shows `message` in the scene menu (opened), where a scene that cannot
-/// be opened is reported; the game behind it goes on.
+/// be opened is reported, and in the console; the game behind it goes on.
 fn say_in_menu(state: &mut GameState, message: String) {
+    web_sys::console::error_1(&format!("lightcone: {message}").into());
     state.scene_menu.open = true;
     state.scene_menu.error = Some(message);
 }
@@ -362,7 +361,6 @@ impl WebApp {
             Some(text) => open_text(state, Kind::of_file(&name), &name, text),
         };
         if let Err(e) = opened {
-            web_sys::console::error_1(&format!("lightcone: {e}").into());
             say_in_menu(state, e);
         }
     }
