@@ -104,8 +104,34 @@ fn check_invariants(b: &Billiard, until: f64, samples: usize) -> f64 {
         for j in i + 1..n {
             worst = worst.max(check_pair(b, i, j, &times));
         }
+        check_cushions(b, i, &times);
     }
     worst
+}
+
+/// No puck reaches into a cushion (issue 30, item 4): at every sample, and
+/// at and just after every kick (at every segment's start, with the new
+/// velocity), the contracted puck's half-width along each table axis,
+/// `R √(1 − βₖ²)` from the board velocity `β = v/c` (not the engine's own
+/// half-width), leaves it on the table, to 1e-12 m.
+fn check_cushions(b: &Billiard, i: usize, samples: &[f64]) {
+    let w = b.worldline(i);
+    let table = b.table();
+    let mut times: Vec<f64> = samples.to_vec();
+    times.extend(w.segments().iter().map(|s| s.start.t).filter(|&t| t >= 0.0));
+    for t in times {
+        let s = w.segment_at(t);
+        let (x, beta) = (s.position_at(t), s.velocity_at(t) / b.c());
+        for axis in 0..2 {
+            let h = R * (1.0 - beta[axis] * beta[axis]).sqrt();
+            let depth = (h - x[axis]).max(x[axis] + h - table[axis]);
+            assert!(
+                depth <= 1e-12,
+                "puck {} reaches {depth} m into a cushion (axis {axis}) at t = {t}: {s:?}",
+                b.name(i)
+            );
+        }
+    }
 }
 
 /// The overlap bound of the next recorded contact of `i` and `j` whose first
@@ -139,6 +165,9 @@ fn before(w: &Worldline, t: f64) -> &Segment {
 /// * at a kick of either from anything else (a cushion, a third puck): the
 ///   depth just before plus the kicked puck's sudden growth back towards
 ///   its rest disc, at most R(1 − 1/γ) (γ its board factor before);
+/// * at any kick, plus the distance the kick moved the centre back from a
+///   cushion its new shape would have reached into (at most R(1 − 1/γ),
+///   checked: `Billiard::hold_off_cushions`);
 /// * between kicks: no growth, except towards the pair's next predicted
 ///   contact: at most the unperturbed shapes' depth at its first kick (the
 ///   board slice cuts the pair frame's contact early).
@@ -152,11 +181,32 @@ fn check_pair(b: &Billiard, i: usize, j: usize, samples: &[f64]) -> f64 {
         let own = pair_of(c) == Some((i, j));
         for p in &c.pucks {
             if p.puck == i || p.puck == j {
-                let jump = if own {
-                    c.overlap_bound
+                // A kick whose new contraction would have reached into a
+                // cushion moves the centre back from it (the body
+                // re-contracts about the rim point the cushion holds): by
+                // at most R(1 − 1/γ), towards whatever lies inward.
+                // (the new half-width along an axis exceeds the old one,
+                // which reached no cushion, by at most R(1 − 1/γ), γ the
+                // factor of the segment before this instant: several
+                // changes at one instant are one jump).
+                let w = b.worldline(p.puck);
+                let (held, gamma) = if p.t.is_finite() && !p.pending {
+                    let s = before(w, p.t);
+                    ((p.position - s.position_at(p.t)).length(), s.gamma())
                 } else {
-                    R * (1.0 - 1.0 / p.u_before.gamma())
+                    (0.0, 1.0)
                 };
+                assert!(
+                    held <= R * (1.0 - 1.0 / gamma) + 1e-12,
+                    "held {held} at t = {}: {p:?}",
+                    p.t
+                );
+                let jump = held
+                    + if own {
+                        c.overlap_bound
+                    } else {
+                        R * (1.0 - 1.0 / p.u_before.gamma())
+                    };
                 kicks.push((p.t, jump, own));
             }
         }

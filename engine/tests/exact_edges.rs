@@ -15,6 +15,9 @@
 //!   past light cone, `|c (t₀ − tₑ) − |x₀ − xₑ|| / (c (t₀ − tₑ))` below
 //!   1e-12 plus the rounding floor of the reported coordinates
 //!   (`2ε (c|tₑ| + |xₑ|)` over the delay), and on the vertex's worldline.
+//! * **A kick next to a cushion** (item 4): the new contraction never
+//!   reaches into the cushion; the half-widths come from the board velocity
+//!   (`R √(1 − βₖ²)`), not from the engine's own half-width.
 
 #[path = "common/dd.rs"]
 mod dd;
@@ -381,4 +384,100 @@ fn braking_emission_events_lie_on_the_light_cone_for_far_observers() {
     eprintln!(
         "braking emission: {checked} vertex events, {near_stop} near the stop, worst {worst:e}"
     );
+}
+
+// ---------------------------------------------------------------- item 4
+
+/// The deepest any puck's contracted shape reaches into a cushion at board
+/// time `t`, m (negative: clear of every cushion), from the board velocity
+/// alone: half-width `R √(1 − βₖ²)` along each table axis.
+fn cushion_depth(b: &Billiard, i: usize, t: f64) -> f64 {
+    let s = b.worldline(i).segment_at(t);
+    let (x, beta) = (s.position_at(t), s.velocity_at(t) / b.c());
+    let table = b.table();
+    (0..2)
+        .map(|k| {
+            let h = b.radius(i) * (1.0 - beta[k] * beta[k]).sqrt();
+            (h - x[k]).max(x[k] + h - table[k])
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// A kick next to a cushion: puck a (|u| = 20, a sliver R/γ wide along
+/// its motion) bounces off x = 0, 45° from the normal, and at once hits
+/// puck b, at rest just beyond the bounce on its way out. The kick slows a
+/// and it grows back towards its rest disc, up to `R (1 − 1/γ)` wider
+/// along x, while its centre is still closer to the cushion than R:
+/// re-contracted about its centre it would reach millimetres into the
+/// cushion. It re-contracts about the rim point the cushion holds: no
+/// shape reaches into a cushion at any board time (to 1e-12 m), the
+/// centre's jump is what the shape would have reached in (5 mm to
+/// R (1 − 1/γ)), and 4-momentum is kept exactly.
+#[test]
+fn a_kick_next_to_a_cushion_leaves_the_puck_touching_it_not_inside() {
+    let (r, speed, c) = (0.03, 20.0, 1.0);
+    let theta = 45f64.to_radians();
+    let u_in = (-speed * theta.cos(), speed * theta.sin());
+    let gamma = (1.0f64 + speed * speed).sqrt();
+    // a's centre when it touches x = 0: its half-width along x.
+    let bounce = DVec2::new(r * (1.0 + u_in.1 * u_in.1).sqrt() / gamma, 0.5);
+    let (t_bounce, beta) = (0.3, speed / gamma);
+    let start = bounce - DVec2::new(u_in.0, u_in.1) / speed * beta * c * t_bounce;
+    // Off the incoming path by 2.05 R (its rest discs clear by 0.05 R).
+    let b_at = bounce + DVec2::new(theta.cos(), theta.sin()) * 2.05 * r;
+    let pucks = vec![
+        puck("a", start.x, start.y, u_in, r, 0.2),
+        puck("b", b_at.x, b_at.y, (0.0, 0.0), r, 0.2),
+    ];
+    let mut b = Billiard::new(c, DVec2::new(1.0, 1.0), 1.0, 1.0, pucks);
+    b.set_recording(true);
+    b.advance_to(0.6);
+    assert_eq!(b.stats().cushion_holds, 1, "{:?}", b.stats());
+    // The order: the bounce, then the contact with b (then whatever a's
+    // new motion meets: the cushion again if it moves into it).
+    let kinds: Vec<_> = b.collisions().iter().map(|c| c.kind).collect();
+    assert_eq!(
+        kinds[..2],
+        [
+            CollisionKind::Cushion(lightcone_engine::physics::Cushion::X0),
+            CollisionKind::PuckPuck
+        ]
+    );
+    // The contact keeps 4-momentum: a's after the bounce, b at rest.
+    let contact = &b.collisions()[1];
+    let before = [
+        Body {
+            mass: 0.2,
+            u: b.collisions()[0].pucks[0].u_after,
+        },
+        outcome(contact, 1, false),
+    ];
+    let after = [outcome(contact, 0, true), outcome(contact, 1, true)];
+    let (e0, p0) = total(&before);
+    let (e1, p1) = total(&after);
+    assert!((e1 - e0).abs() < 1e-12 * e0 && (p1 - p0).length() < 1e-12 * e0);
+    // a's kick: the centre moved back from the cushion, by the depth its
+    // new shape would have had about the old centre.
+    let wa = b.worldline(0);
+    let kick = &b.collisions()[1].pucks[0];
+    let k = wa.segment_index_at(kick.t);
+    let (old, new) = (&wa.segments()[k - 1], &wa.segments()[k]);
+    let jump = new.start.position - old.position_at(kick.t);
+    let new_half_x = r * (1.0 - (new.velocity().x / c).powi(2)).sqrt();
+    assert!(jump.y == 0.0 && jump.x > 5e-3 && jump.x < r * (1.0 - 1.0 / gamma));
+    assert!((new_half_x - old.position_at(kick.t).x - jump.x).abs() < 1e-12);
+    assert!(
+        (new.start.position.x - new_half_x).abs() < 1e-12,
+        "touching"
+    );
+    // No shape in a cushion: at every segment start (with the new velocity)
+    // and on a fine grid of board times.
+    for i in 0..2 {
+        let starts = b.worldline(i).segments().iter().map(|s| s.start.t);
+        let grid = (0..=6000).map(|k| k as f64 * 1e-4);
+        for t in starts.filter(|&t| t >= 0.0).chain(grid) {
+            let d = cushion_depth(&b, i, t);
+            assert!(d <= 1e-12, "puck {i} {d} m into a cushion at t = {t}");
+        }
+    }
 }

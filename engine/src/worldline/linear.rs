@@ -567,6 +567,23 @@ impl Worldline {
         Ok(())
     }
 
+    /// Moves the last segment, start and all, by `offset` (m, board
+    /// frame): a jump of the reference point at that segment's start, as
+    /// [`Self::relocate`] makes, keeping the segment's motion (braking
+    /// included) and proper time. For a puck only when a kick has just
+    /// begun the segment and its new contraction would reach into a
+    /// cushion: the body then re-contracts about the rim point the cushion
+    /// holds rather than about its centre, a jump of at most `R (1 − 1/γ)`,
+    /// the size by which every rim point already jumps when a kick
+    /// re-contracts a body at one board time (`physics::billiard`).
+    pub fn shift_last(&mut self, offset: DVec3) {
+        if !offset.is_finite() {
+            return;
+        }
+        let i = self.segments.len() - 1;
+        self.segments[i].start.position += offset;
+    }
+
     /// Ends a braking last segment with a rest segment at its stop time (the
     /// motion is unchanged: a braking segment rests after its stop; the rest
     /// segment makes that explicit). Returns the stop time, or `None` if the

@@ -26,10 +26,16 @@ impl Billiard {
         };
         let mut outcomes = Vec::with_capacity(cluster.len());
         for &k in &cluster {
-            let puck = &mut self.pucks[k];
-            if puck.worldline.push(t_kink, after).is_err() {
+            if self.pucks[k].worldline.push(t_kink, after).is_err() {
                 continue;
             }
+            // A bounce keeps both half-widths (`|u_k|` is unchanged); the
+            // Zeno limit drops the normal part of `u` and widens the shape
+            // along the normal, into the cushion it presses.
+            if zeno {
+                self.hold_off_cushions(k);
+            }
+            let puck = &self.pucks[k];
             outcomes.push(PuckOutcome {
                 puck: puck.external as usize,
                 t: t_kink,
@@ -75,6 +81,46 @@ impl Billiard {
         }
         for k in cluster {
             self.bump(k);
+        }
+    }
+
+    /// Keeps puck `i`'s board shape out of the cushions after a velocity
+    /// change at the start of its last segment (a collision's kick, an
+    /// impulse, a Zeno merge).
+    ///
+    /// A kick changes the board-frame contraction of the whole body at one
+    /// board time: its half-width along a table axis, `R √(1 − βₖ²)`, can
+    /// grow by up to `R (1 − 1/γ)`. Next to a cushion (a puck touching
+    /// one when its kick lands, or kicked an instant before it gets there)
+    /// the new shape would reach into the cushion by that much, up to
+    /// centimetres at γ of a few hundred (issue 30, item 4), although no
+    /// point of a real body passes through the cushion: the cushion holds
+    /// the rim point it touches. So the body re-contracts about that point:
+    /// its centre moves back from the cushion by the depth the new shape
+    /// would have had, so that the shape just touches it. Momenta, energy
+    /// and the kick's board time are unchanged. If the puck then moves into
+    /// the cushion, the cushion contact is predicted at once (at this same
+    /// board time) and resolved as any other; a shape the move brings
+    /// against another puck is a board contact as any other.
+    pub(super) fn hold_off_cushions(&mut self, i: usize) {
+        let table = self.table;
+        let puck = &mut self.pucks[i];
+        let segment = *puck.worldline.last();
+        let centre = segment.start.position;
+        let mut shift = DVec3::ZERO;
+        for axis in 0..2 {
+            let h = puck_cushion::half_width(puck.radius, segment.u, axis);
+            let below = h - centre[axis];
+            let above = centre[axis] + h - table[axis];
+            if below > 0.0 {
+                shift[axis] = below;
+            } else if above > 0.0 {
+                shift[axis] = -above;
+            }
+        }
+        if shift != DVec3::ZERO {
+            puck.worldline.shift_last(shift);
+            self.stats.cushion_holds += 1;
         }
     }
 

@@ -38,6 +38,7 @@ impl Billiard {
         }
         puck.worldline
             .push(t.max(puck.worldline.last().start.t), u)?;
+        self.hold_off_cushions(i);
         self.bump(i);
         Ok(())
     }
@@ -131,6 +132,8 @@ impl Billiard {
             return;
         }
         puck.mass = next.mass;
+        self.hold_off_cushions(i);
+        let puck = &mut self.pucks[i];
         self.stats.kicks += 1;
         if let Some(r) = kick.record
             && let Some(k) = r.checked_sub(self.collisions_dropped)

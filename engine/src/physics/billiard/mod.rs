@@ -163,6 +163,10 @@ pub struct Stats {
     /// Collision records and worldline segments dropped because they were
     /// older than the history horizon.
     pub forgotten_collisions: u64,
+    /// Kicks whose new contraction would have put the puck's board shape
+    /// into a cushion: it re-contracted about the rim point the cushion
+    /// holds instead (`Billiard::hold_off_cushions`).
+    pub cushion_holds: u64,
 }
 
 impl Stats {

@@ -69,6 +69,8 @@ impl Billiard {
                 continue;
             }
             puck.mass = after[k].mass;
+            self.hold_off_cushions(i);
+            let puck = &mut self.pucks[i];
             self.stats.kicks += 1;
             outcomes.push(PuckOutcome {
                 puck: puck.external as usize,
