@@ -22,6 +22,7 @@ pub struct Camera {
 
 impl Camera {
     /// Looking along `forward` with a 60° vertical field of view.
+    #[must_use]
     pub fn looking(forward: DVec3) -> Self {
         Self {
             forward,
@@ -89,6 +90,7 @@ fn up_for(forward: DVec3) -> DVec3 {
 
 /// The camera's right and up axes for `forward` (unit), as the renderer's
 /// view matrix builds them.
+#[must_use]
 pub fn basis(forward: DVec3) -> (DVec3, DVec3) {
     let right = forward.cross(up_for(forward)).normalize();
     let up = right.cross(forward);
@@ -101,6 +103,7 @@ pub fn basis(forward: DVec3) -> (DVec3, DVec3) {
 /// by `zoom` (> 1 narrows the view about its centre). Points behind the eye
 /// are ignored; with none in front, looks at their mean direction with
 /// a 60° field.
+#[must_use]
 pub fn fit(points: &[DVec3], aspect: f64, margin: f64, zoom: f64) -> Camera {
     let aspect = if aspect.is_finite() && aspect > 0.0 {
         aspect
@@ -171,6 +174,7 @@ pub fn fit(points: &[DVec3], aspect: f64, margin: f64, zoom: f64) -> Camera {
 
 /// A camera with field of view `fovy` narrowed by `zoom` (> 1 zooms in),
 /// within [`FOV_RANGE`].
+#[must_use]
 pub fn zoomed(forward: DVec3, fovy: f64, zoom: f64) -> Camera {
     let zoom = if zoom.is_finite() && zoom > 0.0 {
         zoom
@@ -186,6 +190,7 @@ pub fn zoomed(forward: DVec3, fovy: f64, zoom: f64) -> Camera {
 /// Where a point relative to the eye lands in a viewport of `aspect`, in
 /// normalised device coordinates (x right, y up, both in [−1, 1] when
 /// visible); `None` behind the eye.
+#[must_use]
 pub fn ndc(camera: &Camera, aspect: f64, p: DVec3) -> Option<(f64, f64)> {
     let f = camera.forward.normalize_or(DVec3::Y);
     let (right, up) = basis(f);
@@ -199,6 +204,7 @@ pub fn ndc(camera: &Camera, aspect: f64, p: DVec3) -> Option<(f64, f64)> {
 
 /// The corners of the table's playing area and of its cushions' outer top
 /// edge (board frame, m): what a framing must show.
+#[must_use]
 pub fn table_corners(size: DVec2, cushion_height: f64, cushion_width: f64) -> Vec<DVec3> {
     let mut v = Vec::with_capacity(8);
     for (lo, hi, z) in [

@@ -20,6 +20,9 @@
 //! velocities are proper velocities `u = γβ` (dimensionless).
 
 #![warn(missing_docs)]
+// A function whose result is its only point says so (issue 31, item 10):
+// ignoring what `Boost::apply` or `puck_cushion::time` returns is a bug.
+#![warn(clippy::must_use_candidate)]
 
 pub mod camera;
 pub mod ecs;

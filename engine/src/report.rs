@@ -112,6 +112,7 @@ impl PuckLine {
 
 impl CollisionLine {
     /// The line for `collision`.
+    #[must_use]
     pub fn new(billiard: &Billiard, collision: &Collision) -> Self {
         let (kind, cushion) = match collision.kind {
             CollisionKind::PuckPuck => ("puck_puck", None),
@@ -133,6 +134,7 @@ impl CollisionLine {
 
 impl StateLine {
     /// Every puck at board time `t` (≤ the billiard's time).
+    #[must_use]
     pub fn new(billiard: &Billiard, t: f64) -> Self {
         Self {
             kind: "state",
@@ -228,6 +230,7 @@ fn xyz(v: glam::DVec3) -> [f64; 3] {
 
 impl SeenPoint {
     /// Point `i` of a body as a view of the frame schedule saw it.
+    #[must_use]
     pub fn of_apparent(body: &crate::ecs::ApparentBody, i: usize) -> Self {
         let e = body.emissions[i];
         let s = body.seen[i];

@@ -26,18 +26,21 @@ impl From<Camera> for model::Camera {
 /// The camera that shows every point of `points` (relative to the eye)
 /// inside a viewport of `aspect` = width / height with `margin` on each
 /// side, narrowed by `zoom`: [`lightcone_engine::camera::fit`].
+#[must_use]
 pub fn fit(points: &[DVec3], aspect: f64, margin: f64, zoom: f64) -> Camera {
     model::fit(points, aspect, margin, zoom).into()
 }
 
 /// Looking along `forward` with field of view `fovy` narrowed by `zoom`:
 /// [`lightcone_engine::camera::zoomed`].
+#[must_use]
 pub fn zoomed(forward: DVec3, fovy: f64, zoom: f64) -> Camera {
     model::zoomed(forward, fovy, zoom).into()
 }
 
 /// Normalised device coordinates of `p` (relative to the eye) through
 /// `camera`, `None` behind it: [`lightcone_engine::camera::ndc`].
+#[must_use]
 pub fn ndc(camera: &Camera, aspect: f64, p: DVec3) -> Option<(f64, f64)> {
     model::ndc(&(*camera).into(), aspect, p)
 }

@@ -44,6 +44,7 @@ pub enum ViewKind {
 
 impl ViewKind {
     /// The effects this view uses, given the scene's.
+    #[must_use]
     pub fn effects(self, scene: Effects) -> Effects {
         match self {
             ViewKind::Seen => scene,
@@ -77,6 +78,7 @@ impl From<lightcone_engine::camera::Camera> for Camera {
 impl Camera {
     /// View-projection matrix for an image of aspect `width / height`:
     /// right-handed, z up, depth in [0, 1] as wgpu wants.
+    #[must_use]
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
         let f = self.forward.normalize_or(DVec3::Y).as_vec3();
         let up = if f.cross(Vec3::Z).length() < 1e-6 {
@@ -122,6 +124,7 @@ fn marked(shape: &RestShape, tri: [u32; 3]) -> bool {
 /// `look_at` (else the table's centre) with a 60° field. That is where a
 /// free eye taken over from it starts looking; to draw what it sees, use
 /// [`scene_view`], which frames the table as every view does.
+#[must_use]
 pub fn eye_of(scene: &Scene, index: usize, t: f64) -> (Eye, Camera) {
     let o = &scene.observers[index];
     let eye = Eye {
@@ -219,6 +222,7 @@ pub struct ApparentCorner {
 /// Every triangle corner of what a view saw (its [`Apparent`], the frame
 /// schedule's output): the frame path of the window and of headless
 /// rendering, before the copy to f32.
+#[must_use]
 pub fn view_corners(apparent: &Apparent, meshes: &ViewMeshes) -> Vec<ApparentCorner> {
     let mut out = Vec::new();
     for body in &apparent.bodies {
@@ -264,6 +268,7 @@ pub fn build_view(apparent: &Apparent, meshes: &ViewMeshes, out: &mut Vec<FrameV
 /// [`lightcone_engine::scene::ObserverSpec::framing`] says for an image of
 /// `aspect` = width / height (fitted to the whole table, as this eye sees
 /// it, unless the scene names a `look_at`).
+#[must_use]
 pub fn scene_view(
     scene: &Scene,
     index: usize,
@@ -277,6 +282,7 @@ pub fn scene_view(
 /// As [`scene_view`], for the pucks of `billiard` (of `scene`, run at least
 /// to `t` elsewhere: the Python `Simulation`, a lesson's world) instead of
 /// the scene's own physics.
+#[must_use]
 pub fn billiard_view(
     scene: &Scene,
     billiard: &Billiard,

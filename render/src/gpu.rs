@@ -94,6 +94,7 @@ fn limits() -> wgpu::Limits {
 /// anything else in the process reads the environment concurrently (the
 /// CLI: first thing in `main`; Python: through `os.environ`).
 #[cfg(unix)]
+#[must_use]
 pub fn private_runtime_dir() -> Option<std::path::PathBuf> {
     use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
     let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| {
@@ -114,6 +115,7 @@ pub fn private_runtime_dir() -> Option<std::path::PathBuf> {
 
 /// Not Unix: no Mesa device-select layer to quieten.
 #[cfg(not(unix))]
+#[must_use]
 pub fn private_runtime_dir() -> Option<std::path::PathBuf> {
     None
 }

@@ -32,6 +32,7 @@ pub struct Image {
 
 impl Image {
     /// The pixel at (x, y), RGBA.
+    #[must_use]
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
         let i = 4 * (y as usize * self.width as usize + x as usize);
         [
@@ -100,6 +101,7 @@ pub struct Target {
 
 impl Target {
     /// A `width × height` target of [`FORMAT`] on `gpu`.
+    #[must_use]
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
         let device = &gpu.device;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
@@ -136,11 +138,13 @@ impl Target {
     }
 
     /// The view to draw into.
+    #[must_use]
     pub fn view(&self) -> &wgpu::TextureView {
         &self.view
     }
 
     /// Its size, (width, height) px.
+    #[must_use]
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
     }
@@ -188,6 +192,7 @@ pub struct Offscreen {
 
 impl Offscreen {
     /// A `width × height` target on `gpu`.
+    #[must_use]
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
         Self {
             target: Target::new(gpu, width, height),

@@ -16,6 +16,7 @@
 //!   prints and Python's `observe` returns.
 
 #![warn(missing_docs)]
+#![warn(clippy::must_use_candidate)]
 
 pub mod camera;
 pub mod diagram;

@@ -11,6 +11,7 @@ use lightcone_engine::scene::{self, Effect, Effects};
 /// world), read off its view of the frame schedule: the report
 /// `lightcone observe` prints (and the Python `observe` returns). `None` if
 /// `scene` has no observer `index`.
+#[must_use]
 pub fn report(
     scene: &scene::Scene,
     billiard: &Billiard,
@@ -33,6 +34,7 @@ pub fn report(
 /// read off its view of the frame schedule (the one optics output, the one
 /// the headless frame path draws): the report `lightcone observe` prints.
 /// `None` if `scene` has no observer `index`.
+#[must_use]
 pub fn report_at(
     scene: &scene::Scene,
     index: usize,

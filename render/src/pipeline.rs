@@ -104,6 +104,7 @@ fn vertex_buffer(device: &wgpu::Device, capacity: u64) -> wgpu::Buffer {
 
 impl Renderer {
     /// A renderer drawing into `format` targets of `width × height`.
+    #[must_use]
     pub fn new(
         device: &wgpu::Device,
         format: wgpu::TextureFormat,
@@ -202,6 +203,7 @@ impl Renderer {
     }
 
     /// The image size drawn into.
+    #[must_use]
     pub fn size(&self) -> (u32, u32) {
         self.size
     }

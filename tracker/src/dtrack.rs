@@ -81,6 +81,7 @@ fn error(line: usize, record: &str, message: impl Into<String>) -> PacketError {
 
 /// The packet's bytes shown safely in a message: printable ASCII kept,
 /// everything else escaped, at most `max` characters.
+#[must_use]
 pub fn show_content(bytes: &[u8], max: usize) -> String {
     let mut out = String::new();
     for &b in bytes.iter().take(max) {
@@ -313,6 +314,7 @@ fn parse_6d(line: usize, rest: &str) -> Result<Vec<Body6d>, PacketError> {
 
 /// The unit quaternion of a rotation matrix (assumed orthonormal, as
 /// [`parse`] checks), normalised.
+#[must_use]
 pub fn quaternion(rotation: DMat3) -> DQuat {
     DQuat::from_mat3(&rotation).normalize()
 }

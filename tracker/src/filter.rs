@@ -46,6 +46,7 @@ impl Default for OneEuroParams {
 impl OneEuroParams {
     /// Replaces unusable values (non-finite, cutoffs <= 0, beta < 0) by the
     /// defaults, so a bad config file cannot produce NaN poses.
+    #[must_use]
     pub fn sanitized(self) -> Self {
         let d = Self::default();
         let pos = |v: f64, dflt: f64| if v.is_finite() && v > 0.0 { v } else { dflt };
@@ -93,6 +94,7 @@ pub struct OneEuroFilter {
 
 impl OneEuroFilter {
     /// A filter with the given (sanitised) parameters and no history.
+    #[must_use]
     pub fn new(params: OneEuroParams) -> Self {
         Self {
             params: params.sanitized(),
@@ -101,6 +103,7 @@ impl OneEuroFilter {
     }
 
     /// The parameters in use (after sanitising).
+    #[must_use]
     pub fn params(&self) -> OneEuroParams {
         self.params
     }
@@ -111,6 +114,7 @@ impl OneEuroFilter {
     }
 
     /// The last output, if any input has been accepted.
+    #[must_use]
     pub fn current(&self) -> Option<FilterOutput> {
         self.state.map(|s| FilterOutput {
             position: s.x_hat,

@@ -199,6 +199,7 @@ pub struct FollowerOutput {
 
 impl FollowerOutput {
     /// One-line status for the HUD, with the pose age when it matters.
+    #[must_use]
     pub fn status_line(&self) -> String {
         match (self.status, self.age) {
             (TrackerStatus::Live, _) | (_, None) => self.status.to_string(),
@@ -267,6 +268,7 @@ fn ns_to_secs(ns: i128) -> f64 {
 
 impl Follower {
     /// A follower in state Waiting.
+    #[must_use]
     pub fn new(config: FollowerConfig) -> Self {
         Self {
             filter: OneEuroFilter::new(config.filter),
@@ -279,11 +281,13 @@ impl Follower {
     }
 
     /// The configuration.
+    #[must_use]
     pub fn config(&self) -> &FollowerConfig {
         &self.config
     }
 
     /// Diagnostic counters.
+    #[must_use]
     pub fn stats(&self) -> &FollowerStats {
         &self.stats
     }
@@ -442,6 +446,7 @@ impl Follower {
     }
 
     /// Status at `now`.
+    #[must_use]
     pub fn status(&self, now: Instant) -> TrackerStatus {
         let c = &self.config;
         let recent_reject = self
@@ -470,6 +475,7 @@ impl Follower {
     }
 
     /// Pose, velocity and status at `now`.
+    #[must_use]
     pub fn output(&self, now: Instant) -> FollowerOutput {
         let status = self.status(now);
         let velocity = match (&self.last_good, status) {

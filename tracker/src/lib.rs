@@ -27,6 +27,7 @@
 //! ```
 
 #![warn(missing_docs)]
+#![warn(clippy::must_use_candidate)]
 
 pub mod cave;
 pub mod dtrack;

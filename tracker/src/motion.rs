@@ -41,6 +41,7 @@ pub struct Prng {
 
 impl Prng {
     /// A generator with the given seed (any value, including 0, is fine).
+    #[must_use]
     pub fn new(seed: u64) -> Self {
         Self {
             state: seed,
@@ -119,6 +120,7 @@ impl Path {
     /// Looks up a path by CLI name with typical CAVE parameters:
     /// `still`, `circle` (r 0.5 m, 8 s), `walk` (±1 m, 6 s), `figure8`
     /// (0.8 m, 10 s), all at head height 1.7 m around the CAVE centre.
+    #[must_use]
     pub fn by_name(name: &str) -> Option<Self> {
         let c = DVec3::new(0.0, 1.7, 0.0);
         match name {
@@ -144,6 +146,7 @@ impl Path {
 
     /// Noise-free pose at time `t` seconds. A non-positive or non-finite
     /// period freezes the path at its start.
+    #[must_use]
     pub fn pose_at(&self, t: f64) -> (DVec3, DQuat) {
         let phase = |period: f64| {
             if period.is_finite() && period > 0.0 && t.is_finite() {
@@ -417,11 +420,13 @@ impl CsvTrack {
     }
 
     /// The rows, in time order.
+    #[must_use]
     pub fn rows(&self) -> &[TrackRow] {
         &self.rows
     }
 
     /// Time of the last row relative to the first.
+    #[must_use]
     pub fn duration(&self) -> f64 {
         match (self.rows.first(), self.rows.last()) {
             (Some(a), Some(b)) => b.t - a.t,
@@ -433,6 +438,7 @@ impl CsvTrack {
     /// positions are interpolated linearly, orientations by slerp when both
     /// rows are finite unit-ish quaternions (otherwise the earlier row is
     /// replayed as recorded), validity is the earlier row's.
+    #[must_use]
     pub fn pose_at(&self, t: f64) -> (DVec3, DQuat, bool) {
         let first = self.rows[0];
         let dur = self.duration();
@@ -541,6 +547,7 @@ pub struct MotionGenerator {
 
 impl MotionGenerator {
     /// A generator at tick 0.
+    #[must_use]
     pub fn new(config: MotionConfig) -> Self {
         let rng = Prng::new(config.seed);
         let next_sequence = config.first_sequence;
@@ -554,11 +561,13 @@ impl MotionGenerator {
     }
 
     /// The configuration.
+    #[must_use]
     pub fn config(&self) -> &MotionConfig {
         &self.config
     }
 
     /// Seconds between ticks (`1 / rate_hz`; 1 ms if the rate is unusable).
+    #[must_use]
     pub fn period_s(&self) -> f64 {
         1.0 / self.rate_hz()
     }
@@ -570,6 +579,7 @@ impl MotionGenerator {
 
     /// Simulation time of the next tick (`tick / rate_hz`, computed by
     /// division so that round rates give round times).
+    #[must_use]
     pub fn time_s(&self) -> f64 {
         self.tick as f64 / self.rate_hz()
     }

@@ -65,6 +65,7 @@ impl TrackerSample {
     pub const TYPE_NAME: &'static str = "lightcone::TrackerSample/v1";
 
     /// Builds a sample from glam types. `valid` is stored as 1/0.
+    #[must_use]
     pub fn new(
         timestamp_ns: u64,
         sequence: u64,
@@ -83,18 +84,21 @@ impl TrackerSample {
     }
 
     /// The position as a glam vector (unvalidated: may be NaN).
+    #[must_use]
     pub fn position_vec(&self) -> DVec3 {
         DVec3::from_array(self.position)
     }
 
     /// The orientation as a glam quaternion, exactly as received (may be
     /// non-unit or non-finite; see [`crate::follow`] for validation).
+    #[must_use]
     pub fn orientation_quat(&self) -> DQuat {
         DQuat::from_array(self.orientation)
     }
 
     /// True when the publisher flagged the measurement as having a fix.
     /// Any non-zero byte counts, so a C bridge writing `true` as 0xFF works.
+    #[must_use]
     pub fn has_fix(&self) -> bool {
         self.valid != 0
     }
@@ -111,6 +115,7 @@ impl Default for TrackerSample {
 ///
 /// Returns 0 if the clock is before 1970 (misconfigured machine) and
 /// saturates at `u64::MAX` (year 2554) rather than panicking.
+#[must_use]
 pub fn unix_now_ns() -> u64 {
     match SystemTime::now().duration_since(UNIX_EPOCH) {
         Ok(d) => u64::try_from(d.as_nanos()).unwrap_or(u64::MAX),

@@ -278,6 +278,7 @@ impl Publisher {
     }
 
     /// The service name this publisher sends on.
+    #[must_use]
     pub fn service_name(&self) -> &str {
         &self.service
     }
@@ -334,6 +335,7 @@ impl Subscriber {
     }
 
     /// The service name this subscriber listens on.
+    #[must_use]
     pub fn service_name(&self) -> &str {
         &self.service
     }
@@ -368,6 +370,7 @@ impl Subscriber {
 
     /// Number of publisher ports currently registered on the service. A
     /// killed publisher still counts until its node has been cleaned up.
+    #[must_use]
     pub fn publisher_count(&self) -> usize {
         self.factory.dynamic_config().number_of_publishers()
     }

@@ -160,6 +160,7 @@ fn error(field: &str, message: impl Into<String>, bytes: &[u8]) -> ProtocolError
 }
 
 /// The cookie this client sends: `MAGIC`, two spaces, log mode 0, NULs.
+#[must_use]
 pub fn cookie() -> [u8; COOKIE_LEN] {
     let mut c = [0u8; COOKIE_LEN];
     c[..MAGIC.len()].copy_from_slice(MAGIC);
@@ -203,6 +204,7 @@ pub struct Header {
 
 impl Header {
     /// Bytes the payload takes on the wire, with its padding.
+    #[must_use]
     pub fn padded_len(&self) -> usize {
         self.payload_len.div_ceil(ALIGN) * ALIGN
     }
@@ -370,6 +372,7 @@ impl Stream {
     /// A stream whose sender `device` (the tracker followed) is never
     /// forgotten, however many other senders the server describes after it
     /// (as the `Pos_Quat` type's name is not).
+    #[must_use]
     pub fn following(device: &str) -> Self {
         Self {
             device: Some(device.to_owned()),
@@ -379,6 +382,7 @@ impl Stream {
 
     /// How many sender and type names are kept (each at most
     /// [`MAX_NAMES`]).
+    #[must_use]
     pub fn names_kept(&self) -> (usize, usize) {
         (self.senders.by_id.len(), self.types.by_id.len())
     }
@@ -439,6 +443,7 @@ impl Stream {
 }
 
 /// One message as a server writes it (for tests and recorded streams).
+#[must_use]
 pub fn encode(sender: i32, kind: i32, time: (i32, i32), payload: &[u8]) -> Vec<u8> {
     let total = i32::try_from(HEADER_LEN + payload.len()).unwrap_or(i32::MAX);
     let mut out = Vec::with_capacity(HEADER_LEN + payload.len() + ALIGN);
@@ -452,6 +457,7 @@ pub fn encode(sender: i32, kind: i32, time: (i32, i32), payload: &[u8]) -> Vec<u
 
 /// A sender (`kind` [`SENDER_DESCRIPTION`]) or type
 /// ([`TYPE_DESCRIPTION`]) description of `id` as `name`.
+#[must_use]
 pub fn encode_description(kind: i32, id: i32, name: &str) -> Vec<u8> {
     let mut payload = Vec::with_capacity(name.len() + 5);
     let n = i32::try_from(name.len() + 1).unwrap_or(i32::MAX);
@@ -462,6 +468,7 @@ pub fn encode_description(kind: i32, id: i32, name: &str) -> Vec<u8> {
 }
 
 /// A `Pos_Quat` payload.
+#[must_use]
 pub fn encode_pos_quat(sensor: i32, position: DVec3, orientation: DQuat) -> Vec<u8> {
     let mut p = Vec::with_capacity(64);
     p.extend_from_slice(&sensor.to_be_bytes());

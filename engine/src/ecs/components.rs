@@ -64,6 +64,7 @@ pub struct Mesh {
 impl Mesh {
     /// The mesh of `shape` with centre `centre` (rest-frame offset from the
     /// reference point, m).
+    #[must_use]
     pub fn new(shape: RestShape, centre: DVec3) -> Self {
         let mut points = shape.vertices.clone();
         points.push(centre);
@@ -120,6 +121,7 @@ pub struct Lens {
 impl Lens {
     /// A lens aimed by `framing` (its camera, until the first frame,
     /// looking along +y with a 60° field).
+    #[must_use]
     pub fn new(framing: Framing) -> Self {
         Self {
             framing,
@@ -189,6 +191,7 @@ pub fn set_effect_marker(entity: &mut EntityWorldMut, effect: Effect, on: bool) 
 }
 
 /// The effect set of a view entity, read off its markers.
+#[must_use]
 pub fn effects_of(entity: EntityRef) -> Effects {
     Effects {
         contraction: entity.contains::<Contraction>(),
@@ -240,11 +243,13 @@ pub struct ApparentBody {
 
 impl ApparentBody {
     /// Number of mesh vertices (the points before the centre).
+    #[must_use]
     pub fn vertex_count(&self) -> usize {
         self.emissions.len().saturating_sub(1)
     }
 
     /// Index of the centre among the points.
+    #[must_use]
     pub fn centre(&self) -> usize {
         self.vertex_count()
     }

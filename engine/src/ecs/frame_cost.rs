@@ -17,6 +17,7 @@ use crate::worldline::mesh::{self, PUCK_SEGMENTS};
 /// `n` pucks in lanes, 40 to a row 25 cm apart, on a table four times the
 /// paper's, made longer (along y) when the rows need it (from 841
 /// pucks), a moving eye.
+#[must_use]
 pub fn lanes(n: usize) -> Scene {
     let per_row = 40;
     let rows = n.div_ceil(per_row);
@@ -81,6 +82,7 @@ pub fn ms_per_frame(sim: &mut Simulation, frames: u32) -> f64 {
 
 /// The Markdown table of what each effect costs: the lanes scene of `n`
 /// pucks with each effect alone, none, and all, `frames` frames each.
+#[must_use]
 pub fn effect_costs(n: usize, frames: u32) -> String {
     let vertices = n * mesh::puck(0.0305, 0.02, PUCK_SEGMENTS).vertices.len();
     let mut out = format!(
@@ -110,6 +112,7 @@ pub fn effect_costs(n: usize, frames: u32) -> String {
 
 /// `sim` with `views` views of its first observer: the scene's view, then
 /// the board-frame truth, then copies of the scene's.
+#[must_use]
 pub fn with_views(scene: &Scene, views: usize) -> Simulation {
     let mut sim = Simulation::new(scene);
     let first = sim.views()[0];
@@ -132,6 +135,7 @@ pub fn with_views(scene: &Scene, views: usize) -> Simulation {
 
 /// The Markdown table of frame time per number of views (1, 2, 4) for
 /// each named scene, `frames` frames each.
+#[must_use]
 pub fn view_counts(scenes: &[(&str, Scene)], frames: u32) -> String {
     let mut out = String::from(
         "### Frame time per number of views (the scene's effects, then truth, seen, truth)\n\n\

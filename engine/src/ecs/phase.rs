@@ -25,16 +25,19 @@ pub enum Phase {
 }
 
 /// Run condition: some view has the effect marker `M`.
+#[must_use]
 pub fn any_view_with<M: Component>(views: Query<(), (With<View>, With<M>)>) -> bool {
     !views.is_empty()
 }
 
 /// Run condition: some view lacks the effect marker `M`.
+#[must_use]
 pub fn any_view_without<M: Component>(views: Query<(), (With<View>, Without<M>)>) -> bool {
     !views.is_empty()
 }
 
 /// Run condition: the scene asks for the paper's sampled history.
+#[must_use]
 pub fn sampled_history(method: Option<Res<OpticsMethod>>) -> bool {
     method.is_some_and(|m| m.0.sampled)
 }

@@ -39,6 +39,7 @@ pub struct OpticsMethod(pub OpticsSpec);
 
 impl OpticsMethod {
     /// The dichotomy search the spec asks for.
+    #[must_use]
     pub fn search(&self) -> Search {
         Search {
             iterations: if self.0.dichotomy_steps == 0 {

@@ -70,6 +70,7 @@ impl Simulation {
     /// aspect). Runs the frame at board time 0.
     ///
     /// [`ObserverSpec::framing`]: crate::scene::ObserverSpec::framing
+    #[must_use]
     pub fn new(scene: &Scene) -> Self {
         let mut world = World::new();
         world.insert_resource(Clock::default());

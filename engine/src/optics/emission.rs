@@ -301,6 +301,7 @@ pub fn simultaneous_on(
 /// Stable positive root `τ` of `(c² − v²) τ² − 2 (d·v) τ − |d|² = 0`: the
 /// time light from the origin takes to reach a point that starts at `d` and
 /// moves with velocity `v` (`|v| < c`).
+#[must_use]
 pub fn light_catch_up(d: DVec3, v: DVec3, c: f64, gamma: f64) -> f64 {
     let a = (c / gamma) * (c / gamma); // c² − v², exact via γ
     let dv = d.dot(v);

@@ -48,6 +48,7 @@ impl Seen {
     /// Unit vector from the eye towards the point (observer's frame; zero
     /// for a point at the eye).
     #[inline]
+    #[must_use]
     pub fn direction(&self) -> DVec3 {
         if self.distance > 0.0 {
             self.position / self.distance
@@ -72,6 +73,7 @@ fn gamma_minus_along(u: ProperVelocity, n: DVec3) -> f64 {
 
 /// Doppler factor for light travelling along unit `n` (board frame) from an
 /// emitter moving with `emitter` to an observer moving with `observer`.
+#[must_use]
 pub fn doppler(n: DVec3, emitter: ProperVelocity, observer: ProperVelocity) -> f64 {
     gamma_minus_along(observer, n) / gamma_minus_along(emitter, n)
 }
@@ -80,6 +82,7 @@ impl Eye {
     /// What this eye sees of light from `emission` sent by a point moving
     /// with `emitter`. `aberration` off keeps board-frame directions and
     /// distances (as if the eye were at rest).
+    #[must_use]
     pub fn see(&self, emission: Event, emitter: ProperVelocity, c: f64, aberration: bool) -> Seen {
         let placed = if aberration {
             self.place_in_own_frame(&self.frame(), emission, c)
@@ -94,6 +97,7 @@ impl Eye {
 
     /// The boost into this eye's rest frame (compute once per frame, pass to
     /// [`Self::place_in_own_frame`] for every vertex).
+    #[must_use]
     pub fn frame(&self) -> Boost {
         Boost::into_frame(self.u)
     }
@@ -102,6 +106,7 @@ impl Eye {
     /// past-directed null vector to the emission boosted into this eye's
     /// rest frame (`frame`, from [`Self::frame`]; compute it once per
     /// frame). Doppler factor left at 1.
+    #[must_use]
     pub fn place_in_own_frame(&self, frame: &Boost, emission: Event, c: f64) -> Seen {
         let to_source = emission.position - self.event.position;
         let ray = FourVector::new(c * (emission.t - self.event.t), to_source);
@@ -148,6 +153,7 @@ impl Eye {
     /// Where the light from `emission` appears without aberration: the
     /// board-frame offset from the eye (as if the eye were at rest).
     /// Doppler factor left at 1.
+    #[must_use]
     pub fn place_on_board(&self, emission: Event) -> Seen {
         Self::seen_at(emission.position - self.event.position)
     }
@@ -162,6 +168,7 @@ impl Eye {
 
     /// What this eye sees of a point at rest on the board at `point` (the
     /// table, the cushions): its light left `|point − eye| / c` ago.
+    #[must_use]
     pub fn see_static(&self, point: DVec3, c: f64, aberration: bool) -> Seen {
         let back = (point - self.event.position).length() / c;
         let emission = Event::new(self.event.t - back, point);
@@ -170,6 +177,7 @@ impl Eye {
 
     /// The Doppler factor of light from `emission`, sent by a point moving
     /// with `emitter` (1 if the emission is at the eye).
+    #[must_use]
     pub fn doppler_of(&self, emission: Event, emitter: ProperVelocity) -> f64 {
         let travel = self.event.position - emission.position;
         let len = travel.length();
@@ -212,6 +220,7 @@ impl LaneWork for Aberrated<'_> {
 
 /// Searchlight intensity factor for a Doppler factor: `D⁴` (see module doc).
 #[inline]
+#[must_use]
 pub fn searchlight(doppler: f64) -> f64 {
     let d2 = doppler * doppler;
     d2 * d2

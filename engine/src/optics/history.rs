@@ -56,6 +56,7 @@ pub struct SampledHistory {
 
 impl SampledHistory {
     /// A table for `bodies` bodies keeping the newest `capacity` frames.
+    #[must_use]
     pub fn new(bodies: usize, capacity: usize) -> Self {
         Self {
             capacity: capacity.max(2),
@@ -65,16 +66,19 @@ impl SampledHistory {
     }
 
     /// Frames held.
+    #[must_use]
     pub fn len(&self) -> usize {
         self.times.len()
     }
 
     /// Whether no frame is held.
+    #[must_use]
     pub fn is_empty(&self) -> bool {
         self.times.is_empty()
     }
 
     /// Bytes of sample data held (times, centres, velocities, orientations).
+    #[must_use]
     pub fn memory_bytes(&self) -> usize {
         self.times.len() * (8 + self.tracks.len() * (24 + 24 + 8))
     }

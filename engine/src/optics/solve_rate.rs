@@ -33,6 +33,7 @@ pub struct SolveRate {
 impl SolveRate {
     /// `pucks` pucks of radius 3.05 cm, each a puck mesh of `segments`
     /// around (`2 × segments` vertices).
+    #[must_use]
     pub fn gas(pucks: usize, segments: u32) -> Self {
         Self::gas_on_cloth(pucks, segments, 0.0)
     }
@@ -41,6 +42,7 @@ impl SolveRate {
     /// for none): every worldline brakes, so every emission lies on a
     /// braking segment (or after a puck's stop). At `mu_g` = 0.3 a puck
     /// at 0.8 c is still moving at the observation (t = 2 s).
+    #[must_use]
     pub fn gas_on_cloth(pucks: usize, segments: u32, mu_g: f64) -> Self {
         let r = 0.0305;
         let mut billiard = dense_box(pucks, r, 3.0 * r, 0.8, 1.42, 11);
@@ -65,17 +67,20 @@ impl SolveRate {
     }
 
     /// Number of pucks.
+    #[must_use]
     pub fn pucks(&self) -> usize {
         self.contracted.len()
     }
 
     /// Vertices per puck.
+    #[must_use]
     pub fn vertices_per_puck(&self) -> usize {
         self.shape.vertices.len()
     }
 
     /// Vertices of all pucks: what one [`Self::per_thread`] or
     /// [`Self::per_body`] solves.
+    #[must_use]
     pub fn vertices(&self) -> usize {
         self.pucks() * self.vertices_per_puck()
     }

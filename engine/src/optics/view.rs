@@ -226,6 +226,7 @@ fn point(e: Emission, s: Seen, effects: &Effects) -> PointView {
 /// Everything `eye` sees of the pucks, each with the rest shape in
 /// `shapes[puck]` (vertices listed only if `with_vertices`). Pucks are
 /// solved in parallel.
+#[must_use]
 pub fn observe(
     billiard: &Billiard,
     shapes: &[RestShape],

@@ -45,6 +45,7 @@ pub struct FixedStep {
 
 impl FixedStep {
     /// Pucks at board time 0.
+    #[must_use]
     pub fn new(c: f64, table: DVec2, pucks: &[PuckInit]) -> Self {
         Self {
             c,
@@ -58,11 +59,13 @@ impl FixedStep {
     }
 
     /// Board time, s.
+    #[must_use]
     pub fn time(&self) -> f64 {
         self.t
     }
 
     /// Centre of puck `i`, m.
+    #[must_use]
     pub fn position(&self, i: usize) -> DVec3 {
         self.position[i]
     }

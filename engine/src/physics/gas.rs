@@ -13,6 +13,7 @@ pub struct Rng(u64);
 
 impl Rng {
     /// A generator from a seed (0 is replaced by a fixed odd number).
+    #[must_use]
     pub fn new(seed: u64) -> Self {
         Self(if seed == 0 {
             0x9e37_79b9_7f4a_7c15
@@ -33,6 +34,7 @@ impl Rng {
 /// `n` pucks of radius `radius` on a square grid with spacing `spacing`
 /// (≥ 2 radius) in a square box just large enough, moving in random
 /// directions with speeds uniform in [0, `max_beta`) c. Elastic.
+#[must_use]
 pub fn dense_box(
     n: usize,
     radius: f64,

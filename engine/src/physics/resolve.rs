@@ -36,6 +36,7 @@ pub struct Body {
 
 impl Body {
     /// 4-momentum in mass units.
+    #[must_use]
     pub fn momentum(self) -> FourMomentum {
         FourMomentum::of_body(self.mass, self.u)
     }
@@ -78,6 +79,7 @@ fn momentum_sq_for_kinetic(m1: f64, m2: f64, k: f64, hi: f64) -> f64 {
 /// (new proper velocities, and rest masses grown by the heat if
 /// `restitution < 1`). If the pucks are not approaching along the normal,
 /// nothing changes.
+#[must_use]
 pub fn puck_puck(
     a: Body,
     b: Body,
@@ -166,6 +168,7 @@ fn in_cm_frame(a: Body, b: Body, n_board: FourVector, restitution: f64) -> [Body
 /// on the board, or (all the energy taken from the tangential motion too)
 /// moving alike along it. For `e = 0` the pair moves together, as
 /// [`together`]. 4-momentum is conserved exactly. Not closing: unchanged.
+#[must_use]
 pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Body; 2] {
     // Elastic, in closed form on the board: an impulse `J n` to `a` (`−J n`
     // to `b`) carries energy `J k`, `k = (P·n)/E`, the frame's β along `n`.
@@ -208,6 +211,7 @@ pub fn puck_puck_board(a: Body, b: Body, normal: DVec3, restitution: f64) -> [Bo
 /// approach test: a pair already moving together is unchanged (to
 /// rounding). 4-momentum is conserved exactly: `Σ mᵢ′ u = M (P/M) = P` and
 /// `Σ mᵢ′ γ = M γ_cm = E`.
+#[must_use]
 pub fn together(a: Body, b: Body) -> [Body; 2] {
     let total = a.momentum() + b.momentum();
     let invariant = FourMomentum::pair_invariant_mass(a.mass, a.u, b.mass, b.u);
@@ -233,6 +237,7 @@ pub fn together(a: Body, b: Body) -> [Body; 2] {
 /// far, as one body of mass `M` at `P/M`, with the next), which keeps its
 /// digits when the relative motion is slow. 4-momentum conserved exactly,
 /// as for two. Empty in, empty out.
+#[must_use]
 pub fn together_all(bodies: &[Body]) -> Vec<Body> {
     if let &[a, b] = bodies {
         return together(a, b).to_vec();
@@ -259,6 +264,7 @@ pub fn together_all(bodies: &[Body]) -> Vec<Body> {
 
 /// Outcome of a puck meeting a cushion whose outward unit normal (from the
 /// table into the cushion) is `outward`, board frame.
+#[must_use]
 pub fn puck_cushion(u: ProperVelocity, outward: DVec3, restitution: f64) -> ProperVelocity {
     let u_n = u.0.dot(outward);
     if u_n.is_nan() || u_n <= 0.0 {

@@ -36,6 +36,7 @@ impl Effect {
     ];
 
     /// The key in the scene file.
+    #[must_use]
     pub fn key(self) -> &'static str {
         match self {
             Effect::Contraction => "contraction",
@@ -91,6 +92,7 @@ impl Effects {
     };
 
     /// Whether `effect` is on.
+    #[must_use]
     pub fn is_on(&self, effect: Effect) -> bool {
         *self.flag(effect)
     }

@@ -26,6 +26,7 @@ pub struct SceneError {
 
 impl SceneError {
     /// An error at byte offset `offset` of `text`.
+    #[must_use]
     pub fn at(file: &str, text: &str, offset: usize, field: &str, message: String) -> Self {
         let (line, column) = line_column(text, offset);
         Self {
@@ -39,6 +40,7 @@ impl SceneError {
     }
 
     /// This error as the breaking of `rule`.
+    #[must_use]
     pub fn breaking(self, rule: BuildError) -> Self {
         Self {
             rule: Some(rule),
@@ -47,6 +49,7 @@ impl SceneError {
     }
 
     /// An error about the whole file (unreadable, empty …).
+    #[must_use]
     pub fn whole_file(file: &str, message: String) -> Self {
         Self {
             file: file.to_owned(),
@@ -79,6 +82,7 @@ pub struct SceneErrors(pub Vec<SceneError>);
 
 impl SceneErrors {
     /// A list of one.
+    #[must_use]
     pub fn single(e: SceneError) -> Self {
         Self(vec![e])
     }

@@ -61,6 +61,7 @@ pub enum BeforeStart {
 
 impl BeforeStart {
     /// The value in a scene file.
+    #[must_use]
     pub fn key(self) -> &'static str {
         match self {
             BeforeStart::Rest => "rest",
@@ -131,6 +132,7 @@ pub struct ObserverSpec {
 impl ObserverSpec {
     /// The point the eye faces at t = 0: its `look_at`, else the centre of
     /// a table of `size` (m) on the board.
+    #[must_use]
     pub fn target(&self, size: DVec2) -> DVec3 {
         self.look_at
             .unwrap_or_else(|| DVec3::new(size.x / 2.0, size.y / 2.0, 0.0))
@@ -141,6 +143,7 @@ impl ObserverSpec {
     /// else turned and widened to show the whole table (cushions included)
     /// with [`crate::camera::FIT_MARGIN`] in a viewport of `aspect` =
     /// width / height: the window's default framing.
+    #[must_use]
     pub fn framing(&self, aspect: f64) -> crate::camera::Framing {
         match self.look_at {
             Some(p) => crate::camera::Framing::Look {
@@ -211,11 +214,13 @@ impl Color {
     ];
 
     /// A colour from its components.
+    #[must_use]
     pub const fn rgb(r: u8, g: u8, b: u8) -> Self {
         Self { r, g, b }
     }
 
     /// Parses `#rrggbb` or a name from [`Color::NAMED`].
+    #[must_use]
     pub fn parse(s: &str) -> Option<Self> {
         if let Some(hex) = s.strip_prefix('#') {
             if hex.len() != 6 || !hex.is_ascii() {
@@ -232,11 +237,13 @@ impl Color {
     }
 
     /// The default colour of the `i`-th puck: white, yellow, red (carom), …
+    #[must_use]
     pub fn default_for(i: usize) -> Self {
         Self::NAMED[i % 10].1
     }
 
     /// `#rrggbb`.
+    #[must_use]
     pub fn to_hex(self) -> String {
         format!("#{:02x}{:02x}{:02x}", self.r, self.g, self.b)
     }
@@ -246,6 +253,7 @@ impl PuckSpec {
     /// Half-width of the contracted puck along the unit axis `axis`, m:
     /// the support of an ellipse of semi-axes `R/γ` (along the motion) and
     /// `R`, which is `R √(1 − (axis·β)²)`, formed as `R √((1 − a)(1 + a))`.
+    #[must_use]
     pub fn half_extent_along(&self, axis: DVec2) -> f64 {
         let a = axis.dot(self.u.beta().truncate()).abs();
         self.radius * ((1.0 - a) * (1.0 + a)).sqrt()
@@ -265,6 +273,7 @@ impl TableSpec {
 
     /// A frictionless table of `size` metres, cushions of restitution
     /// `cushion_restitution`.
+    #[must_use]
     pub fn frictionless(size: DVec2, cushion_restitution: f64) -> Self {
         Self {
             size,
@@ -275,6 +284,7 @@ impl TableSpec {
     }
 
     /// The proper deceleration of a sliding puck, `μ g`, m/s².
+    #[must_use]
     pub fn deceleration(&self) -> f64 {
         self.friction * self.gravity
     }
@@ -283,6 +293,7 @@ impl TableSpec {
 impl Scene {
     /// Speed of light for a table: light crosses the long side in 2 s, as in
     /// the paper's experiments.
+    #[must_use]
     pub fn default_c(size: DVec2) -> f64 {
         size.x.max(size.y) / 2.0
     }
@@ -291,6 +302,7 @@ impl Scene {
     /// the long side, 1.25 m back and 1.6 m above the board (high enough
     /// that the table, seen whole, is not a sliver), its views framed to
     /// show the whole table.
+    #[must_use]
     pub fn default_observer(size: DVec2) -> ObserverSpec {
         ObserverSpec {
             name: "eye".to_owned(),
@@ -301,11 +313,13 @@ impl Scene {
     }
 
     /// The puck called `name`.
+    #[must_use]
     pub fn puck(&self, name: &str) -> Option<&PuckSpec> {
         self.pucks.iter().find(|p| p.name == name)
     }
 
     /// The observer called `name`.
+    #[must_use]
     pub fn observer(&self, name: &str) -> Option<&ObserverSpec> {
         self.observers.iter().find(|o| o.name == name)
     }

@@ -6,6 +6,7 @@ use super::model::PuckSpec;
 /// Whether the rest-frame discs of `a` and `b` overlap at t = 0 (touching,
 /// to a relative 10⁻¹², is allowed: pucks placed in contact to the digits of
 /// the file are not called overlapping).
+#[must_use]
 pub fn overlap(a: &PuckSpec, b: &PuckSpec) -> bool {
     let reach = a.radius + b.radius;
     a.position.distance(b.position) < reach * (1.0 - 1e-12)

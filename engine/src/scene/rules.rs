@@ -59,6 +59,7 @@ pub const MAX_DICHOTOMY_STEPS: u32 = 64;
 /// `0.0305`, `2500`) from 10⁻⁴ to below 10⁶, else in exponent form
 /// (`1e-300`, `1e6`, `2.5e20`), never hundreds of digits; `inf` and `NaN`
 /// as such.
+#[must_use]
 pub fn number(x: f64) -> String {
     let a = x.abs();
     if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&a) {
@@ -70,6 +71,7 @@ pub fn number(x: f64) -> String {
 
 /// |v| without overflow: finite for every finite `v` (10²⁰⁰ squared is
 /// not).
+#[must_use]
 pub fn magnitude(v: DVec3) -> f64 {
     let m = v.abs().max_element();
     if m == 0.0 || !m.is_finite() {
@@ -105,6 +107,7 @@ pub enum Quantity {
 
 impl Quantity {
     /// Whether `x` is allowed.
+    #[must_use]
     pub fn holds(self, x: f64) -> bool {
         match self {
             Quantity::C => C_RANGE.contains(&x),
@@ -329,6 +332,7 @@ impl BuildError {
     }
 
     /// The rule broken, under every [`BuildError::In`].
+    #[must_use]
     pub fn rule(&self) -> &BuildError {
         match self {
             BuildError::In { error, .. } => error.rule(),
@@ -475,6 +479,7 @@ pub fn on_table(table: &TableSpec, puck: &PuckSpec) -> Result<(), BuildError> {
 /// (a Born-rigid body must be shorter than the braking's Rindler horizon
 /// `c²/(μg)`, see [`crate::worldline::sliding`]): its index and the error;
 /// `None` when every puck can (or μ = 0).
+#[must_use]
 pub fn braking_horizon(
     c: f64,
     friction: f64,

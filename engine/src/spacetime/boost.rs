@@ -49,6 +49,7 @@ impl Boost {
     /// The boost into the frame moving with proper velocity `frame`.
     ///
     /// Precondition: `frame` is finite (a non-finite one yields NaN output).
+    #[must_use]
     pub fn into_frame(frame: ProperVelocity) -> Self {
         let speed = frame.0.length();
         let direction = if speed > 0.0 {
@@ -72,11 +73,13 @@ impl Boost {
     }
 
     /// The proper velocity of the target frame in the source frame.
+    #[must_use]
     pub fn frame(&self) -> ProperVelocity {
         self.frame
     }
 
     /// The boost back: into the frame moving at `−u`.
+    #[must_use]
     pub fn inverse(&self) -> Self {
         Self::into_frame(-self.frame)
     }
@@ -89,6 +92,7 @@ impl Boost {
     /// two numbers the size of `ct`, losing `ε |ct|` (10⁻⁷ m at c = 10⁹ m/s
     /// after one second); here `|u| ct` is a product and the result keeps
     /// its digits. Above, the light-cone form keeps them at any rapidity.
+    #[must_use]
     pub fn apply(&self, x: FourVector) -> FourVector {
         let (ct, space) = self.form().apply(x.ct, x.space);
         FourVector::new(ct, space)
@@ -135,6 +139,7 @@ impl Boost {
     /// take the small result as the difference of two numbers near 1,
     /// losing ε in absolute terms (a relative 10⁻⁷ at c = 10⁹ m/s, where
     /// a puck's γβ is 10⁻⁹).
+    #[must_use]
     pub fn apply_velocity(&self, u: ProperVelocity) -> ProperVelocity {
         let n = self.direction;
         let parallel = n.dot(u.0);
@@ -190,6 +195,7 @@ impl BoostForm {
 /// Relativistic velocity composition: the board-frame proper velocity of a
 /// body moving with `u_in_frame` inside a frame that itself moves with
 /// `frame` relative to the board.
+#[must_use]
 pub fn compose(frame: ProperVelocity, u_in_frame: ProperVelocity) -> ProperVelocity {
     Boost::into_frame(-frame).apply_velocity(u_in_frame)
 }

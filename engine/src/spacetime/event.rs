@@ -15,6 +15,7 @@ pub struct Event {
 
 impl Event {
     /// An event at board time `t` and position `position`.
+    #[must_use]
     pub const fn new(t: f64, position: DVec3) -> Self {
         Self { t, position }
     }
@@ -22,17 +23,20 @@ impl Event {
     /// The displacement from `self` to `later` as a 4-vector `(cΔt, Δx)` in
     /// metres. Differences are taken before scaling, so nearby events keep
     /// their digits whatever their absolute time.
+    #[must_use]
     pub fn separation_to(self, later: Event, c: f64) -> FourVector {
         FourVector::new(c * (later.t - self.t), later.position - self.position)
     }
 
     /// Squared interval `Δs² = c²Δt² − |Δx|²` (time-like positive, the
     /// paper's Eq. 1) to `other`, in m². Zero on a light cone.
+    #[must_use]
     pub fn interval_to(self, other: Event, c: f64) -> f64 {
         self.separation_to(other, c).interval()
     }
 
     /// Whether both coordinates are finite.
+    #[must_use]
     pub fn is_finite(self) -> bool {
         self.t.is_finite() && self.position.is_finite()
     }
@@ -45,6 +49,7 @@ impl Event {
     /// light cone's inside, whatever it did before. Compared without
     /// squaring, so a grazing case is decided to the last few ulps of the
     /// distance.
+    #[must_use]
     pub fn light_has_reached(self, eye: Event, c: f64) -> bool {
         let dt = eye.t - self.t;
         dt >= 0.0 && c * dt >= (eye.position - self.position).length()
@@ -63,6 +68,7 @@ pub struct FourVector {
 
 impl FourVector {
     /// The 4-vector `(ct, space)`.
+    #[must_use]
     pub const fn new(ct: f64, space: DVec3) -> Self {
         Self { ct, space }
     }
@@ -72,6 +78,7 @@ impl FourVector {
     /// Formed as `(ct − |x|)(ct + |x|)`, which is exact on the light cone;
     /// near it the result still carries an absolute error of a few ulps of
     /// `ct² + |x|²`, as any difference of squares must.
+    #[must_use]
     pub fn interval(self) -> f64 {
         let r = self.space.length();
         (self.ct - r) * (self.ct + r)
@@ -79,16 +86,19 @@ impl FourVector {
 
     /// The Euclidean size `ct² + |x|²`, the scale against which the error of
     /// [`Self::interval`] is stated.
+    #[must_use]
     pub fn euclidean_norm_squared(self) -> f64 {
         self.ct * self.ct + self.space.length_squared()
     }
 
     /// The board event reached from `origin` by this separation.
+    #[must_use]
     pub fn from_event(self, origin: Event, c: f64) -> Event {
         Event::new(origin.t + self.ct / c, origin.position + self.space)
     }
 
     /// Whether every component is finite.
+    #[must_use]
     pub fn is_finite(self) -> bool {
         self.ct.is_finite() && self.space.is_finite()
     }

@@ -20,6 +20,7 @@ pub struct FourMomentum {
 impl FourMomentum {
     /// The 4-momentum of a body of rest mass `mass` (kg) moving with proper
     /// velocity `u`.
+    #[must_use]
     pub fn of_body(mass: f64, u: ProperVelocity) -> Self {
         Self {
             energy: mass * u.gamma(),
@@ -32,6 +33,7 @@ impl FourMomentum {
     /// Formed as `√((E − |p|)(E + |p|))`. For a single ultra-relativistic
     /// body `E − |p|` cancels: keep the body's own rest mass instead. For a
     /// pair use [`FourMomentum::pair_invariant_mass`], which is exact.
+    #[must_use]
     pub fn invariant_mass(self) -> f64 {
         let p = self.momentum.length();
         ((self.energy - p) * (self.energy + p)).max(0.0).sqrt()
@@ -41,6 +43,7 @@ impl FourMomentum {
     /// the relative Lorentz factor `γ_rel` taken from the boosted proper
     /// velocity, so no cancellation happens even when both bodies move at
     /// γ = 10⁹ side by side.
+    #[must_use]
     pub fn pair_invariant_mass(m1: f64, u1: ProperVelocity, m2: f64, u2: ProperVelocity) -> f64 {
         let gamma_rel = Boost::into_frame(u1).apply_velocity(u2).gamma();
         (m1 * m1 + m2 * m2 + 2.0 * m1 * m2 * gamma_rel).sqrt()
@@ -49,11 +52,13 @@ impl FourMomentum {
     /// The proper velocity of the frame in which this total momentum
     /// vanishes (the centre-of-momentum frame), given the system's invariant
     /// mass (`u = p / M`; equal to the paper's Eq. 3 for `β = p / E`).
+    #[must_use]
     pub fn centre_of_momentum_velocity(self, invariant_mass: f64) -> ProperVelocity {
         ProperVelocity(self.momentum / invariant_mass)
     }
 
     /// The same 4-momentum in another frame.
+    #[must_use]
     pub fn boosted(self, boost: &Boost) -> Self {
         let f = boost.apply(crate::spacetime::FourVector::new(
             self.energy,

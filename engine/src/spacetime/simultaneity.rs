@@ -17,11 +17,13 @@ use super::{Event, ProperVelocity};
 /// of a body moving with proper velocity `u` calls simultaneous with event
 /// `through`: `t₀ + (u/γ)·(at − x₀) / c` (s). `c` in m/s, positions in m.
 /// For `u = 0` it is `through.t` (the board frame's own simultaneity).
+#[must_use]
 pub fn simultaneous_board_time(through: Event, u: ProperVelocity, c: f64, at: DVec3) -> f64 {
     through.t + u.0.dot(at - through.position) / (u.gamma() * c)
 }
 
 /// The slope `dt/dr` (s/m) of that hyperplane in board coordinates: `v / c²`.
+#[must_use]
 pub fn simultaneity_slope(u: ProperVelocity, c: f64) -> DVec3 {
     u.0 / (u.gamma() * c)
 }

@@ -61,6 +61,7 @@ impl ProperVelocity {
     }
 
     /// A proper velocity of rapidity `eta` along the unit vector `direction`.
+    #[must_use]
     pub fn from_rapidity(direction: DVec3, eta: f64) -> Self {
         Self(direction * eta.sinh())
     }
@@ -68,6 +69,7 @@ impl ProperVelocity {
     /// Lorentz factor `γ = √(1 + u²)`, correctly rounded to within an ulp;
     /// beyond |u| = 1e150, where `u²` would overflow, γ = |u| exactly in f64.
     #[inline]
+    #[must_use]
     pub fn gamma(self) -> f64 {
         let u_sq = self.0.length_squared();
         if u_sq < 1e300 {
@@ -80,6 +82,7 @@ impl ProperVelocity {
     /// `γ − 1 = u² / (γ + 1)`, exact also in the classical limit where the
     /// subtraction would leave nothing (β = 1e-9 gives 5e-19, not 0).
     #[inline]
+    #[must_use]
     pub fn gamma_minus_one(self) -> f64 {
         self.0.length_squared() / (self.gamma() + 1.0)
     }
@@ -87,12 +90,14 @@ impl ProperVelocity {
     /// `β = v / c = u / γ`. Its length rounds to 1.0 for γ ≳ 10⁸; use
     /// [`Self::speed_deficit`] to tell such speeds apart.
     #[inline]
+    #[must_use]
     pub fn beta(self) -> DVec3 {
         self.0 / self.gamma()
     }
 
     /// Board-frame velocity in m/s for a speed of light `c` in m/s.
     #[inline]
+    #[must_use]
     pub fn velocity(self, c: f64) -> DVec3 {
         self.beta() * c
     }
@@ -101,6 +106,7 @@ impl ProperVelocity {
     /// relative precision at any γ (1e-18 at γ = 10⁹, where `1 − |β|` in f64
     /// is 0).
     #[inline]
+    #[must_use]
     pub fn speed_deficit(self) -> f64 {
         let g = self.gamma();
         1.0 / (g * (g + self.0.length()))
@@ -108,12 +114,14 @@ impl ProperVelocity {
 
     /// Rapidity `η = asinh |u|`; collinear rapidities add.
     #[inline]
+    #[must_use]
     pub fn rapidity(self) -> f64 {
         self.0.length().asinh()
     }
 
     /// Whether every component is finite.
     #[inline]
+    #[must_use]
     pub fn is_finite(self) -> bool {
         self.0.is_finite()
     }

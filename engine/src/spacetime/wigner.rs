@@ -42,6 +42,7 @@ use crate::spacetime::{Boost, ProperVelocity};
 /// boost (board → old rest frame); `u′`: the second, measured in the old
 /// rest frame's (pure-boost) axes. Both dimensionless proper velocities
 /// `γβ`. Exact to a few ulps at any γ the engine holds.
+#[must_use]
 pub fn wigner_angle(u1: ProperVelocity, u_prime: ProperVelocity) -> f64 {
     let cross = u1.0.cross(u_prime.0);
     // In the board plane the rotation is about ±z; out of it, about the
@@ -61,6 +62,7 @@ pub fn wigner_angle(u1: ProperVelocity, u_prime: ProperVelocity) -> f64 {
 /// boost to `from` followed by the boost, in that rest frame, to `to`.
 ///
 /// A change along the line of motion (or from or to rest) adds nothing.
+#[must_use]
 pub fn rotation_of_velocity_change(from: ProperVelocity, to: ProperVelocity) -> f64 {
     let in_old_rest_frame = Boost::into_frame(from).apply_velocity(to);
     wigner_angle(from, in_old_rest_frame)
@@ -69,6 +71,7 @@ pub fn rotation_of_velocity_change(from: ProperVelocity, to: ProperVelocity) -> 
 /// A rest-frame direction (unit, in the board plane) rotated by `angle`
 /// counter-clockwise about `+z`.
 #[inline]
+#[must_use]
 pub fn rotate_about_normal(direction: DVec3, angle: f64) -> DVec3 {
     let (s, c) = angle.sin_cos();
     DVec3::new(

@@ -40,6 +40,7 @@ impl LorentzMap {
     };
 
     /// The contraction of a body moving with proper velocity `u`.
+    #[must_use]
     pub fn of(u: ProperVelocity) -> Self {
         let speed = u.0.length();
         if speed == 0.0 {
@@ -60,17 +61,20 @@ impl LorentzMap {
     }
 
     /// Unit direction of motion `n̂` (zero at rest).
+    #[must_use]
     pub fn direction(&self) -> DVec3 {
         self.direction
     }
 
     /// `1/γ`.
+    #[must_use]
     pub fn inverse_gamma(&self) -> f64 {
         self.inverse_gamma
     }
 
     /// The contracted offset `r⊥ + n̂ (n̂·r)/γ`, m (same frame as `r`).
     #[inline]
+    #[must_use]
     pub fn apply(&self, r: DVec3) -> DVec3 {
         let n = self.direction;
         let along = n.dot(r);
@@ -100,6 +104,7 @@ impl SegmentShape {
     /// The body's Lorentz-contracted shape on `segment`: the rest shape on
     /// a rest segment, Born-rigid on a braking one, the segment's
     /// [`LorentzMap`] on a uniform one.
+    #[must_use]
     pub fn contracted(segment: &Segment) -> Self {
         if segment.is_rest() {
             Self::Rest
@@ -114,6 +119,7 @@ impl SegmentShape {
     /// the point at rest-frame offset `r` (the mesh's axes, m) on
     /// `segment`: `r` turned by the segment's orientation, then mapped.
     #[inline]
+    #[must_use]
     pub fn place(self, segment: &Segment, t: f64, r: DVec3) -> DVec3 {
         let r = segment.rotate(r);
         match self {
@@ -179,6 +185,7 @@ pub struct ContractedShape {
 
 impl ContractedShape {
     /// The contracted shape along `worldline`.
+    #[must_use]
     pub fn of(worldline: &Worldline) -> Self {
         let mut shape = Self::default();
         shape.update(worldline);
@@ -211,6 +218,7 @@ impl ContractedShape {
     }
 
     /// The maps, one per segment of the worldline last updated from.
+    #[must_use]
     pub fn maps(&self) -> &[SegmentShape] {
         &self.maps
     }

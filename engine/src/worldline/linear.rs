@@ -111,6 +111,7 @@ impl Segment {
     /// Whether this segment is one the engine could have made: finite, with
     /// the cached values its defining ones give (a copy received from
     /// elsewhere is checked so before use).
+    #[must_use]
     pub fn is_consistent(&self) -> bool {
         let finite = self.start.t.is_finite()
             && self.start.position.is_finite()
@@ -153,18 +154,21 @@ impl Segment {
     /// Proper deceleration of the reference point along this segment, m/s²
     /// (0 for a uniform or rest segment).
     #[inline]
+    #[must_use]
     pub fn deceleration(&self) -> f64 {
         self.deceleration
     }
 
     /// Whether this is a braking segment (moving, decelerating).
     #[inline]
+    #[must_use]
     pub fn is_braking(&self) -> bool {
         self.deceleration > 0.0
     }
 
     /// Whether this is a rest segment.
     #[inline]
+    #[must_use]
     pub fn is_rest(&self) -> bool {
         self.u.0 == DVec3::ZERO
     }
@@ -172,12 +176,14 @@ impl Segment {
     /// The reference point's braking along this segment in closed form
     /// (times from the segment start; deceleration 0 for uniform motion).
     #[inline]
+    #[must_use]
     pub fn braking_law(&self) -> Braking {
         Braking::new(self.u.0.length(), self.deceleration, self.c)
     }
 
     /// Board time at which a braking segment's reference point comes to
     /// rest, s: `t₀ + c|u|/a`. `None` for uniform and rest segments.
+    #[must_use]
     pub fn stop_time(&self) -> Option<f64> {
         self.is_braking()
             .then(|| self.start.t + self.braking_law().stop_time())
@@ -185,12 +191,14 @@ impl Segment {
 
     /// Unit direction of motion (zero at rest), board frame.
     #[inline]
+    #[must_use]
     pub fn direction(&self) -> DVec3 {
         self.direction
     }
 
     /// Proper velocity at board time `t` (the start's before the start).
     #[inline]
+    #[must_use]
     pub fn u_at(&self, t: f64) -> ProperVelocity {
         let dt = t - self.start.t;
         if self.deceleration == 0.0 || dt <= 0.0 {
@@ -201,6 +209,7 @@ impl Segment {
 
     /// Board-frame velocity at board time `t`, m/s.
     #[inline]
+    #[must_use]
     pub fn velocity_at(&self, t: f64) -> DVec3 {
         if self.deceleration == 0.0 {
             return self.velocity;
@@ -212,6 +221,7 @@ impl Segment {
     /// event, proper velocity, proper time and orientation there (this
     /// segment itself when it is uniform). Its contraction is the body's
     /// instantaneous Lorentz contraction.
+    #[must_use]
     pub fn tangent_at(&self, t: f64) -> Segment {
         if self.deceleration == 0.0 {
             return *self;
@@ -232,6 +242,7 @@ impl Segment {
     /// rest), falling back to the instantaneous Lorentz contraction for a
     /// point beyond the braking's Rindler horizon (`r∥ ≥ c²/a`, which
     /// scene validation refuses).
+    #[must_use]
     pub fn place_at(&self, t: f64, r: DVec3) -> DVec3 {
         if self.deceleration == 0.0 {
             return self.place(r);
@@ -244,6 +255,7 @@ impl Segment {
     /// the reference point at board time `t`: across the motion `r⊥`, along
     /// it [`Braking::contracted_offset_at`] (the instantaneous Lorentz
     /// contraction beyond the Rindler horizon). See [`Self::place_at`].
+    #[must_use]
     pub fn born_rigid_offset(&self, t: f64, r: DVec3) -> DVec3 {
         let n = self.direction;
         let along = n.dot(r);
@@ -258,6 +270,7 @@ impl Segment {
 
     /// Lorentz factor along the segment.
     #[inline]
+    #[must_use]
     pub fn gamma(&self) -> f64 {
         self.gamma
     }
@@ -266,6 +279,7 @@ impl Segment {
     /// [`crate::worldline::contract`] does, with the direction and `1/γ`
     /// cached: `r⊥ + n (n·r) / γ`.
     #[inline]
+    #[must_use]
     pub fn contract(&self, r: DVec3) -> DVec3 {
         self.lorentz_map().apply(r)
     }
@@ -273,6 +287,7 @@ impl Segment {
     /// This segment's Lorentz contraction as a map (direction and `1/γ`
     /// cached): [`Self::contract`] is its [`LorentzMap::apply`].
     #[inline]
+    #[must_use]
     pub fn lorentz_map(&self) -> LorentzMap {
         LorentzMap::from_parts(self.direction, self.inverse_gamma)
     }
@@ -280,6 +295,7 @@ impl Segment {
     /// `(sin, cos)` of [`Self::orientation`] (cached): what [`Self::rotate`]
     /// multiplies by, for kernels that turn many offsets at once.
     #[inline]
+    #[must_use]
     pub fn turn(&self) -> (f64, f64) {
         self.turn
     }
@@ -288,6 +304,7 @@ impl Segment {
     /// segment's [`Self::orientation`] about `+z`: the same offset in the
     /// axes of the pure boost from the board.
     #[inline]
+    #[must_use]
     pub fn rotate(&self, r: DVec3) -> DVec3 {
         let (s, c) = self.turn;
         DVec3::new(c * r.x - s * r.y, s * r.x + c * r.y, r.z)
@@ -298,12 +315,14 @@ impl Segment {
     /// contracted (`contract(rotate(r))`). For a shape that turning leaves
     /// alone (a disc) this is [`Self::contract`].
     #[inline]
+    #[must_use]
     pub fn place(&self, r: DVec3) -> DVec3 {
         self.contract(self.rotate(r))
     }
 
     /// Board-frame velocity, m/s.
     #[inline]
+    #[must_use]
     pub fn velocity(&self) -> DVec3 {
         self.velocity
     }
@@ -311,6 +330,7 @@ impl Segment {
     /// Position at board time `t`, extrapolated along this segment. The time
     /// is taken relative to the segment start before it multiplies anything.
     #[inline]
+    #[must_use]
     pub fn position_at(&self, t: f64) -> DVec3 {
         let dt = t - self.start.t;
         if self.deceleration == 0.0 || dt <= 0.0 {
@@ -323,6 +343,7 @@ impl Segment {
     /// a uniform segment, `τ₀ + (c/a)(asinh u₀ − asinh u)` on a braking one
     /// ([`Braking::proper_time_at`]).
     #[inline]
+    #[must_use]
     pub fn proper_time_at(&self, t: f64) -> f64 {
         let dt = t - self.start.t;
         if self.deceleration == 0.0 || dt <= 0.0 {
@@ -373,6 +394,7 @@ pub struct Worldline {
 impl Worldline {
     /// A worldline through `start` with proper velocity `u`, proper time 0 at
     /// `start`, for a speed of light `c` in m/s.
+    #[must_use]
     pub fn new(start: Event, u: ProperVelocity, c: f64) -> Self {
         Self {
             segments: vec![Segment::new(start, u, 0.0, 0.0, c)],
@@ -385,6 +407,7 @@ impl Worldline {
     /// under sliding friction: every moving segment, the first included,
     /// brakes with proper deceleration `deceleration` (`μ g`, m/s², ≥ 0; 0 is
     /// [`Self::new`]).
+    #[must_use]
     pub fn braking(start: Event, u: ProperVelocity, c: f64, deceleration: f64) -> Self {
         let deceleration = if deceleration.is_finite() {
             deceleration.max(0.0)
@@ -399,26 +422,31 @@ impl Worldline {
     }
 
     /// The proper deceleration its moving segments get, m/s².
+    #[must_use]
     pub fn deceleration(&self) -> f64 {
         self.deceleration
     }
 
     /// The speed of light the segments' velocities were derived with, m/s.
+    #[must_use]
     pub fn speed_of_light(&self) -> f64 {
         self.c
     }
 
     /// All segments, oldest first (never empty).
+    #[must_use]
     pub fn segments(&self) -> &[Segment] {
         &self.segments
     }
 
     /// The segment in force at board time `t`: O(log S).
+    #[must_use]
     pub fn segment_at(&self, t: f64) -> &Segment {
         &self.segments[self.segment_index_at(t)]
     }
 
     /// Index of the segment in force at board time `t`.
+    #[must_use]
     pub fn segment_index_at(&self, t: f64) -> usize {
         self.segments
             .partition_point(|s| s.start.t <= t)
@@ -426,28 +454,33 @@ impl Worldline {
     }
 
     /// The newest segment.
+    #[must_use]
     pub fn last(&self) -> &Segment {
         // `new` creates one segment and nothing removes the first.
         &self.segments[self.segments.len() - 1]
     }
 
     /// Position at board time `t`, m.
+    #[must_use]
     pub fn position_at(&self, t: f64) -> DVec3 {
         self.segment_at(t).position_at(t)
     }
 
     /// Proper velocity `u = γβ` (dimensionless, board frame) at board time
     /// `t` (the later segment's at a kink).
+    #[must_use]
     pub fn proper_velocity_at(&self, t: f64) -> ProperVelocity {
         self.segment_at(t).u_at(t)
     }
 
     /// Proper time at board time `t`, s.
+    #[must_use]
     pub fn proper_time_at(&self, t: f64) -> f64 {
         self.segment_at(t).proper_time_at(t)
     }
 
     /// Position, velocity and proper time at board time `t`.
+    #[must_use]
     pub fn state_at(&self, t: f64) -> BodyState {
         let s = self.segment_at(t);
         BodyState {
@@ -459,6 +492,7 @@ impl Worldline {
     }
 
     /// The event of this worldline at board time `t`.
+    #[must_use]
     pub fn event_at(&self, t: f64) -> Event {
         Event::new(t, self.position_at(t))
     }

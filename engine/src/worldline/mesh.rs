@@ -33,12 +33,14 @@ fn shape(vertices: Vec<DVec3>, triangles: Vec<[u32; 3]>, shift: DVec3, rotate: b
 /// A puck: a cylinder of `radius` and `height` standing on the board (its
 /// reference point, the centre of its base, at the origin), `segments`
 /// around.
+#[must_use]
 pub fn puck(radius: f64, height: f64, segments: u32) -> RestShape {
     let (v, t) = Cylinder::new(height / 2.0, radius).to_trimesh(segments.max(3));
     shape(v, t, DVec3::new(0.0, 0.0, height / 2.0), true)
 }
 
 /// A sphere of `radius` centred on its reference point.
+#[must_use]
 pub fn sphere(radius: f64, subdivisions: u32) -> RestShape {
     let s = subdivisions.max(3);
     let (v, t) = Ball::new(radius).to_trimesh(2 * s, s);
@@ -46,6 +48,7 @@ pub fn sphere(radius: f64, subdivisions: u32) -> RestShape {
 }
 
 /// A box with the given centre and half-extents (board axes).
+#[must_use]
 pub fn cuboid(centre: DVec3, half_extents: DVec3) -> RestShape {
     let (v, t) = Cuboid::new(half_extents).to_trimesh();
     shape(v, t, centre, false)
@@ -54,6 +57,7 @@ pub fn cuboid(centre: DVec3, half_extents: DVec3) -> RestShape {
 /// The table at rest on the board: the cloth (top face at z = 0) and four
 /// cushions around the playing area `size`, `cushion_height` tall and
 /// `cushion_width` wide, outside the area.
+#[must_use]
 pub fn table(size: glam::DVec2, cushion_height: f64, cushion_width: f64) -> Vec<RestShape> {
     let (w, h) = (cushion_width, cushion_height);
     let cloth_depth = 0.02;

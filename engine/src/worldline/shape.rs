@@ -13,6 +13,7 @@ use crate::spacetime::ProperVelocity;
 /// `n` is a coordinate axis, and an absolute error of a few ε|r| otherwise
 /// (3e-18 m for a puck, whatever γ).
 #[inline]
+#[must_use]
 pub fn contract(r: DVec3, u: ProperVelocity) -> DVec3 {
     let speed = u.0.length();
     if speed == 0.0 {
@@ -37,6 +38,7 @@ impl RestShape {
     /// A closed cylinder standing on the board: axis z, bottom at z = 0,
     /// top at `height`, `segments` vertices around each rim (≥ 3); built
     /// with parry ([`super::mesh::puck`]).
+    #[must_use]
     pub fn puck(radius: f64, height: f64, segments: u32) -> Self {
         super::mesh::puck(radius, height, segments)
     }

@@ -99,6 +99,7 @@ pub struct Braking {
 
 impl Braking {
     /// The centre's braking: proper speed `u0 ≥ 0`, deceleration `a ≥ 0`.
+    #[must_use]
     pub fn new(u0: f64, deceleration: f64, c: f64) -> Self {
         Self {
             u0,
@@ -110,12 +111,14 @@ impl Braking {
 
     /// `γ` at the segment start.
     #[inline]
+    #[must_use]
     pub fn gamma0(&self) -> f64 {
         self.gamma0
     }
 
     /// Board time at which the point comes to rest, `c u₀ / a` (∞ without
     /// friction, 0 for a point already at rest).
+    #[must_use]
     pub fn stop_time(&self) -> f64 {
         if self.u0 == 0.0 {
             0.0
@@ -128,12 +131,14 @@ impl Braking {
 
     /// Proper speed at board time `t` (clamped to `[0, t_stop]`).
     #[inline]
+    #[must_use]
     pub fn proper_speed_at(&self, t: f64) -> f64 {
         (self.u0 - self.deceleration * t.max(0.0) / self.c).max(0.0)
     }
 
     /// `γ` at board time `t`.
     #[inline]
+    #[must_use]
     pub fn gamma_at(&self, t: f64) -> f64 {
         let u = self.proper_speed_at(t);
         (1.0 + u * u).sqrt()
@@ -141,6 +146,7 @@ impl Braking {
 
     /// Distance travelled along the path by board time `t`, m:
     /// `c t (u₀ + u)/(γ₀ + γ)`, constant after the stop.
+    #[must_use]
     pub fn distance_at(&self, t: f64) -> f64 {
         let t = t.clamp(0.0, self.stop_time());
         if t == 0.0 {
@@ -155,6 +161,7 @@ impl Braking {
     }
 
     /// Board speed at time `t`, m/s.
+    #[must_use]
     pub fn speed_at(&self, t: f64) -> f64 {
         let u = self.proper_speed_at(t);
         self.c * u / (1.0 + u * u).sqrt()
@@ -162,6 +169,7 @@ impl Braking {
 
     /// Stopping distance `(c²/a)(γ₀ − 1) = (c²/a) u₀²/(γ₀ + 1)`, m
     /// (∞ without friction).
+    #[must_use]
     pub fn stopping_distance(&self) -> f64 {
         self.distance_at(self.stop_time())
     }
@@ -169,6 +177,7 @@ impl Braking {
     /// The point's proper time elapsed by board time `t` (from the segment
     /// start), s: `(c/a)(asinh u₀ − asinh u)` in its cancellation-free form;
     /// after the stop proper time runs at the board's rate.
+    #[must_use]
     pub fn proper_time_at(&self, t: f64) -> f64 {
         let t = t.max(0.0);
         let moving = t.min(self.stop_time());
@@ -274,6 +283,7 @@ impl Braking {
     /// cancellation, so the root is then polished by Newton's method on the
     /// light-cone residual itself (`onto_the_cone`): on the past light cone
     /// to the rounding of its inputs at any distance.
+    #[must_use]
     pub fn emission_time(
         &self,
         start: DVec3,

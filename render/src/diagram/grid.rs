@@ -26,6 +26,7 @@ impl GridAxis {
     /// whose multiples in the range number at most `MAX_LINES`; no lines
     /// where the numbers are too large for a step to change them (a
     /// diagram at board time −10¹⁸ s: the count stays bounded).
+    #[must_use]
     pub fn over(range: (f64, f64)) -> Self {
         let width = range.1 - range.0;
         let mut step = 0.5;
@@ -66,6 +67,7 @@ impl GridAxis {
 
 /// `v` (m or s) as a label's number: at most two decimals, no trailing
 /// zeros, no "−0".
+#[must_use]
 pub fn label_text(v: f64) -> String {
     let text = format!("{v:.2}");
     let text = text.trim_end_matches('0').trim_end_matches('.');

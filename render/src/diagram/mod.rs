@@ -45,6 +45,7 @@ mod tests;
 /// `g(t) = c (T − t) − |X(t) − x_eye|`, which falls strictly along any
 /// worldline slower than light, found by bisection. Computed here on the
 /// diagram's own terms, independently of the optics' closed form.
+#[must_use]
 pub fn cone_crossing(worldline: &Worldline, offset: DVec3, eye: Event, c: f64) -> Event {
     let g = |t: f64| c * (eye.t - t) - (worldline.position_at(t) + offset).distance(eye.position);
     let mut hi = eye.t;
@@ -162,6 +163,7 @@ pub enum Mark {
 
 impl Mark {
     /// What the mark shows (a cross: [`Role::Collision`]).
+    #[must_use]
     pub fn role(&self) -> Role {
         match self {
             Self::Line { role, .. } | Self::Event { role, .. } | Self::Label { role, .. } => *role,
@@ -222,6 +224,7 @@ pub enum Axis {
 
 impl Axis {
     /// The component of `v` along this axis.
+    #[must_use]
     pub fn of(self, v: DVec3) -> f64 {
         match self {
             Self::X => v.x,
@@ -239,6 +242,7 @@ impl Axis {
     }
 
     /// `"x"` or `"y"`.
+    #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Self::X => "x",
@@ -283,6 +287,7 @@ pub struct Area {
 
 impl Area {
     /// `self` less [`MARGINS`]: where the data goes, the labels around it.
+    #[must_use]
     pub fn inside_margins(self) -> Self {
         let [l, r, t, b] = MARGINS;
         Self {
@@ -317,6 +322,7 @@ pub struct Plot {
 impl Plot {
     /// Where diagram point `(x, t)` falls in `area` (px from the top left:
     /// [`Plot::x`] spans its width, [`Plot::t`] its height, time up).
+    #[must_use]
     pub fn to_px(&self, area: Area, (x, t): (f64, f64)) -> (f64, f64) {
         (
             area.left + (x - self.x.0) / (self.x.1 - self.x.0) * area.width,
@@ -328,6 +334,7 @@ impl Plot {
 /// A polyline in pixels cut into dashes of [`DASH`] px with gaps of
 /// [`GAP`] px, the pattern running on across its vertices: the pieces to
 /// stroke.
+#[must_use]
 pub fn dashes(points: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
     let mut out = Vec::new();
     let mut piece: Vec<(f64, f64)> = Vec::new();
@@ -369,6 +376,7 @@ pub fn dashes(points: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
 
 /// The diagram of `scene` (its `billiard` run to at least `eye.t`) for
 /// an eye at observation event `eye`.
+#[must_use]
 pub fn plot(scene: &Scene, billiard: &Billiard, eye: Event) -> Plot {
     plot_with(scene, billiard, eye, Options::default())
 }

@@ -298,6 +298,7 @@ pub struct Drawn {
 
 /// Draws the diagram of `scene` (its `billiard` run to at least `t`) for
 /// observer `observer` at board time `t`, `width × height` px.
+#[must_use]
 pub fn draw(
     scene: &Scene,
     billiard: &Billiard,
@@ -318,6 +319,7 @@ pub fn draw(
 
 /// [`draw`] with [`Options`] (axis, frame): the plot with its labels, and
 /// under it the legend when the image is at least 480 × 360 px.
+#[must_use]
 pub fn draw_with(
     scene: &Scene,
     billiard: &Billiard,

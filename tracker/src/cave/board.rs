@@ -40,6 +40,7 @@ impl Default for TrackerToBoard {
 
 impl TrackerToBoard {
     /// The rotation part (axis change, then yaw).
+    #[must_use]
     pub fn rotation(&self) -> DQuat {
         let axes = match self.up_axis {
             UpAxis::Y => DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2),
@@ -49,6 +50,7 @@ impl TrackerToBoard {
     }
 
     /// Tracker → board as a 4×4 affine matrix.
+    #[must_use]
     pub fn matrix(&self) -> DMat4 {
         DMat4::from_scale_rotation_translation(
             DVec3::splat(self.scale),
@@ -58,6 +60,7 @@ impl TrackerToBoard {
     }
 
     /// Board → tracker (the inverse of [`TrackerToBoard::matrix`]).
+    #[must_use]
     pub fn inverse_matrix(&self) -> DMat4 {
         let inv_rot = self.rotation().conjugate();
         DMat4::from_scale(DVec3::splat(1.0 / self.scale))
@@ -66,11 +69,13 @@ impl TrackerToBoard {
     }
 
     /// Maps a tracker-space point to board space.
+    #[must_use]
     pub fn point(&self, p: DVec3) -> DVec3 {
         self.origin + self.scale * (self.rotation() * p)
     }
 
     /// Maps a tracker-space orientation to board space.
+    #[must_use]
     pub fn orientation(&self, q: DQuat) -> DQuat {
         self.rotation() * q
     }

@@ -114,6 +114,7 @@ pub enum OutputEyes {
 
 impl OutputEyes {
     /// The name in the file.
+    #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Self::Mono => "mono",
@@ -407,6 +408,7 @@ impl CaveConfig {
     }
 
     /// How messages name this description: its file, or "CAVE config".
+    #[must_use]
     pub fn label(&self) -> String {
         self.source
             .as_ref()
@@ -414,6 +416,7 @@ impl CaveConfig {
     }
 
     /// Indices of the walls no output shows (tiled in the main window).
+    #[must_use]
     pub fn unmapped_walls(&self) -> Vec<usize> {
         (0..self.walls.len())
             .filter(|&i| self.outputs.iter().all(|o| o.wall != i))
@@ -433,12 +436,14 @@ impl CaveConfig {
     }
 
     /// Looks a wall up by name.
+    #[must_use]
     pub fn wall(&self, name: &str) -> Option<&Wall> {
         self.walls.iter().find(|w| w.name == name)
     }
 
     /// Left and right eyes (tracker space) for a head pose, using
     /// [`CaveConfig::eye_separation`].
+    #[must_use]
     pub fn eyes(&self, head_position: DVec3, head_orientation: DQuat) -> (DVec3, DVec3) {
         stereo_eyes(head_position, head_orientation, self.eye_separation)
     }

@@ -50,30 +50,37 @@ pub struct Wall {
 
 impl Wall {
     /// The fourth corner.
+    #[must_use]
     pub fn upper_right(&self) -> DVec3 {
         self.lower_right + (self.upper_left - self.lower_left)
     }
     /// Width in metres.
+    #[must_use]
     pub fn width(&self) -> f64 {
         (self.lower_right - self.lower_left).length()
     }
     /// Height in metres.
+    #[must_use]
     pub fn height(&self) -> f64 {
         (self.upper_left - self.lower_left).length()
     }
     /// Unit vector along the lower edge (screen +x).
+    #[must_use]
     pub fn right(&self) -> DVec3 {
         (self.lower_right - self.lower_left).normalize_or_zero()
     }
     /// Unit vector along the left edge (screen +y).
+    #[must_use]
     pub fn up(&self) -> DVec3 {
         (self.upper_left - self.lower_left).normalize_or_zero()
     }
     /// Unit normal pointing towards the viewer (`right × up`).
+    #[must_use]
     pub fn normal(&self) -> DVec3 {
         self.right().cross(self.up()).normalize_or_zero()
     }
     /// Projector aspect ratio (width / height in pixels).
+    #[must_use]
     pub fn pixel_aspect(&self) -> f64 {
         f64::from(self.pixels[0]) / f64::from(self.pixels[1].max(1))
     }
@@ -116,6 +123,7 @@ impl Frustum {
     /// Right-handed perspective matrix with wgpu's [0, 1] depth range (the
     /// same convention as glam's `perspective_rh` / `directx::frustum`):
     /// view space looks down -z, near maps to depth 0, far to 1.
+    #[must_use]
     pub fn matrix(&self) -> DMat4 {
         let Frustum {
             left: l,
@@ -215,6 +223,7 @@ pub fn off_axis_projection(
 /// Left and right eye positions for a head pose: the eyes sit at
 /// `∓ separation / 2` along the head's local +x axis (the interocular axis).
 /// A non-finite or negative separation is treated as 0 (mono).
+#[must_use]
 pub fn stereo_eyes(
     head_position: DVec3,
     head_orientation: DQuat,

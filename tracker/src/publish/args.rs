@@ -179,6 +179,7 @@ pub const USAGE: &str = "options: [--service NAME] \
 [--vrpn NAME@HOST[:PORT] [--vrpn-sensor N]]";
 
 /// The options' help, for `--help`.
+#[must_use]
 pub fn usage() -> String {
     use clap::CommandFactory;
     Cli::command().render_help().to_string()

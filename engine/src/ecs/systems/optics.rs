@@ -86,6 +86,7 @@ fn bodies<'a>(physics: &'a Physics, pucks: &'a Pucks, fixtures: &'a Fixtures) ->
 }
 
 /// The eye of a view at board time `t`, per its [`Vantage`].
+#[must_use]
 pub fn eye_at(worldline: &Worldline, vantage: Vantage, t: f64) -> Eye {
     let state = worldline.state_at(match vantage {
         Vantage::OnWorldline => t,

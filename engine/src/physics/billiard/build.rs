@@ -9,6 +9,7 @@ impl Billiard {
     /// restitutions for puck–puck and puck–cushion collisions, and pucks at
     /// board time 0. The caller guarantees what scene validation checks
     /// (finite numbers, pucks on the table and apart).
+    #[must_use]
     pub fn new(
         c: f64,
         table: DVec2,

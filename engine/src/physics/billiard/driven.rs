@@ -20,6 +20,7 @@ impl Billiard {
 
     /// Whether the worldlines are written from outside
     /// ([`Self::drive_from_outside`]).
+    #[must_use]
     pub fn is_driven(&self) -> bool {
         self.driven
     }

@@ -24,6 +24,7 @@ impl Billiard {
     }
 
     /// The history horizon, s (`None`: everything is kept).
+    #[must_use]
     pub fn history(&self) -> Option<f64> {
         self.history
     }

@@ -171,6 +171,7 @@ pub struct Stats {
 
 impl Stats {
     /// Contacts of either kind.
+    #[must_use]
     pub fn contacts(&self) -> u64 {
         self.pair_contacts + self.cushion_contacts
     }

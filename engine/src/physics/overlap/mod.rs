@@ -60,6 +60,7 @@ pub use proofs::{apart_throughout, overlap_certain};
 /// the pair frame before the contact, plus `slide` (m), the closing
 /// distance on the board between the two kicks
 /// (`Δt |v_first,after − v_second,before|`).
+#[must_use]
 pub fn bound(radii: [f64; 2], gamma_pair: f64, slide: f64, early: f64) -> f64 {
     let grow = (gamma_pair - 1.0).max(0.0) / gamma_pair.max(1.0);
     early.max(0.0) + (radii[0] + radii[1]) * grow + slide.abs()
@@ -140,6 +141,7 @@ fn gap_along(a: &Outline, b: &Outline, cos: f64, sin: f64, d: DVec3) -> f64 {
 /// their shapes do not overlap. `a` and `b` are the segments in force at `t`.
 /// Accurate to about 1e-12 of the radii (a sampled minimum of a smooth
 /// function of one angle, refined by Newton's method).
+#[must_use]
 pub fn depth(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, t: f64) -> f64 {
     penetration(a, radius_a, b, radius_b, t).map_or(0.0, |(d, _)| d)
 }
@@ -148,6 +150,7 @@ pub fn depth(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, t: f64) -> 
 /// from `a` towards `b`: translating `b` by `depth` along it separates
 /// them) if the two pucks overlap at board time `t`; `None` if they do not.
 /// Between kicks the depth changes at the rate `−m·(v_b − v_a)`.
+#[must_use]
 pub fn penetration(
     a: &Segment,
     radius_a: f64,
@@ -168,6 +171,7 @@ pub fn penetration(
 /// penetration depth when positive. When the line of centres already
 /// separates the shapes, that axis and its (negative) value are returned
 /// at once: a separating axis, not always the widest.
+#[must_use]
 pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
     centre_line_gap(a, radius_a, b, radius_b, d)
         .unwrap_or_else(|| gap_min(a, radius_a, b, radius_b, d))
@@ -200,6 +204,7 @@ fn centre_line_gap(
 /// b − a) runs the full overlap scan ([`gap_min`]): only when their rest
 /// discs overlap and the line of centres does not separate their shapes.
 /// Otherwise it finds no overlap at once.
+#[must_use]
 pub fn penetration_needs_scan(
     a: &Segment,
     radius_a: f64,
@@ -232,6 +237,7 @@ fn scan() -> &'static ([f64; SAMPLES], [f64; SAMPLES]) {
 /// the widest separation). Unlike [`gap`]'s quick answer, this is concave
 /// in `d` moving linearly (a minimum of functions linear in it), which
 /// [`first_touch`] needs.
+#[must_use]
 pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
     let (oa, ob) = (Outline::of(a, radius_a), Outline::of(b, radius_b));
     let f = |cos: f64, sin: f64| gap_along(&oa, &ob, cos, sin, d);
@@ -437,6 +443,7 @@ fn golden_min(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, steps: usize) ->
 /// distance). (Maximising `gap` itself, which is not concave where the shapes
 /// are apart, could step over a short overlap of two thin, fast shapes
 /// crossing: seeds 41 and 531 of `collision_integrity`.)
+#[must_use]
 pub fn first_touch(
     a: &Segment,
     radius_a: f64,

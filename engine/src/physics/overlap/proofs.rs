@@ -25,6 +25,7 @@ use super::*;
 /// with `margin` a thousand times the rounding of the positions, supports
 /// and dot products (relative `1e-12` of the lengths involved), so
 /// rounding can never make a computed value positive.
+#[must_use]
 pub fn apart_throughout(
     a: &Segment,
     radius_a: f64,
@@ -136,6 +137,7 @@ fn rough_angle(y: f64, x: f64) -> f64 {
 /// point is taken on the line of centres where the two elliptic radii are
 /// equal; `δ_a + δ_b` must exceed a margin of `1e-12` of the lengths
 /// involved (a thousand times their rounding).
+#[must_use]
 pub fn overlap_certain(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, t: f64) -> bool {
     if a.is_braking() || b.is_braking() {
         return false;

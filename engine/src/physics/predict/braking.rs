@@ -92,6 +92,7 @@ const SHAPE_RATE: f64 = 0.385;
 /// The next contact, at board time ≥ `now`, of a puck on `segment` (any
 /// kind) with `cushion`; for a braking segment by the monotone gap (module
 /// doc), otherwise [`puck_cushion::predict`].
+#[must_use]
 pub fn cushion(
     segment: &Segment,
     radius: f64,
@@ -133,6 +134,7 @@ pub fn cushion(
 
 /// The board time of [`cushion`]'s contact alone, s (the same value),
 /// without working out the contact point for a uniform segment.
+#[must_use]
 pub fn cushion_time(
     segment: &Segment,
     radius: f64,
@@ -343,6 +345,7 @@ fn simultaneous(segment: &Segment, contact: Event, frame: ProperVelocity, c: f64
 /// Pucks overlapping on the board at `now` and closing there (a contact that
 /// rounding placed just past) meet at once, as in the frictionless loop: a
 /// board contact (`on_board`) at `now` along the penetration direction.
+#[must_use]
 pub fn pair(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
     pair_before(a, b, c, now, f64::INFINITY)
 }
@@ -551,6 +554,7 @@ fn in_pair_frame(sa: &Segment, sb: &Segment, contact: Event, c: f64) -> PairCont
 /// from `now` on: the line meets the circle at a path length found by a
 /// stable quadratic, and the braking law is inverted in closed form,
 /// `t(s) = (s/c)(2γ₀ − s a/c²)/(u₀ + u(s))`, `u(s)² = (γ₀ − s a/c²)² − 1`.
+#[must_use]
 pub fn shell_exit(segment: &Segment, shell: DVec2, margin: f64, now: f64) -> f64 {
     let Some(stop) = segment.stop_time() else {
         return f64::INFINITY;

@@ -34,6 +34,7 @@ impl Cushion {
     pub const ALL: [Cushion; 4] = [Cushion::X0, Cushion::X1, Cushion::Y0, Cushion::Y1];
 
     /// `"x0"`, `"x1"`, `"y0"` or `"y1"`.
+    #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Cushion::X0 => "x0",
@@ -44,6 +45,7 @@ impl Cushion {
     }
 
     /// Coordinate axis of the cushion's normal: 0 for x, 1 for y.
+    #[must_use]
     pub fn axis(self) -> usize {
         match self {
             Cushion::X0 | Cushion::X1 => 0,
@@ -53,6 +55,7 @@ impl Cushion {
 
     /// +1 if the table lies below the cushion along its axis (x1, y1), −1
     /// otherwise: the sign of the outward normal.
+    #[must_use]
     pub fn outward_sign(self) -> f64 {
         match self {
             Cushion::X0 | Cushion::Y0 => -1.0,
@@ -61,6 +64,7 @@ impl Cushion {
     }
 
     /// Outward unit normal (from the table into the cushion), board frame.
+    #[must_use]
     pub fn outward(self) -> DVec3 {
         let mut n = DVec3::ZERO;
         n[self.axis()] = self.outward_sign();
@@ -68,6 +72,7 @@ impl Cushion {
     }
 
     /// The cushion line's coordinate along its axis, m.
+    #[must_use]
     pub fn line(self, size: DVec2) -> f64 {
         match self {
             Cushion::X0 | Cushion::Y0 => 0.0,
@@ -79,6 +84,7 @@ impl Cushion {
 
 /// Half-width `R √(1 − βₖ²)` of a puck of rest radius `radius` moving with
 /// `u`, along coordinate axis `axis`, m. Exact at any γ.
+#[must_use]
 pub fn half_width(radius: f64, u: ProperVelocity, axis: usize) -> f64 {
     let across = u.0.length_squared() - u.0[axis] * u.0[axis];
     // length_squared − u_k² can round below zero only when it is ~0.
@@ -88,6 +94,7 @@ pub fn half_width(radius: f64, u: ProperVelocity, axis: usize) -> f64 {
 /// The point of the contracted puck's rim that touches the cushion,
 /// relative to its centre: the ellipse's support point in the direction
 /// of the cushion's outward normal.
+#[must_use]
 pub fn support_offset(radius: f64, u: ProperVelocity, cushion: Cushion) -> DVec3 {
     let k = cushion.axis();
     let s = cushion.outward_sign();
@@ -117,6 +124,7 @@ pub struct CushionContact {
 ///
 /// A puck already touching (or, after rounding, slightly past) the cushion
 /// and still moving into it meets it at `now`.
+#[must_use]
 pub fn predict(
     segment: &Segment,
     radius: f64,
@@ -134,6 +142,7 @@ pub fn predict(
 
 /// The board time of [`predict`]'s contact alone, s (the same value): what
 /// the event loop's calendar needs, without the contact point.
+#[must_use]
 pub fn time(
     segment: &Segment,
     radius: f64,

@@ -78,6 +78,7 @@ pub struct PairContact {
 /// Precision: positions are taken relative to the first puck's centre at
 /// `now` and times relative to `now` before any boost, so digits are lost
 /// only to the pair frame's own γ (a few ε γ_f² of the separation).
+#[must_use]
 pub fn predict(a: Mover, b: Mover, c: f64, now: f64) -> Option<PairContact> {
     let (ua, ub) = (a.segment.u, b.segment.u);
     let origin = Event::new(now, a.segment.position_at(now));
