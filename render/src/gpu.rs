@@ -37,23 +37,45 @@ pub fn headless() -> Result<Gpu, String> {
     Err(last)
 }
 
-/// Opens a device on `instance`, compatible with `surface` if given.
+/// Opens a device on `instance`, compatible with `surface` if given,
+/// waiting for the adapter and the device (pollster). Not for a browser's
+/// WebGPU, whose requests are promises the page's own loop resolves: there,
+/// [`open_async`].
 pub fn open(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Gpu, String> {
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        force_fallback_adapter: false,
-        compatible_surface: surface,
-        apply_limit_buckets: false,
-    }))
-    .map_err(|_| NO_ADAPTER.to_owned())?;
+    pollster::block_on(open_async(instance, surface))
+}
+
+/// [`open`], as a future: what a browser awaits (WebGPU's adapter and
+/// device come from promises; WebGL2's and every native backend's are
+/// ready at once, so [`open`] blocks on this same future).
+///
+/// # Errors
+///
+/// No adapter (the message says what to install), or a device the adapter
+/// refuses (the adapter named).
+pub async fn open_async(
+    instance: wgpu::Instance,
+    surface: Option<&wgpu::Surface<'_>>,
+) -> Result<Gpu, String> {
+    let adapter = instance
+        .request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: surface,
+            apply_limit_buckets: false,
+        })
+        .await
+        .map_err(|_| NO_ADAPTER.to_owned())?;
     let info = adapter.get_info();
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("lightcone device"),
-        required_features: wgpu::Features::empty(),
-        required_limits: limits().using_resolution(adapter.limits()),
-        ..Default::default()
-    }))
-    .map_err(|e| format!("the graphics adapter {} refused a device: {e}", info.name))?;
+    let (device, queue) = adapter
+        .request_device(&wgpu::DeviceDescriptor {
+            label: Some("lightcone device"),
+            required_features: wgpu::Features::empty(),
+            required_limits: limits().using_resolution(adapter.limits()),
+            ..Default::default()
+        })
+        .await
+        .map_err(|e| format!("the graphics adapter {} refused a device: {e}", info.name))?;
     Ok(Gpu {
         device,
         queue,

@@ -119,8 +119,7 @@ impl Target {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let padded = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded = padded_row(width);
         let readback = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("headless readback"),
             size: u64::from(padded) * u64::from(height),
@@ -153,26 +152,12 @@ impl Target {
     /// image back, waiting for the GPU.
     pub fn read(&self, gpu: &Gpu, mut encoder: wgpu::CommandEncoder) -> Result<Image, String> {
         let (width, height, padded) = (self.width, self.height, self.padded);
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture: &self.texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: Some(height),
-                },
-            },
-            wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
+        record_copy(
+            &mut encoder,
+            &self.texture,
+            &self.readback,
+            padded,
+            (width, height),
         );
         gpu.queue.submit([encoder.finish()]);
         let rgba = read_rows(gpu, &self.readback, padded, width, height)?;
@@ -241,6 +226,96 @@ impl Offscreen {
     }
 }
 
+/// Bytes in a row of a `width`-texel, 4-byte-texel image copied out of a
+/// texture: `4 × width`, padded to wgpu's copy alignment (256).
+#[must_use]
+pub fn padded_row(width: u32) -> u32 {
+    (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+}
+
+/// Records into `encoder` a copy of `texture` (`size` = width × height px,
+/// 4 bytes a texel) into `buffer`, in rows of `padded` bytes.
+pub fn record_copy(
+    encoder: &mut wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+    buffer: &wgpu::Buffer,
+    padded: u32,
+    size: (u32, u32),
+) {
+    let (width, height) = size;
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+}
+
+/// A new readable buffer for a copy of a `size` (width × height px) image
+/// and its padded row length ([`padded_row`]), the copy of `texture` into
+/// it recorded in `encoder` ([`record_copy`]): a window's frame for a
+/// screenshot, or the page's for the browser test.
+#[must_use]
+pub fn copy_to_buffer(
+    gpu: &Gpu,
+    texture: &wgpu::Texture,
+    size: (u32, u32),
+    encoder: &mut wgpu::CommandEncoder,
+) -> (wgpu::Buffer, u32) {
+    let padded = padded_row(size.0);
+    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("frame readback"),
+        size: u64::from(padded) * u64::from(size.1),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    record_copy(encoder, texture, &buffer, padded, size);
+    (buffer, padded)
+}
+
+/// The `height` rows of `4 × width` bytes of a mapped copy whose rows are
+/// `padded` bytes long.
+#[must_use]
+pub fn unpad(data: &[u8], padded: u32, width: u32, height: u32) -> Vec<u8> {
+    let mut rgba = Vec::with_capacity((4 * width * height) as usize);
+    for row in 0..height {
+        let start = (row * padded) as usize;
+        rgba.extend_from_slice(&data[start..start + (4 * width) as usize]);
+    }
+    rgba
+}
+
+/// Makes texels copied out of a surface of `format` opaque RGBA in place:
+/// BGRA surfaces (a browser's WebGPU canvas, most desktop ones) swapped,
+/// alpha set to 255 (what the window shows).
+pub fn opaque_rgba(texels: &mut [u8], format: wgpu::TextureFormat) {
+    let bgra = matches!(
+        format,
+        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+    );
+    for px in texels.chunks_mut(4) {
+        if bgra {
+            px.swap(0, 2);
+        }
+        px[3] = 255;
+    }
+}
+
 /// Waits for the GPU, maps `buffer` (rows of `padded` bytes) and returns
 /// its `height` rows of `4 × width` bytes, unpadded.
 pub fn read_rows(
@@ -267,11 +342,7 @@ pub fn read_rows(
     let data = slice
         .get_mapped_range()
         .map_err(|e| format!("readback failed: {e}"))?;
-    let mut rgba = Vec::with_capacity((4 * width * height) as usize);
-    for row in 0..height {
-        let start = (row * padded) as usize;
-        rgba.extend_from_slice(&data[start..start + (4 * width) as usize]);
-    }
+    let rgba = unpad(&data, padded, width, height);
     drop(data);
     buffer.unmap();
     Ok(rgba)

@@ -7,8 +7,9 @@ use wasm_bindgen::prelude::*;
 
 /// Starts the game on the page's canvas: the scene file the link's
 /// fragment carries (`#scene=DATA`), else the shipped scene named by
-/// `?scene=NAME` (`.toml` optional), else the default, at `?at=T` if given
-/// (see
+/// `?scene=NAME` (`.toml` optional), else the default, at `?at=T` if given,
+/// drawn with WebGL2 (or WebGPU with `?gpu=webgpu`, where the browser has
+/// it) (see
 /// `lightcone::links` and `lightcone::play::web_app::start`).
 #[wasm_bindgen(start)]
 pub fn start() -> Result<(), JsValue> {
@@ -29,11 +30,13 @@ pub fn start() -> Result<(), JsValue> {
     let scene = query.as_ref().and_then(|p| p.get("scene"));
     let lesson = query.as_ref().and_then(|p| p.get("lesson"));
     let at = query.as_ref().and_then(|p| p.get("at"));
+    let gpu = query.as_ref().and_then(|p| p.get("gpu"));
     let address = lightcone::play::web_app::Address {
         scene: scene.as_deref(),
         lesson: lesson.as_deref(),
         at: at.as_deref(),
         fragment: &fragment,
+        gpu: gpu.as_deref(),
     };
     lightcone::play::web_app::start(&address).map_err(|e| JsValue::from_str(&e))
 }

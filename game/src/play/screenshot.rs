@@ -152,50 +152,11 @@ pub fn save_frame(
         .create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("screenshot"),
         });
-    let (buffer, padded) = copy_out(gpu, config, texture, &mut encoder);
+    let size = (config.width, config.height);
+    let (buffer, padded) =
+        lightcone_render::headless::copy_to_buffer(gpu, texture, size, &mut encoder);
     gpu.queue.submit([encoder.finish()]);
     save(gpu, config, &buffer, padded, path)
-}
-
-/// Records a copy of a surface's frame (configured as `config`) into a
-/// readable buffer (for `--screenshot`).
-fn copy_out(
-    gpu: &Gpu,
-    config: &wgpu::SurfaceConfiguration,
-    texture: &wgpu::Texture,
-    encoder: &mut wgpu::CommandEncoder,
-) -> (wgpu::Buffer, u32) {
-    let (w, h) = (config.width, config.height);
-    let padded =
-        (4 * w).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("screenshot"),
-        size: u64::from(padded) * u64::from(h),
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded),
-                rows_per_image: Some(h),
-            },
-        },
-        wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-    );
-    (buffer, padded)
 }
 
 /// Reads the screenshot buffer back and writes it as PNG (RGBA; BGRA
@@ -209,16 +170,7 @@ fn save(
 ) -> Result<(), String> {
     let (w, h) = (config.width, config.height);
     let mut rgba = lightcone_render::headless::read_rows(gpu, buffer, padded, w, h)?;
-    let bgra = matches!(
-        config.format,
-        wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
-    );
-    for px in rgba.chunks_mut(4) {
-        if bgra {
-            px.swap(0, 2);
-        }
-        px[3] = 255;
-    }
+    lightcone_render::headless::opaque_rgba(&mut rgba, config.format);
     lightcone_render::headless::Image {
         width: w,
         height: h,

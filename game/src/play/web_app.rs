@@ -36,6 +36,9 @@ pub struct Address<'a> {
     pub at: Option<&'a str>,
     /// The fragment, with or without its `#` (`#scene=DATA`).
     pub fragment: &'a str,
+    /// `?gpu=webgpu`: draw with the browser's WebGPU where it gives an
+    /// adapter (else, and by default, WebGL2; see [`WebApp::webgpu`]).
+    pub gpu: Option<&'a str>,
 }
 
 /// The board times `?at=` may name, s (the replay window's length ahead,
@@ -68,6 +71,7 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
         stroke: None,
         publish_seen: matches!(at, Some(Ok(()))),
         cpu_ms: std::collections::VecDeque::with_capacity(CPU_FRAMES),
+        webgpu: address.gpu == Some("webgpu"),
     })
 }
 
@@ -312,6 +316,13 @@ struct WebApp {
     /// The page's time each of the last [`CPU_FRAMES`] frames took on its
     /// thread, ms (`window.lightconeFrameCpuMs` is their median).
     cpu_ms: std::collections::VecDeque<f64>,
+    /// Asked for WebGPU (`?gpu=webgpu`). Not the default: its path starts
+    /// (adapter, device, frames drawn at 60 fps on SwiftShader's WebGPU)
+    /// but its pixels could not be looked at here (headless Chromium's
+    /// screenshots miss a WebGPU canvas, even a five-line page's, and a
+    /// copy of the frame mapped back aborts), and WebGL2's are checked
+    /// against the window's by the browser test (docs/web.md).
+    webgpu: bool,
 }
 
 /// How many frames the page's frame-time median is over.
@@ -371,8 +382,13 @@ impl window::Game for WebApp {
         format!("Lightcone: {}", self.stage.state.scene.title)
     }
 
+    fn webgpu(&self) -> bool {
+        self.webgpu
+    }
+
     fn ready(&mut self, gfx: &Gfx) -> Result<(), String> {
         self.stage.ready(gfx);
+        gpu_chosen(&gfx.gpu.adapter);
         Ok(())
     }
 
@@ -488,6 +504,17 @@ fn stroke_made(puck: &str) {
         .unwrap_or(0.0);
     let _ = web_sys::js_sys::Reflect::set(&page, &key, &(n + 1.0).into());
     let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeStruck".into(), &puck.into());
+}
+
+/// Notes on the page which GPU the game draws with: the adapter's name and
+/// backend (`BrowserWebGpu` or `Gl`) become `window.lightconeAdapter`, and
+/// are logged to the console.
+fn gpu_chosen(adapter: &str) {
+    let Some(page) = web_sys::window() else {
+        return;
+    };
+    let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeAdapter".into(), &adapter.into());
+    web_sys::console::log_1(&format!("lightcone: drawing with {adapter}").into());
 }
 
 /// Notes on the page that the first frame was drawn: its time since the

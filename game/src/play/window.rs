@@ -40,6 +40,12 @@ pub trait Game {
         Ok(())
     }
 
+    /// In a browser: whether to draw with WebGPU where the browser gives
+    /// an adapter for it (else WebGL2).
+    fn webgpu(&self) -> bool {
+        false
+    }
+
     /// Called once the main window and the GPU are ready.
     fn ready(&mut self, gfx: &Gfx) -> Result<(), String>;
 
@@ -89,8 +95,8 @@ pub struct Gfx {
 pub struct Ui(egui::FullOutput);
 
 impl Gfx {
-    /// Opens the main window titled `title`, the GPU, and egui on it.
-    fn open(event_loop: &ActiveEventLoop, game: &mut impl Game) -> Result<Self, String> {
+    /// Opens the main window, titled as the game says.
+    fn open_window(event_loop: &ActiveEventLoop, game: &impl Game) -> Result<Arc<Window>, String> {
         let title = game.title();
         let attributes = Window::default_attributes().with_title(&title);
         #[cfg(not(target_arch = "wasm32"))]
@@ -108,6 +114,13 @@ impl Gfx {
                 .map_err(|e| format!("cannot open a window: {e}"))?,
         );
         set_title(&window, &title);
+        Ok(window)
+    }
+
+    /// Opens the main window, the GPU (Vulkan, else GL), and egui on it.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn open(event_loop: &ActiveEventLoop, game: &mut impl Game) -> Result<Self, String> {
+        let window = Self::open_window(event_loop, game)?;
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: wgpu::Backends::VULKAN | wgpu::Backends::GL,
             ..wgpu::InstanceDescriptor::new_without_display_handle()
@@ -117,12 +130,59 @@ impl Gfx {
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
         game.open_windows(event_loop, &instance)?;
         let gpu = gpu::open(instance, Some(&surface))?;
+        Self::on_gpu(window, game.title(), surface, gpu)
+    }
+
+    /// In a browser: the GPU of the page's canvas `window`, and egui on
+    /// it. WebGL2; or, with `webgpu`, WebGPU where the browser gives an
+    /// adapter for it (wgpu's detection: a `navigator.gpu` that gives no
+    /// adapter, as Chromium's on Linux without flags, counts as none),
+    /// else WebGL2. A future, because WebGPU's adapter and device come
+    /// from promises.
+    #[cfg(target_arch = "wasm32")]
+    async fn open_in_page(
+        window: Arc<Window>,
+        title: String,
+        webgpu: bool,
+    ) -> Result<Self, String> {
+        let backends = if webgpu {
+            wgpu::Backends::BROWSER_WEBGPU | wgpu::Backends::GL
+        } else {
+            wgpu::Backends::GL
+        };
+        let instance = wgpu::util::new_instance_with_webgpu_detection(wgpu::InstanceDescriptor {
+            backends,
+            ..wgpu::InstanceDescriptor::new_without_display_handle()
+        })
+        .await;
+        let surface = instance
+            .create_surface(window.clone())
+            .map_err(|e| format!("cannot draw into the page: {e}"))?;
+        let gpu = gpu::open_async(instance, Some(&surface)).await?;
+        Self::on_gpu(window, title, surface, gpu)
+    }
+
+    /// The surface of `window` configured on `gpu`, and egui on it.
+    fn on_gpu(
+        window: Arc<Window>,
+        title: String,
+        surface: wgpu::Surface<'static>,
+        gpu: Gpu,
+    ) -> Result<Self, String> {
         let size = window.inner_size();
         let mut config = surface
             .get_default_config(&gpu.handle, size.width.max(1), size.height.max(1))
             .ok_or_else(|| format!("the adapter {} cannot draw into this window", gpu.adapter))?;
-        config.usage |=
-            wgpu::TextureUsages::COPY_SRC & surface.get_capabilities(&gpu.handle).usages;
+        let capabilities = surface.get_capabilities(&gpu.handle);
+        config.usage |= wgpu::TextureUsages::COPY_SRC & capabilities.usages;
+        // Opaque where the surface offers it: a canvas would otherwise
+        // blend the picture's alpha with the page behind it.
+        if capabilities
+            .alpha_modes
+            .contains(&wgpu::CompositeAlphaMode::Opaque)
+        {
+            config.alpha_mode = wgpu::CompositeAlphaMode::Opaque;
+        }
         surface.configure(&gpu.device, &config);
         let egui = egui::Context::default();
         let egui_state = egui_winit::State::new(
@@ -246,6 +306,7 @@ pub fn spawn<G: Game + 'static>(game: G) -> Result<(), String> {
         game,
         gfx: None,
         result: Ok(()),
+        opening: Default::default(),
     });
     Ok(())
 }
@@ -255,9 +316,30 @@ struct Runner<'a, G: Game> {
     game: &'a mut G,
     gfx: Option<Gfx>,
     result: Result<(), String>,
+    /// In a browser: the GPU being opened (a future on the page's loop),
+    /// and, once it is, the window with it.
+    #[cfg(target_arch = "wasm32")]
+    opening: Opening,
 }
 
+/// The slot a browser's GPU future fills: `None` while it runs.
+#[cfg(target_arch = "wasm32")]
+type Opening = Option<std::rc::Rc<std::cell::RefCell<Option<Result<Gfx, String>>>>>;
+
 impl<G: Game> Runner<'_, G> {
+    /// Takes the window and GPU once open (the game is told it is
+    /// ready), or ends the loop with the reason they could not open.
+    fn adopt(&mut self, event_loop: &ActiveEventLoop, opened: Result<Gfx, String>) {
+        let ready = opened.and_then(|gfx| {
+            self.game.ready(&gfx)?;
+            Ok(gfx)
+        });
+        match ready {
+            Ok(gfx) => self.gfx = Some(gfx),
+            Err(e) => self.obey(event_loop, Err(e)),
+        }
+    }
+
     /// Acts on what the game said: an error ends the loop (kept for
     /// [`run`] to return), as does [`Flow::Exit`].
     fn obey(&mut self, event_loop: &ActiveEventLoop, flow: Result<Flow, String>) {
@@ -279,17 +361,42 @@ impl<G: Game> ApplicationHandler for Runner<'_, G> {
         if self.gfx.is_some() {
             return;
         }
-        let opened = Gfx::open(event_loop, self.game).and_then(|gfx| {
-            self.game.ready(&gfx)?;
-            Ok(gfx)
-        });
-        match opened {
-            Ok(gfx) => self.gfx = Some(gfx),
-            Err(e) => self.obey(event_loop, Err(e)),
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let opened = Gfx::open(event_loop, self.game);
+            self.adopt(event_loop, opened);
+        }
+        #[cfg(target_arch = "wasm32")]
+        {
+            if self.opening.is_some() {
+                return;
+            }
+            let window = match Gfx::open_window(event_loop, self.game) {
+                Ok(window) => window,
+                Err(e) => return self.obey(event_loop, Err(e)),
+            };
+            let slot = std::rc::Rc::new(std::cell::RefCell::new(None));
+            self.opening = Some(slot.clone());
+            let (title, webgpu) = (self.game.title(), self.game.webgpu());
+            wasm_bindgen_futures::spawn_local(async move {
+                let opened = Gfx::open_in_page(window.clone(), title, webgpu).await;
+                *slot.borrow_mut() = Some(opened);
+                // Wakes the loop, which adopts it (`window_event`).
+                window.request_redraw();
+            });
         }
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, id: WindowId, event: WindowEvent) {
+        #[cfg(target_arch = "wasm32")]
+        if self.gfx.is_none()
+            && let Some(opened) = self
+                .opening
+                .as_ref()
+                .and_then(|slot| slot.borrow_mut().take())
+        {
+            self.adopt(event_loop, opened);
+        }
         let Some(gfx) = self.gfx.as_mut() else { return };
         if id != gfx.window.id() {
             if let Some(flow) = self.game.other_window(gfx, id, &event) {
