@@ -714,7 +714,9 @@ proptest! {
     })]
 
     /// Random scenes: 2 to 5 pucks, proper velocities from 10⁻² to 10⁶ in
-    /// any direction, restitution 1, 0.5 or 0; every invariant holds.
+    /// any direction, restitution 1, 0.5 or 0 between pucks, elastic
+    /// cushions (an inelastic bounce still widens a shape into the cushion
+    /// struck: `Billiard::cushion_contact`); every invariant holds.
     #[test]
     fn invariants_hold_on_random_scenes(
         pucks in prop::collection::vec(

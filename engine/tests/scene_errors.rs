@@ -316,6 +316,21 @@ fn scenes_built_in_code_get_the_same_checks() {
     let e = s.add_puck(puck("c", 1.99)).unwrap_err();
     assert!(matches!(e, BuildError::OffTable { .. }), "{e}");
     assert!(e.to_string().contains("outside the table"), "{e}");
+    // Contracted to fit a 1 m side at t = 0 (γ = 10 along y), but 1.2 m
+    // across at rest: once slowed, it fits nowhere between the cushions.
+    let e = s
+        .add_puck(PuckSpec {
+            radius: 0.6,
+            u: ProperVelocity(DVec3::new(0.0, 99f64.sqrt(), 0.0)),
+            position: DVec2::new(1.3, 0.5),
+            ..puck("w", 1.3)
+        })
+        .unwrap_err();
+    assert!(
+        matches!(&e.rule(), BuildError::WiderThanTable { puck, side, .. } if puck == "w" && *side == 1.0),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("1.2 m across at rest"), "{e}");
     let e = s
         .add_puck(PuckSpec {
             radius: -1.0,

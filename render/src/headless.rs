@@ -269,7 +269,7 @@ pub fn record_copy(
 /// A new readable buffer for a copy of a `size` (width × height px) image
 /// and its padded row length ([`padded_row`]), the copy of `texture` into
 /// it recorded in `encoder` ([`record_copy`]): a window's frame for a
-/// screenshot, or the page's for the browser test.
+/// screenshot.
 #[must_use]
 pub fn copy_to_buffer(
     gpu: &Gpu,
@@ -301,7 +301,7 @@ pub fn unpad(data: &[u8], padded: u32, width: u32, height: u32) -> Vec<u8> {
 }
 
 /// Makes texels copied out of a surface of `format` opaque RGBA in place:
-/// BGRA surfaces (a browser's WebGPU canvas, most desktop ones) swapped,
+/// BGRA surfaces (most desktop ones) swapped,
 /// alpha set to 255 (what the window shows).
 pub fn opaque_rgba(texels: &mut [u8], format: wgpu::TextureFormat) {
     let bgra = matches!(

@@ -241,6 +241,21 @@ pub enum BuildError {
         /// Its contracted half-extents along x and y, m.
         half: DVec2,
     },
+    /// A puck whose rest disc is wider than the table: once it slows, its
+    /// board shape could fit nowhere between the cushions.
+    #[error(
+        "puck \"{puck}\" is {} m across at rest, wider than the table's {} m side: \
+         give a radius of at most half the table's shorter side",
+        number(2.0 * *.radius), number(*.side)
+    )]
+    WiderThanTable {
+        /// The puck.
+        puck: String,
+        /// Its rest radius, m.
+        radius: f64,
+        /// The table's shorter side, m.
+        side: f64,
+    },
     /// Two pucks' rest-frame discs overlapping at t = 0.
     #[error(
         "puck \"{puck}\" overlaps puck \"{other}\"{}: centres {} m apart, radii add to {} m",
@@ -454,8 +469,18 @@ pub fn near(p: DVec3) -> Result<DVec3, BuildError> {
 }
 
 /// The puck fits on the table at t = 0 (judged by its contracted
-/// half-extents; touching a cushion is allowed).
+/// half-extents; touching a cushion is allowed), and its rest disc fits
+/// between the cushions (a kick that slows it re-contracts it about a
+/// cushion it touches: `physics::billiard`).
 pub fn on_table(table: &TableSpec, puck: &PuckSpec) -> Result<(), BuildError> {
+    let side = table.size.min_element();
+    if 2.0 * puck.radius > side {
+        return Err(BuildError::WiderThanTable {
+            puck: puck.name.clone(),
+            radius: puck.radius,
+            side,
+        });
+    }
     let half = DVec2::new(
         puck.half_extent_along(DVec2::X),
         puck.half_extent_along(DVec2::Y),

@@ -369,7 +369,10 @@ pub struct BodyState {
 
 /// The history of one body's reference point (a puck's centre on the board,
 /// an observer's eye): straight segments joined at kinks where its velocity
-/// changed (collisions, cue strokes, a tracker sample).
+/// changed (collisions, cue strokes, a tracker sample); for an observer put
+/// somewhere ([`Self::relocate`]) or a puck re-contracted against a cushion
+/// as a kick lands ([`Self::shift_last`], a jump of at most `R (1 − 1/γ)`),
+/// a jump there instead.
 ///
 /// * **Append-only**: segments are only added at or after the last start;
 ///   the past is never rewritten, so every view of it (replay, several
@@ -565,7 +568,7 @@ impl Worldline {
     /// velocity `u` from then on: a jump, not a kink (the worldline is not
     /// continuous there). Only for an observer the player or a tracker puts
     /// somewhere (the free eye orbited or reset, a tracked head's pose),
-    /// never for a puck. Proper time runs on across the jump. As with
+    /// never for a puck (whose only jump is [`Self::shift_last`]'s). Proper time runs on across the jump. As with
     /// [`Self::push`], `t` must not precede the last segment's start, and
     /// a jump at exactly that start replaces the last segment.
     pub fn relocate(

@@ -25,13 +25,22 @@ impl Billiard {
             resolve::puck_cushion(before, outward, self.cushion_restitution)
         };
         let mut outcomes = Vec::with_capacity(cluster.len());
+        // Where the first puck touched the cushion (before any hold).
+        let mut touched = None;
         for &k in &cluster {
+            touched.get_or_insert_with(|| self.pucks[k].worldline.position_at(t_kink));
             if self.pucks[k].worldline.push(t_kink, after).is_err() {
                 continue;
             }
-            // A bounce keeps both half-widths (`|u_k|` is unchanged); the
-            // Zeno limit drops the normal part of `u` and widens the shape
-            // along the normal, into the cushion it presses.
+            // An elastic bounce keeps both half-widths (it negates the
+            // normal part of `u`, exactly). The Zeno limit drops the normal
+            // part, widening the shape along the normal into the cushion
+            // pressed: held. An inelastic bounce widens it too, but is not
+            // held: the puck is then often pressed by another, and each
+            // hold would move it into that one, a settled pair whose
+            // overlap is not resolved, bounce after bounce (found: a pusher
+            // ratcheted through the pressed puck). Its shape stays in the
+            // cushion by at most R (1 − 1/γ) until it moves out.
             if zeno {
                 self.hold_off_cushions(k);
             }
@@ -69,8 +78,8 @@ impl Billiard {
         }
         if self.record {
             let radius = self.pucks[i].radius;
-            let contact =
-                outcomes[0].position + puck_cushion::support_offset(radius, before, cushion);
+            let contact = touched.unwrap_or(outcomes[0].position)
+                + puck_cushion::support_offset(radius, before, cushion);
             self.collisions.push(Collision {
                 kind: CollisionKind::Cushion(cushion),
                 t: t_kink,
@@ -100,8 +109,14 @@ impl Billiard {
     /// would have had, so that the shape just touches it. Momenta, energy
     /// and the kick's board time are unchanged. If the puck then moves into
     /// the cushion, the cushion contact is predicted at once (at this same
-    /// board time) and resolved as any other; a shape the move brings
-    /// against another puck is a board contact as any other.
+    /// board time) and resolved as any other. A shape the move brings
+    /// towards another puck overlaps it by at most that jump: an unsettled
+    /// pair overlapping and closing is pushed apart at once (a board
+    /// contact), while the pair whose contact made the kick, settled, is
+    /// not predicted again while they overlap (`predict::pair`): that
+    /// overlap stays until they part, within the pair's allowance plus the
+    /// jump. The puck's broad-phase shell follows the
+    /// centre if the jump takes it past the shell's margin.
     pub(super) fn hold_off_cushions(&mut self, i: usize) {
         let table = self.table;
         let puck = &mut self.pucks[i];
@@ -121,6 +136,10 @@ impl Billiard {
         if shift != DVec3::ZERO {
             puck.worldline.shift_last(shift);
             self.stats.cushion_holds += 1;
+            let centre = self.pucks[i].worldline.last().start.position.truncate();
+            if (centre - self.shells[i]).length() > self.margin {
+                self.move_shell(i);
+            }
         }
     }
 
