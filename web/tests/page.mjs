@@ -47,6 +47,25 @@ async function openPage(context = null) {
   return { page, errors };
 }
 
+// Gives `page` `window.lightconeTestPixels(base64Png)`: the PNG decoded by
+// the page itself (no PNG decoder needed here), as `{ w, h, px }` with `px`
+// its RGBA bytes.
+async function addDecoder(page) {
+  await page.addScriptTag({
+    content: `window.lightconeTestPixels = async (data) => {
+      const img = new Image();
+      img.src = "data:image/png;base64," + data;
+      await img.decode();
+      const c = document.createElement("canvas");
+      c.width = img.width;
+      c.height = img.height;
+      const ctx = c.getContext("2d");
+      ctx.drawImage(img, 0, 0);
+      return { w: img.width, h: img.height, px: ctx.getImageData(0, 0, img.width, img.height).data };
+    };`,
+  });
+}
+
 // Waits for the game's first frame on `page`.
 const firstFrame = (page) =>
   page.waitForFunction(() => window.lightconeFirstFrameMs !== undefined, null, { timeout: 120_000 });
@@ -72,16 +91,9 @@ async function check(query, screenshot) {
   // The screenshot's pixels, read back by the page itself (no PNG decoder
   // needed here): distinct colours (4 bits a channel) and the share of
   // the commonest one.
+  await addDecoder(page);
   const stats = await page.evaluate(async (data) => {
-    const img = new Image();
-    img.src = "data:image/png;base64," + data;
-    await img.decode();
-    const c = document.createElement("canvas");
-    c.width = img.width;
-    c.height = img.height;
-    const ctx = c.getContext("2d");
-    ctx.drawImage(img, 0, 0);
-    const px = ctx.getImageData(0, 0, c.width, c.height).data;
+    const { px } = await window.lightconeTestPixels(data);
     const counts = new Map();
     for (let i = 0; i < px.length; i += 4) {
       const k = ((px[i] >> 4) << 8) | ((px[i + 1] >> 4) << 4) | (px[i + 2] >> 4);
@@ -273,19 +285,10 @@ async function parity(nativePath) {
   const fs = await import("node:fs");
   const native = fs.readFileSync(nativePath).toString("base64");
   const page = await browser.newPage();
+  await addDecoder(page);
   const result = await page.evaluate(
     async ([a, b]) => {
-      const pixels = async (data) => {
-        const img = new Image();
-        img.src = "data:image/png;base64," + data;
-        await img.decode();
-        const c = document.createElement("canvas");
-        c.width = img.width;
-        c.height = img.height;
-        const ctx = c.getContext("2d");
-        ctx.drawImage(img, 0, 0);
-        return { w: img.width, h: img.height, px: ctx.getImageData(0, 0, img.width, img.height).data };
-      };
+      const pixels = window.lightconeTestPixels;
       const [p, q] = [await pixels(a), await pixels(b)];
       if (p.w !== q.w || p.h !== q.h) return { size: [p.w, p.h, q.w, q.h] };
       let differ = 0;
