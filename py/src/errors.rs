@@ -3,6 +3,7 @@
 //! built-in exception an older caller may already catch.
 
 use lightcone_engine::scene::{BuildError, SceneErrors};
+use lightcone_lesson::{ErrorKind, WorldError};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -92,17 +93,25 @@ impl From<SceneErrors> for ScenePyErr {
     }
 }
 
-/// The exception class for `rule`, by its variant (never by its text).
-fn raise(rule: Option<&BuildError>, message: String) -> PyErr {
-    match rule.map(BuildError::rule) {
-        Some(BuildError::TooFast { .. }) => SpeedOfLightError::new_err(message),
-        Some(BuildError::Overlap { .. }) => OverlapError::new_err(message),
-        Some(BuildError::OutOfRange { .. } | BuildError::TableSize(_)) => {
-            OutOfRangeError::new_err(message)
-        }
-        Some(BuildError::BeyondHorizon { .. }) => BrakingHorizonError::new_err(message),
-        _ => SceneError::new_err(message),
+/// The exception of class `kind` with `message`.
+fn raise_kind(kind: ErrorKind, message: String) -> PyErr {
+    match kind {
+        ErrorKind::Value => PyValueError::new_err(message),
+        ErrorKind::Key => pyo3::exceptions::PyKeyError::new_err(message),
+        ErrorKind::Type => pyo3::exceptions::PyTypeError::new_err(message),
+        ErrorKind::Runtime => PyRuntimeError::new_err(message),
+        ErrorKind::NotComputed => NotComputedError::new_err(message),
+        ErrorKind::Scene => SceneError::new_err(message),
+        ErrorKind::SpeedOfLight => SpeedOfLightError::new_err(message),
+        ErrorKind::Overlap => OverlapError::new_err(message),
+        ErrorKind::OutOfRange => OutOfRangeError::new_err(message),
+        ErrorKind::BrakingHorizon => BrakingHorizonError::new_err(message),
     }
+}
+
+/// A world operation's refusal as the Python exception its kind names.
+pub fn world_err(e: WorldError) -> PyErr {
+    raise_kind(e.kind, e.message)
 }
 
 impl From<ScenePyErr> for PyErr {
@@ -111,11 +120,8 @@ impl From<ScenePyErr> for PyErr {
     /// class is a `SceneError`.
     fn from(e: ScenePyErr) -> Self {
         match e {
-            ScenePyErr::Rule(rule) => raise(Some(&rule), rule.to_string()),
-            ScenePyErr::File(errors) => {
-                let rule = errors.0.iter().find_map(|e| e.rule.as_ref());
-                raise(rule, errors.to_string())
-            }
+            ScenePyErr::Rule(rule) => world_err(rule.into()),
+            ScenePyErr::File(errors) => world_err(errors.into()),
         }
     }
 }

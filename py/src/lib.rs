@@ -18,21 +18,24 @@ mod scene;
 mod simulation;
 mod world;
 
-use glam::DVec3;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::{CollisionLine, StateLine};
 use lightcone_engine::scene::{Effect, Effects, Scene as SceneModel};
-use pyo3::exceptions::{PyKeyError, PyRuntimeError, PyValueError};
+use lightcone_lesson::query;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+
+use errors::world_err;
 use pyo3::prelude::*;
 
 pub use errors::{NoAdapterError, NotComputedError, SceneError, SpeedOfLightError};
 pub use frame::Frame;
+pub use lightcone_lesson::{
+    Bars, Claim, LessonGame, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS, Pictures,
+    Question,
+};
 pub use scene::Scene;
 pub use simulation::Simulation;
-pub use world::{
-    Bars, Claim, LessonGame, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS, Pictures,
-    Question, World, observe_claims,
-};
+pub use world::{World, observe_claims};
 
 /// Adds the module's classes to `m`: used by the wheel's `_lightcone` and
 /// by the module the game embeds alike.
@@ -83,77 +86,35 @@ fn to_record<'py, T: serde::Serialize>(
     class: &str,
     value: &T,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let text = serde_json::to_string(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    let data = py.import("json")?.call_method1("loads", (text,))?;
+    let data = to_plain(py, value)?;
     py.import("lightcone.records")?
         .getattr(class)?
         .call1((data,))
 }
 
-/// The effect called `key`, or a ValueError listing the valid names.
+/// A serialisable value as plain Python data (dicts, lists, numbers,
+/// strings), through the JSON it serializes to.
+fn to_plain<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
 fn effect(key: &str) -> PyResult<Effect> {
-    Effect::ALL
-        .iter()
-        .copied()
-        .find(|e| e.key() == key)
-        .ok_or_else(|| {
-            let names: Vec<&str> = Effect::ALL.iter().map(|e| e.key()).collect();
-            PyValueError::new_err(format!("unknown effect {key:?}; use one of {names:?}"))
-        })
+    query::effect(key).map_err(world_err)
 }
 
-/// `None`: the scene's effects; a list: exactly those on.
-fn effects_from(scene: Effects, list: Option<Vec<String>>) -> PyResult<Effects> {
-    match list {
-        None => Ok(scene),
-        Some(list) => {
-            let mut fx = Effects::NONE;
-            for key in list {
-                fx.set(effect(&key)?, true);
-            }
-            Ok(fx)
-        }
-    }
+fn effects_from(shown: Effects, list: Option<Vec<String>>) -> PyResult<Effects> {
+    query::effects_from(shown, list).map_err(world_err)
 }
 
-/// Index of puck `name`, or a KeyError listing the pucks.
-fn puck_index(billiard: &Billiard, name: &str) -> PyResult<usize> {
-    billiard.index_of(name).ok_or_else(|| {
-        let names: Vec<&str> = (0..billiard.len()).map(|i| billiard.name(i)).collect();
-        PyKeyError::new_err(format!("no puck named {name:?}; the scene has {names:?}"))
-    })
-}
-
-/// Index of the observer called `name` (the first when `None`).
 fn observer_index(scene: &SceneModel, name: Option<&str>) -> PyResult<usize> {
-    match name {
-        None => Ok(0),
-        Some(name) => scene
-            .observers
-            .iter()
-            .position(|o| o.name == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = scene.observers.iter().map(|o| o.name.as_str()).collect();
-                PyKeyError::new_err(format!(
-                    "no observer named {name:?}; the scene has {names:?}"
-                ))
-            }),
-    }
+    query::observer_index(scene, name).map_err(world_err)
 }
 
-/// A finite board time, or a ValueError.
 fn finite_time(t: f64) -> PyResult<f64> {
-    if t.is_finite() {
-        Ok(t)
-    } else {
-        Err(PyValueError::new_err(format!(
-            "t = {t}: give a finite board time"
-        )))
-    }
+    query::finite_time(t).map_err(world_err)
 }
 
-/// Every collision up to now, as `Collision` records (what `lightcone
-/// simulate` prints).
 fn collisions<'py>(py: Python<'py>, billiard: &Billiard) -> PyResult<Vec<Bound<'py, PyAny>>> {
     billiard
         .collisions()
@@ -162,46 +123,22 @@ fn collisions<'py>(py: Python<'py>, billiard: &Billiard) -> PyResult<Vec<Bound<'
         .collect()
 }
 
-/// Every puck at board time `t`: a `State` record (the `state` line of
-/// `lightcone simulate`).
 fn state<'py>(py: Python<'py>, billiard: &Billiard, t: f64) -> PyResult<Bound<'py, PyAny>> {
     to_record(py, "State", &StateLine::new(billiard, t))
 }
 
-/// `at` (default `now`) if the physics has reached it, else
-/// NotComputedError.
 fn past_time(at: Option<f64>, now: f64) -> PyResult<f64> {
-    let t = finite_time(at.unwrap_or(now))?;
-    if t > now + 1e-12 {
-        return Err(NotComputedError::new_err(format!(
-            "t = {t} s is after the board time reached ({now} s): the future is not computed yet"
-        )));
-    }
-    Ok(t)
+    query::past_time(at, now).map_err(world_err)
 }
 
-/// Strikes puck `name` at board time `t`: its proper velocity grows by `du`.
 fn impulse(billiard: &mut Billiard, name: &str, t: f64, du: (f64, f64)) -> PyResult<()> {
-    let i = puck_index(billiard, name)?;
-    if !(du.0.is_finite() && du.1.is_finite()) {
-        return Err(PyValueError::new_err(format!(
-            "impulse {du:?} on {name:?}: give finite numbers"
-        )));
-    }
-    billiard
-        .apply_impulse(i, t, DVec3::new(du.0, du.1, 0.0))
-        .map_err(|e| PyValueError::new_err(e.to_string()))
+    query::impulse(billiard, name, t, du).map_err(world_err)
 }
 
-/// The proper velocity γβ of puck `name` at board time `t`, as (x, y).
 fn velocity(billiard: &Billiard, name: &str, t: f64) -> PyResult<(f64, f64)> {
-    let i = puck_index(billiard, name)?;
-    let u = billiard.worldline(i).proper_velocity_at(t);
-    Ok((u.0.x, u.0.y))
+    query::velocity(billiard, name, t).map_err(world_err)
 }
 
-/// What observer `observer` sees at board time `t`, as the dict
-/// `lightcone observe` prints.
 fn observation<'py>(
     py: Python<'py>,
     scene: &SceneModel,
@@ -211,9 +148,8 @@ fn observation<'py>(
     vertices: bool,
     effects: Effects,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let index = observer_index(scene, observer)?;
-    let report = lightcone_render::observe::report(scene, billiard, index, t, effects, vertices)
-        .ok_or_else(|| PyRuntimeError::new_err(format!("observer {index} saw nothing")))?;
+    let report =
+        query::observation(scene, billiard, t, observer, vertices, effects).map_err(world_err)?;
     to_record(py, "Observation", &report)
 }
 

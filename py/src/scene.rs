@@ -256,14 +256,9 @@ impl Scene {
     /// lesson's process sends.
     #[staticmethod]
     fn _from_json(text: &str) -> PyResult<Self> {
-        let raw: scene::Scene = serde_json::from_str(text).map_err(|e| {
-            super::errors::SceneError::new_err(format!("a scene sent as JSON: {e}"))
-        })?;
-        Ok(Self {
-            inner: raw
-                .rebuilt()
-                .map_err(|e| ScenePyErr::from(e.of("a scene sent as JSON")))?,
-        })
+        let inner =
+            lightcone_lesson::protocol::scene_from_json(text).map_err(super::errors::world_err)?;
+        Ok(Self { inner })
     }
 
     fn __repr__(&self) -> String {

@@ -282,7 +282,7 @@ impl Simulation {
         py: Python<'py>,
         frame: &str,
         at: Option<f64>,
-    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+    ) -> PyResult<Bound<'py, PyAny>> {
         let s = self.lock(py);
         let t = super::past_time(at, s.billiard.time())?;
         super::diagram::simultaneity(py, &s.scene, &s.billiard, frame, t)

@@ -43,20 +43,26 @@ impl Image {
         ]
     }
 
-    /// Writes a PNG.
-    pub fn save_png(&self, path: &Path) -> Result<(), String> {
-        // Encoded in memory, then written in one checked write: a buffered
-        // file writer would drop the error of its last flush (a full disk).
+    /// The image as a PNG file's bytes (RGBA, 8 bits a channel).
+    pub fn png_bytes(&self) -> Result<Vec<u8>, String> {
         let mut bytes = Vec::new();
         let mut encoder = png::Encoder::new(&mut bytes, self.width, self.height);
         encoder.set_color(png::ColorType::Rgba);
         encoder.set_depth(png::BitDepth::Eight);
-        let mut writer = encoder
-            .write_header()
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut writer = encoder.write_header().map_err(|e| e.to_string())?;
         writer
             .write_image_data(&self.rgba)
             .and_then(|()| writer.finish())
+            .map_err(|e| e.to_string())?;
+        Ok(bytes)
+    }
+
+    /// Writes a PNG.
+    pub fn save_png(&self, path: &Path) -> Result<(), String> {
+        // Encoded in memory, then written in one checked write: a buffered
+        // file writer would drop the error of its last flush (a full disk).
+        let bytes = self
+            .png_bytes()
             .map_err(|e| format!("{}: {e}", path.display()))?;
         write_file(path, &bytes)
     }

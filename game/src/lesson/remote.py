@@ -1,18 +1,16 @@
-"""A lesson run in its own process, as the window runs it (see remote.rs).
+"""A lesson run in its own process, as the window runs it (see remote.rs),
+or in a browser's Web Worker (web/python/lightcone_web_child.py).
 
-Loaded in both processes:
-
-- in the lesson's process, `World` stands for the game: each method that
-  reads what the last snapshot does not hold, or that changes the game or
-  the lesson's panel, is a request to the game's process, which answers;
-- in the game's process, `call` and `serve` build the lines sent to the
-  lesson: a hook to run, and the answer to a request (with the snapshot
-  of the world's simple attributes that the lesson then reads without
-  asking).
+`World` stands for the game: each method that reads what the last snapshot
+does not hold, or that changes the game or the lesson's panel, is a request
+to the game, which answers (in Rust: lesson/src/protocol.rs, the same
+operations as `lightcone.World`) with the snapshot of the world's simple
+attributes that the lesson then reads without asking.
 
 Values travel as JSON: records as {"$record": class, "data": dict},
-scenes as {"$scene": json}. Whatever the game receives is checked again
-there: a scene is rebuilt through the checks of a scene built in code.
+scenes as {"$scene": json}, frames as {"$frame": [png_base64, width,
+height, t]}. Whatever the game receives is checked again there: a scene
+is rebuilt through the checks of a scene built in code.
 """
 
 import base64
@@ -27,7 +25,8 @@ from lightcone import records
 SNAPSHOT = ("t", "c", "paused", "time_scale", "view", "observer", "effects")
 # Attributes a lesson may set (`world.paused = True`): requests.
 SETTABLE = ("paused", "time_scale", "view", "observer")
-# Methods served by the game's process.
+# Methods served by the game (lesson/src/protocol.rs: a test keeps the two
+# lists equal).
 METHODS = (
     "start",
     "pause",
@@ -51,6 +50,8 @@ METHODS = (
 GETTERS = ("claims", "scene", "finished")
 # Every request the game serves (the game refuses any other).
 SERVED = METHODS + GETTERS + tuple("=" + name for name in SETTABLE)
+
+
 def encode(value):
     """`value` as JSON data, records and scenes tagged."""
     if value is None or isinstance(value, (bool, int, float, str)):
@@ -89,54 +90,6 @@ def decode(value, frames=False):
                 return cls(value["data"])
         return {k: decode(v, frames) for k, v in value.items()}
     return value
-
-
-# The game's side.
-
-
-def snapshot(world):
-    """The world's simple attributes, or why there are none (no game yet)."""
-    try:
-        return {name: getattr(world, name) for name in SNAPSHOT}
-    except Exception as e:  # no game: every getter says so
-        return {"$none": str(e)}
-
-
-def call(world, hook, args):
-    """The line that runs `hook` with `args` (JSON text) in the lesson."""
-    return json.dumps({"call": hook, "args": json.loads(args), "snapshot": snapshot(world)})
-
-
-def _message(e):
-    if len(e.args) == 1 and isinstance(e.args[0], str):
-        return e.args[0]
-    return str(e)
-
-
-def serve(world, op, args, kwargs):
-    """Runs request `op` (one of METHODS or GETTERS, or "=name" to set
-    one of SETTABLE: checked by the caller) on `world` with `args` and
-    `kwargs` (JSON text); the answer line."""
-    try:
-        a = decode(json.loads(args))
-        k = decode(json.loads(kwargs))
-        if op.startswith("="):
-            if len(a) != 1 or k:
-                raise TypeError(f"world.{op[1:]} = takes one value")
-            setattr(world, op[1:], a[0])
-            result = None
-        elif op in METHODS:
-            result = getattr(world, op)(*a, **k)
-        else:
-            result = getattr(world, op)
-        reply = {"ok": encode(result)}
-    except Exception as e:
-        reply = {"error": [type(e).__name__, _message(e)]}
-    reply["snapshot"] = snapshot(world)
-    return json.dumps(reply)
-
-
-# The lesson's side.
 
 
 def _exception(kind):

@@ -52,6 +52,7 @@ use super::line::read_line;
 use super::supervise::{self, KILL_AFTER};
 use super::{LessonHost, drain_printed, keep_printed, lend, placeholder, traceback, watchdog};
 use crate::model::GameState;
+use lightcone_lesson::protocol;
 use lightcone_python::World;
 
 /// How long a frame waits for the lesson before it draws: a hook that
@@ -61,23 +62,6 @@ pub const FRAME_BUDGET: Duration = Duration::from_millis(10);
 /// How many messages a poll handles past its budget (those already
 /// arrived): a hook's requests and its end, without waiting.
 const READY_AT_ONCE: usize = 16;
-
-/// Whether the game serves request `op`: `remote.py`'s `SERVED` (its
-/// `METHODS`, `GETTERS`, and `=name` for its `SETTABLE`), read once.
-fn served(op: &str) -> bool {
-    static SERVED: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
-    SERVED
-        .get_or_init(|| {
-            Python::attach(|py| {
-                module(py)
-                    .and_then(|m| m.getattr("SERVED"))
-                    .and_then(|s| s.extract())
-                    .unwrap_or_default()
-            })
-        })
-        .iter()
-        .any(|s| s == op)
-}
 
 /// The hooks, by the names a call carries.
 const HOOKS: [&str; 4] = ["setup", "on_frame", "on_collision", "on_answer"];
@@ -323,59 +307,6 @@ fn run_call(
 }
 
 // ---- The game's side.
-
-/// What `remote.py`'s `snapshot(world)` gives for `game` (the same keys
-/// and values as the `World` getters), built without Python and written
-/// straight to JSON (it goes with every call: no intermediate `Value`).
-#[derive(Serialize)]
-struct Snapshot<'a> {
-    t: f64,
-    c: f64,
-    paused: bool,
-    time_scale: f64,
-    view: &'static str,
-    observer: Option<&'a str>,
-    effects: Effects<'a>,
-}
-
-/// The effects as a map from their keys to whether each is on.
-struct Effects<'a>(&'a lightcone_engine::scene::Effects);
-
-impl Serialize for Effects<'_> {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        use lightcone_engine::scene::Effect;
-        s.collect_map(Effect::ALL.iter().map(|e| (e.key(), self.0.is_on(*e))))
-    }
-}
-
-fn snapshot(game: &GameState) -> Snapshot<'_> {
-    use lightcone_python::{LessonGame, Pictures};
-    let view = match game.pictures() {
-        Pictures::Seen => "seen",
-        Pictures::Truth => "truth",
-        Pictures::Split => "split",
-    };
-    let observer = LessonGame::observer(game)
-        .and_then(|i| game.scene.observers.get(i))
-        .map(|o| o.name.as_str());
-    Snapshot {
-        t: game.live_time,
-        c: game.scene.c,
-        paused: game.paused,
-        time_scale: game.time_scale,
-        view,
-        observer,
-        effects: Effects(&game.effects),
-    }
-}
-
-/// A call line: `{"call": hook, "args": [...], "snapshot": {...}}`.
-#[derive(Serialize)]
-struct Call<'a> {
-    call: &'a str,
-    args: &'a Value,
-    snapshot: Snapshot<'a>,
-}
 
 /// What the reader thread passes on.
 enum FromChild {
@@ -687,20 +618,17 @@ impl LessonHost {
                     }
                     let line = if hook == "setup" {
                         // No game yet: the world says why, in its words.
-                        let args = args.to_string();
-                        self.lend(game, true, |py, world| {
-                            module(py)
-                                .and_then(|m| m.call_method1("call", (world, hook, args)))
-                                .and_then(|l| l.extract::<String>())
+                        self.lend(game, true, |_, world| {
+                            Ok::<_, String>(protocol::call_line(&world.borrow(), hook, &args))
                         })
                     } else {
-                        // Built here, without Python: the common case.
-                        serde_json::to_string(&Call {
+                        // Built from the game itself, without Python.
+                        serde_json::to_string(&protocol::Call {
                             call: hook,
                             args: &args,
-                            snapshot: snapshot(game),
+                            snapshot: protocol::snapshot(game),
                         })
-                        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
+                        .map_err(|e| e.to_string())
                     };
                     let Some(remote) = self.remote.as_mut() else {
                         return;
@@ -732,7 +660,7 @@ impl LessonHost {
             }
             match received {
                 Ok(FromChild::Line(Up::Request { op, args, kwargs })) => {
-                    if !served(&op) {
+                    if !protocol::serves(&op) {
                         return self.stop(
                             game,
                             Some(format!(
@@ -741,22 +669,11 @@ impl LessonHost {
                             false,
                         );
                     }
-                    let args = Value::Array(args).to_string();
-                    let kwargs = Value::Object(kwargs).to_string();
-                    let reply = self.lend(game, hook == "setup", |py, world| {
-                        module(py)
-                            .and_then(|m| m.call_method1("serve", (world, op, args, kwargs)))
-                            .and_then(|l| l.extract::<String>())
+                    let reply = self.lend(game, hook == "setup", |_, world| {
+                        protocol::reply_line(&mut world.borrow_mut(), &op, &args, &kwargs)
                     });
-                    match reply {
-                        Ok(line) => {
-                            if let Some(r) = &self.remote {
-                                r.send(line.into_bytes());
-                            }
-                        }
-                        Err(e) => {
-                            return self.stop(game, Some(format!("cannot answer: {e}")), false);
-                        }
+                    if let Some(r) = &self.remote {
+                        r.send(reply.into_bytes());
                     }
                 }
                 Ok(FromChild::Line(Up::Done {

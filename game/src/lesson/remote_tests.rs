@@ -19,16 +19,27 @@ fn a_hook_that_prints_megabytes_sends_only_what_the_panel_keeps() {
 fn the_game_serves_the_world_and_nothing_else() {
     super::super::init_python().unwrap();
     for op in ["state", "impulse", "say", "diagram", "claims", "=paused"] {
-        assert!(served(op), "{op}");
+        assert!(protocol::serves(op), "{op}");
     }
     // `load` runs in the lesson's process; the rest is not World's.
     for op in ["load", "__init__", "__class__", "=t", "=claims", "", "dir"] {
-        assert!(!served(op), "{op}");
+        assert!(!protocol::serves(op), "{op}");
     }
+    // What the game serves (Rust) is what the lesson's stand-in asks for
+    // (remote.py's SERVED), both ways.
+    let asked: Vec<String> = Python::attach(|py| {
+        module(py)
+            .and_then(|m| m.getattr("SERVED"))
+            .and_then(|s| s.extract())
+    })
+    .unwrap();
+    assert!(asked.iter().all(|op| protocol::serves(op)), "{asked:?}");
+    let served = protocol::METHODS.len() + protocol::GETTERS.len() + protocol::SETTABLE.len();
+    assert_eq!(asked.len(), served, "{asked:?}");
 }
 
 #[test]
-fn the_snapshot_built_in_rust_is_the_worlds() {
+fn the_snapshot_says_what_the_python_world_says() {
     super::super::init_python().unwrap();
     let scene = lightcone_engine::scene::load(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/paper_carom.toml"),
@@ -38,21 +49,37 @@ fn the_snapshot_built_in_rust_is_the_worlds() {
     game.step(0.25);
     game.time_scale = 0.5;
     game.observer = Some(0);
-    let ours = serde_json::to_value(snapshot(&game)).unwrap();
+    game.effects
+        .set(lightcone_engine::scene::Effect::Doppler, false);
+    let ours = serde_json::to_value(protocol::snapshot(&game)).unwrap();
     let world = Python::attach(|py| Py::new(py, World::new(".".into(), lend::new_game))).unwrap();
+    // The getters of `lightcone.World`, read by Python on the same game.
     let theirs = Python::attach(|py| -> PyResult<String> {
         let w = world.bind(py);
         w.borrow_mut().game = Some(Box::new(game));
-        let text = module(py)?
-            .call_method1("call", (w, "on_frame", "[]"))?
-            .extract::<String>()?;
+        let json = py.import("json")?;
+        let d = pyo3::types::PyDict::new(py);
+        for name in [
+            "t",
+            "c",
+            "paused",
+            "time_scale",
+            "view",
+            "observer",
+            "effects",
+        ] {
+            d.set_item(name, w.getattr(name)?)?;
+        }
+        let text = json.call_method1("dumps", (d,))?.extract::<String>()?;
         w.borrow_mut().game = None;
         Ok(text)
     })
     .unwrap();
     Python::attach(|_| drop(world)); // unsendable: released here
     let theirs: Value = serde_json::from_str(&theirs).unwrap();
-    assert_eq!(ours, theirs["snapshot"]);
+    assert_eq!(ours, theirs);
+    assert_eq!(ours["effects"]["doppler"], Value::Bool(false));
+    assert_eq!(ours["view"], Value::from("seen"));
 }
 
 #[test]

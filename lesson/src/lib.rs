@@ -1,0 +1,27 @@
+//! What a Lightcone lesson sees and shows, without Python.
+//!
+//! A lesson's hooks are given a world: the running game (board time,
+//! pucks, effects, view) and the lesson's voice on screen (text,
+//! questions, checked claims, bar charts). This crate holds that world's
+//! every operation, checked ([`WorldCore`]), what it puts on screen
+//! ([`LessonUi`]), and the JSON protocol by which a lesson run elsewhere
+//! asks for them ([`protocol`]). Python's `lightcone.World` (lightcone-py)
+//! wraps a `WorldCore`; the game serves a lesson run in its own process,
+//! or in a browser's Web Worker, through `protocol`: one implementation
+//! of the world for all of them.
+
+#![warn(clippy::must_use_candidate)]
+
+pub mod error;
+mod game;
+pub mod protocol;
+pub mod query;
+mod screen;
+mod world;
+
+pub use error::{ErrorKind, WorldError, WorldResult};
+pub use game::{LessonGame, NewGame};
+pub use screen::{
+    Bars, Claim, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS, Pictures, Question,
+};
+pub use world::{NO_GAME, WorldCore};

@@ -1,0 +1,528 @@
+//! The lesson protocol's game side, without Python: a lesson run
+//! elsewhere (its own process on the desktop, a Web Worker in the
+//! browser) holds a stand-in `World` (`game/src/lesson/remote.py`) whose
+//! methods are requests; the game answers each with [`answer`] on its
+//! [`WorldCore`], as JSON.
+//!
+//! Values travel as JSON: records as `{"$record": class, "data": {...}}`,
+//! scenes as `{"$scene": json}` (rebuilt through every check of a scene
+//! built in code when received), frames as `{"$frame": [png_base64,
+//! width, height, t]}`. A reply is `{"ok": value, "snapshot": {...}}` or
+//! `{"error": [kind, message], "snapshot": {...}}`, `kind` the Python
+//! exception's name; the snapshot (t, c, paused, time_scale, view,
+//! observer, effects, or `{"$none": why}` without a game) answers the
+//! common getters without a round trip.
+
+use base64::Engine as _;
+use lightcone_engine::scene::{Effect, Scene};
+use serde::Serialize;
+use serde_json::{Map, Value, json};
+
+use crate::LessonGame;
+use crate::error::{ErrorKind, WorldError, WorldResult};
+use crate::world::{NO_GAME, WorldCore};
+
+/// The world's methods a lesson may request (`remote.py`'s `METHODS`).
+pub const METHODS: [&str; 17] = [
+    "start",
+    "pause",
+    "resume",
+    "set_effect",
+    "state",
+    "collisions",
+    "velocity",
+    "impulse",
+    "observe",
+    "show_diagram",
+    "simultaneity",
+    "say",
+    "ask",
+    "check",
+    "bars",
+    "finish",
+    "diagram",
+];
+
+/// The read-only attributes served (`remote.py`'s `GETTERS`).
+pub const GETTERS: [&str; 3] = ["claims", "scene", "finished"];
+
+/// The attributes a lesson may set, each requested as `=name`
+/// (`remote.py`'s `SETTABLE`).
+pub const SETTABLE: [&str; 4] = ["paused", "time_scale", "view", "observer"];
+
+/// Whether the game serves request `op` (one of [`METHODS`], [`GETTERS`],
+/// or `=` and one of [`SETTABLE`]): a lesson that asks for anything else
+/// is stopped.
+#[must_use]
+pub fn serves(op: &str) -> bool {
+    match op.strip_prefix('=') {
+        Some(name) => SETTABLE.contains(&name),
+        None => METHODS.contains(&op) || GETTERS.contains(&op),
+    }
+}
+
+/// The world's simple attributes, sent with every call and answer.
+#[derive(Serialize)]
+pub struct Snapshot<'a> {
+    t: f64,
+    c: f64,
+    paused: bool,
+    time_scale: f64,
+    view: &'static str,
+    observer: Option<&'a str>,
+    effects: Effects,
+}
+
+/// The effects as a map from their keys to whether each is on.
+struct Effects(lightcone_engine::scene::Effects);
+
+impl Serialize for Effects {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_map(Effect::ALL.iter().map(|e| (e.key(), self.0.is_on(*e))))
+    }
+}
+
+/// The snapshot of `game` (the same keys and values as the `World`
+/// getters).
+#[must_use]
+pub fn snapshot(game: &dyn LessonGame) -> Snapshot<'_> {
+    Snapshot {
+        t: game.live_time(),
+        c: game.scene().c,
+        paused: game.paused(),
+        time_scale: game.time_scale(),
+        view: game.pictures().name(),
+        observer: game
+            .observer()
+            .and_then(|i| game.scene().observers.get(i))
+            .map(|o| o.name.as_str()),
+        effects: Effects(game.effects()),
+    }
+}
+
+/// The snapshot of `world`'s game, or why it has none, as JSON.
+#[must_use]
+pub fn snapshot_value(world: &WorldCore) -> Value {
+    match world.game.as_deref() {
+        Some(g) => serde_json::to_value(snapshot(g)).unwrap_or(Value::Null),
+        None => json!({ "$none": NO_GAME }),
+    }
+}
+
+/// A call line: `{"call": hook, "args": [...], "snapshot": {...}}`.
+#[derive(Serialize)]
+pub struct Call<'a, S: Serialize> {
+    /// The hook to run.
+    pub call: &'a str,
+    /// Its arguments after the world.
+    pub args: &'a Value,
+    /// The world's snapshot as the hook starts ([`Snapshot`], or a
+    /// [`snapshot_value`]).
+    pub snapshot: S,
+}
+
+/// The line that runs `hook(world, *args)` in the lesson.
+#[must_use]
+pub fn call_line(world: &WorldCore, hook: &str, args: &Value) -> String {
+    let call = Call {
+        call: hook,
+        args,
+        snapshot: snapshot_value(world),
+    };
+    serde_json::to_string(&call).unwrap_or_default()
+}
+
+/// The reply line to request `op` with `args` and `kwargs`, run on `world`
+/// (`op` one that [`serves`]).
+pub fn reply_line(
+    world: &mut WorldCore,
+    op: &str,
+    args: &[Value],
+    kwargs: &Map<String, Value>,
+) -> String {
+    let mut reply = Map::new();
+    match answer(world, op, args, kwargs) {
+        Ok(v) => reply.insert("ok".to_owned(), v),
+        Err(e) => reply.insert("error".to_owned(), json!([e.kind.name(), e.message])),
+    };
+    reply.insert("snapshot".to_owned(), snapshot_value(world));
+    Value::Object(reply).to_string()
+}
+
+/// A scene sent as JSON (`Scene._to_json`), rebuilt through every check of
+/// a scene built in code.
+pub fn scene_from_json(text: &str) -> WorldResult<Scene> {
+    let raw: Scene = serde_json::from_str(text)
+        .map_err(|e| WorldError::new(ErrorKind::Scene, format!("a scene sent as JSON: {e}")))?;
+    raw.rebuilt()
+        .map_err(|e| WorldError::from(e.of("a scene sent as JSON")))
+}
+
+fn record<T: Serialize>(class: &str, value: &T) -> WorldResult<Value> {
+    let data = serde_json::to_value(value).map_err(|e| WorldError::value(e.to_string()))?;
+    Ok(json!({ "$record": class, "data": data }))
+}
+
+/// Runs request `op` on `world`: its result as JSON, or why it refused.
+pub fn answer(
+    world: &mut WorldCore,
+    op: &str,
+    args: &[Value],
+    kwargs: &Map<String, Value>,
+) -> WorldResult<Value> {
+    if let Some(name) = op.strip_prefix('=') {
+        let [value] = args else {
+            return Err(type_error(format!("world.{name} = takes one value")));
+        };
+        if !kwargs.is_empty() {
+            return Err(type_error(format!("world.{name} = takes one value")));
+        }
+        let arg = Arg { name, value };
+        match name {
+            "paused" => world.set_paused(arg.get()?)?,
+            "time_scale" => world.set_time_scale(arg.get()?)?,
+            "view" => world.set_view(&arg.get::<String>()?)?,
+            "observer" => world.set_observer(arg.get::<Option<String>>()?.as_deref())?,
+            _ => return Err(unknown(op)),
+        }
+        return Ok(Value::Null);
+    }
+    let none = Value::Null;
+    let b = |params: &'static [&'static str]| Bound::new(op, params, args, kwargs);
+    Ok(match op {
+        "start" => {
+            let a = b(&["scene"])?;
+            let scene = match a.value(0) {
+                Some(Value::Object(m)) if m.len() == 1 => match m.get("$scene") {
+                    Some(Value::String(text)) => scene_from_json(text)?,
+                    _ => return Err(a.wrong(0, "a lightcone.Scene")),
+                },
+                Some(_) => return Err(a.wrong(0, "a lightcone.Scene")),
+                None => return Err(a.missing(0)),
+            };
+            world.start(scene);
+            none
+        }
+        "pause" => {
+            b(&[])?;
+            world.set_paused(true)?;
+            none
+        }
+        "resume" => {
+            b(&[])?;
+            world.set_paused(false)?;
+            none
+        }
+        "set_effect" => {
+            let a = b(&["name", "on"])?;
+            world.set_effect(&a.req::<String>(0)?, a.req(1)?)?;
+            none
+        }
+        "state" => {
+            b(&[])?;
+            record("State", &world.state()?)?
+        }
+        "collisions" => {
+            b(&[])?;
+            let all = world.collisions()?;
+            let records: WorldResult<Vec<Value>> =
+                all.iter().map(|c| record("Collision", c)).collect();
+            Value::Array(records?)
+        }
+        "velocity" => {
+            let a = b(&["name"])?;
+            let (x, y) = world.velocity(&a.req::<String>(0)?)?;
+            json!([x, y])
+        }
+        "impulse" => {
+            let a = b(&["name", "du"])?;
+            let [x, y] = a.req::<Vector<2>>(1)?.0;
+            world.impulse(&a.req::<String>(0)?, (x, y))?;
+            none
+        }
+        "observe" => {
+            let a = b(&["observer", "t", "vertices", "effects", "at"])?;
+            let report = world.observe(
+                a.opt::<String>(0)?.as_deref(),
+                a.opt(1)?,
+                a.opt(2)?.unwrap_or(false),
+                a.opt(3)?,
+                a.opt(4)?,
+            )?;
+            record("Observation", &report)?
+        }
+        "diagram" => {
+            let a = b(&["path", "observer", "size", "at", "axis", "frame"])?;
+            let size = a.opt::<Vector<2>>(2)?.map_or((1000, 700), |v| {
+                // As Python's (u32, u32): whole numbers only.
+                (v.0[0] as u32, v.0[1] as u32)
+            });
+            if let Some(v) = a.opt::<Vector<2>>(2)?
+                && v.0
+                    .iter()
+                    .any(|x| x.fract() != 0.0 || *x < 0.0 || *x > f64::from(u32::MAX))
+            {
+                return Err(a.wrong(2, "two whole numbers of pixels"));
+            }
+            let (image, t) = world.diagram(
+                a.opt::<String>(1)?.as_deref(),
+                size,
+                a.opt(3)?,
+                &a.opt::<String>(4)?.unwrap_or_else(|| "x".to_owned()),
+                a.opt::<String>(5)?.as_deref(),
+            )?;
+            let png = image.png_bytes().map_err(WorldError::value)?;
+            if let Some(path) = a.opt::<String>(0)? {
+                let path = world.dir.join(path);
+                std::fs::write(&path, &png)
+                    .map_err(|e| WorldError::value(format!("{}: {e}", path.display())))?;
+            }
+            let text = base64::engine::general_purpose::STANDARD.encode(&png);
+            json!({ "$frame": [text, image.width, image.height, t] })
+        }
+        "show_diagram" => {
+            let a = b(&["on", "frame", "axis"])?;
+            world.show_diagram(
+                a.opt(0)?.unwrap_or(true),
+                a.opt::<String>(1)?.as_deref(),
+                &a.opt::<String>(2)?.unwrap_or_else(|| "x".to_owned()),
+            )?;
+            none
+        }
+        "simultaneity" => {
+            let a = b(&["frame", "at"])?;
+            let line = world.simultaneity(&a.req::<String>(0)?, a.opt(1)?)?;
+            serde_json::to_value(line).map_err(|e| WorldError::value(e.to_string()))?
+        }
+        "say" => {
+            let a = b(&["text", "append"])?;
+            world.say(&a.req::<String>(0)?, a.opt(1)?.unwrap_or(false));
+            none
+        }
+        "ask" => {
+            let a = b(&["question", "choices", "answer"])?;
+            world.ask(&a.req::<String>(0)?, a.req(1)?, a.opt(2)?)?;
+            none
+        }
+        "check" => {
+            let a = b(&["claim", "ok", "detail"])?;
+            let claim = world.check(
+                &a.req::<String>(0)?,
+                a.req(1)?,
+                &a.opt::<String>(2)?.unwrap_or_default(),
+            )?;
+            Value::Bool(claim.ok)
+        }
+        "bars" => {
+            let a = b(&["title", "edges", "counts", "expected"])?;
+            world.bars(&a.req::<String>(0)?, a.req(1)?, a.req(2)?, a.opt(3)?)?;
+            none
+        }
+        "finish" => {
+            let a = b(&["message", "after_light_from"])?;
+            let light = a.opt::<Vector<3>>(1)?.map(|v| (v.0[0], v.0[1], v.0[2]));
+            world.finish(&a.opt::<String>(0)?.unwrap_or_default(), light)?;
+            none
+        }
+        "claims" => {
+            b(&[])?;
+            Value::Array(
+                world
+                    .claims()
+                    .into_iter()
+                    .map(|(c, ok, d)| json!([c, ok, d]))
+                    .collect(),
+            )
+        }
+        "scene" => {
+            b(&[])?;
+            let scene = world.game()?.scene();
+            let text =
+                serde_json::to_string(scene).map_err(|e| WorldError::value(e.to_string()))?;
+            json!({ "$scene": text })
+        }
+        "finished" => {
+            b(&[])?;
+            Value::Bool(world.finished())
+        }
+        _ => return Err(unknown(op)),
+    })
+}
+
+fn type_error(message: String) -> WorldError {
+    WorldError::new(ErrorKind::Type, message)
+}
+
+fn unknown(op: &str) -> WorldError {
+    WorldError::new(
+        ErrorKind::Runtime,
+        format!("the game does not serve {op:?}"),
+    )
+}
+
+/// A request's arguments bound to a method's parameters, as Python binds
+/// them: positional ones in order, then keywords by name.
+struct Bound<'a> {
+    op: &'a str,
+    params: &'static [&'static str],
+    values: Vec<Option<&'a Value>>,
+}
+
+impl<'a> Bound<'a> {
+    fn new(
+        op: &'a str,
+        params: &'static [&'static str],
+        args: &'a [Value],
+        kwargs: &'a Map<String, Value>,
+    ) -> WorldResult<Self> {
+        if args.len() > params.len() {
+            return Err(type_error(format!(
+                "World.{op}() takes {} positional arguments but {} were given",
+                params.len(),
+                args.len()
+            )));
+        }
+        let mut values: Vec<Option<&Value>> = vec![None; params.len()];
+        for (slot, v) in values.iter_mut().zip(args) {
+            *slot = Some(v);
+        }
+        for (k, v) in kwargs {
+            let Some(i) = params.iter().position(|p| p == k) else {
+                return Err(type_error(format!(
+                    "World.{op}() got an unexpected keyword argument '{k}'"
+                )));
+            };
+            if values[i].is_some() {
+                return Err(type_error(format!(
+                    "World.{op}() got multiple values for argument '{k}'"
+                )));
+            }
+            values[i] = Some(v);
+        }
+        Ok(Self { op, params, values })
+    }
+
+    fn value(&self, i: usize) -> Option<&'a Value> {
+        self.values[i]
+    }
+
+    fn missing(&self, i: usize) -> WorldError {
+        type_error(format!(
+            "World.{}() missing 1 required positional argument: '{}'",
+            self.op, self.params[i]
+        ))
+    }
+
+    fn wrong(&self, i: usize, what: &str) -> WorldError {
+        type_error(format!(
+            "World.{}(): argument '{}': give {what}",
+            self.op, self.params[i]
+        ))
+    }
+
+    /// Required argument `i`.
+    fn req<T: FromArg>(&self, i: usize) -> WorldResult<T> {
+        let value = self.values[i].ok_or_else(|| self.missing(i))?;
+        T::from_arg(value).map_err(|what| self.wrong(i, what))
+    }
+
+    /// Optional argument `i` (`None` when not given or `None`).
+    fn opt<T: FromArg>(&self, i: usize) -> WorldResult<Option<T>> {
+        match self.values[i] {
+            None | Some(Value::Null) => Ok(None),
+            Some(v) => T::from_arg(v).map(Some).map_err(|what| self.wrong(i, what)),
+        }
+    }
+}
+
+/// The one value of an attribute set (`world.view = "split"`).
+struct Arg<'a> {
+    name: &'a str,
+    value: &'a Value,
+}
+
+impl Arg<'_> {
+    fn get<T: FromArg>(&self) -> WorldResult<T> {
+        T::from_arg(self.value)
+            .map_err(|what| type_error(format!("world.{} = : give {what}", self.name)))
+    }
+}
+
+/// A vector as Python gives it: any sequence of `N` numbers.
+struct Vector<const N: usize>([f64; N]);
+
+/// A value read from a request's JSON argument, or what it should have
+/// been.
+trait FromArg: Sized {
+    fn from_arg(v: &Value) -> Result<Self, &'static str>;
+}
+
+impl FromArg for String {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        v.as_str().map(str::to_owned).ok_or("a str")
+    }
+}
+
+impl FromArg for f64 {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        v.as_f64().ok_or("a number")
+    }
+}
+
+impl FromArg for bool {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        v.as_bool().ok_or("True or False")
+    }
+}
+
+impl FromArg for usize {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        v.as_u64()
+            .and_then(|n| usize::try_from(n).ok())
+            .ok_or("a whole number ≥ 0")
+    }
+}
+
+impl<T: FromArg> FromArg for Option<T> {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        match v {
+            Value::Null => Ok(None),
+            v => T::from_arg(v).map(Some),
+        }
+    }
+}
+
+impl FromArg for Vec<String> {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        const WHAT: &str = "a list of str";
+        let items = v.as_array().ok_or(WHAT)?;
+        items
+            .iter()
+            .map(|x| x.as_str().map(str::to_owned).ok_or(WHAT))
+            .collect()
+    }
+}
+
+impl FromArg for Vec<f64> {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        const WHAT: &str = "a list of numbers";
+        let items = v.as_array().ok_or(WHAT)?;
+        items.iter().map(|x| x.as_f64().ok_or(WHAT)).collect()
+    }
+}
+
+impl<const N: usize> FromArg for Vector<N> {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        let what = if N == 2 {
+            "2 numbers (a tuple, list or array)"
+        } else {
+            "3 numbers (a tuple, list or array)"
+        };
+        let items = v.as_array().filter(|a| a.len() == N).ok_or(what)?;
+        let mut out = [0.0; N];
+        for (slot, x) in out.iter_mut().zip(items) {
+            *slot = x.as_f64().ok_or(what)?;
+        }
+        Ok(Self(out))
+    }
+}

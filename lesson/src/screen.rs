@@ -1,0 +1,127 @@
+//! What a lesson has put on the student's screen: its text, the question
+//! it asked, the claims it checked, its bar charts and its closing
+//! message. The window's lesson panel draws a [`LessonUi`]; the world's
+//! operations (`crate::WorldCore`) change it.
+
+use lightcone_engine::spacetime::Event;
+
+/// Which pictures the game shows: what is seen, the truth, or both side by
+/// side.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pictures {
+    /// What the observer sees.
+    Seen,
+    /// The board as it is at the same board time.
+    Truth,
+    /// Both, side by side.
+    Split,
+}
+
+impl Pictures {
+    /// The name a lesson uses (`world.view`): "seen", "truth" or "split".
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Seen => "seen",
+            Self::Truth => "truth",
+            Self::Split => "split",
+        }
+    }
+
+    /// The pictures named `name` (see [`Self::name`]), if any.
+    #[must_use]
+    pub fn named(name: &str) -> Option<Self> {
+        [Self::Seen, Self::Truth, Self::Split]
+            .into_iter()
+            .find(|p| p.name() == name)
+    }
+}
+
+/// A question on screen, waiting for (or answered with) a choice.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Question {
+    /// The question.
+    pub text: String,
+    /// The possible answers, shown as buttons.
+    pub choices: Vec<String>,
+    /// Index of the right answer, if the lesson gave one.
+    pub answer: Option<usize>,
+    /// Index the student chose, once they have.
+    pub chosen: Option<usize>,
+    /// The game was running when the question paused it (so answering
+    /// resumes it).
+    pub resume: bool,
+}
+
+/// A physics claim the lesson checked, shown as ✓ or ✗ (and failing the
+/// headless run when false).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Claim {
+    /// What is claimed.
+    pub claim: String,
+    /// Whether it held.
+    pub ok: bool,
+    /// The numbers behind it.
+    pub detail: String,
+}
+
+/// Most claims a lesson may check (the shipped lessons check a few
+/// dozen): past it `check` raises, so a flood of claims cannot grow the
+/// game's memory or its panel.
+pub const MAX_CLAIMS: usize = 10_000;
+
+/// Longest claim, or claim's detail, in bytes of UTF-8.
+pub const MAX_CLAIM_BYTES: usize = 4096;
+
+/// Most bar charts (by title) a lesson may show at once, and most bins a
+/// chart may have.
+pub const MAX_CHARTS: usize = 64;
+/// See [`MAX_CHARTS`].
+pub const MAX_BINS: usize = 10_000;
+
+/// A bar chart (for instance a speed histogram) with an optional expected
+/// curve drawn over it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bars {
+    /// Title above the chart.
+    pub title: String,
+    /// Bin edges (one more than the counts).
+    pub edges: Vec<f64>,
+    /// Bar heights.
+    pub counts: Vec<f64>,
+    /// Expected heights per bin, drawn as a line.
+    pub expected: Option<Vec<f64>>,
+}
+
+/// Everything the lesson has put on screen.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LessonUi {
+    /// The lesson's current text.
+    pub text: String,
+    /// The current question.
+    pub question: Option<Question>,
+    /// Claims checked so far, in order.
+    pub claims: Vec<Claim>,
+    /// Charts, by title (a chart with the same title replaces the old).
+    pub bars: Vec<Bars>,
+    /// Set by `finish`: the closing message (no hook runs after it).
+    pub finished: Option<String>,
+    /// Set by `finish(after_light_from=…)`: the board event (board time s,
+    /// position m on the cloth, z = 0) whose light the closing message
+    /// waits for. The game clears it once that light has reached the eye
+    /// looked through; until then the message is not shown.
+    pub finish_light: Option<Event>,
+    /// The newest lines the lesson printed.
+    pub printed: Vec<String>,
+}
+
+impl LessonUi {
+    /// The closing message as the screen shows it: set by `finish`, and,
+    /// when it waits for an event's light, once that light has arrived.
+    #[must_use]
+    pub fn closing(&self) -> Option<&str> {
+        self.finished
+            .as_deref()
+            .filter(|_| self.finish_light.is_none())
+    }
+}

@@ -1,0 +1,452 @@
+//! The world a lesson's hooks are given, without Python: the running game
+//! (board time, pucks, effects, view) and the lesson's voice on screen,
+//! with every operation checked. Python's `lightcone.World` wraps a
+//! [`WorldCore`]; the protocol's server (`crate::protocol`) answers a
+//! lesson run elsewhere with the same operations.
+
+use std::path::PathBuf;
+
+use lightcone_engine::report::{CollisionLine, ObserveReport, StateLine};
+use lightcone_engine::scene::{Effect, Scene};
+use lightcone_engine::spacetime::Event;
+
+use crate::error::{ErrorKind, WorldError, WorldResult};
+use crate::query::{self, SimultaneityLine};
+use crate::{Bars, Claim, LessonGame, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS};
+use crate::{NewGame, Pictures, Question};
+
+/// The running game as a lesson sees it, and what the lesson shows.
+pub struct WorldCore {
+    /// The game, while a hook runs (lent by the host).
+    pub game: Option<Box<dyn LessonGame>>,
+    /// What the lesson shows.
+    pub ui: LessonUi,
+    /// Bumped by `start`, so the host knows the collision list restarted.
+    pub generation: u64,
+    /// The lesson file's directory, to resolve relative paths.
+    pub dir: PathBuf,
+    /// Makes the game `start` starts.
+    new_game: NewGame,
+}
+
+/// The message of the error every game operation gives outside a hook.
+pub const NO_GAME: &str = "the world has no game here: call world.start(scene) in setup(world), and use the world only inside a hook";
+
+fn no_game() -> WorldError {
+    WorldError::new(ErrorKind::Runtime, NO_GAME)
+}
+
+impl WorldCore {
+    /// A world with no game yet, for the lesson in directory `dir`;
+    /// [`Self::start`] makes one with `new_game`.
+    #[must_use]
+    pub fn new(dir: PathBuf, new_game: NewGame) -> Self {
+        Self {
+            game: None,
+            ui: LessonUi::default(),
+            generation: 0,
+            dir,
+            new_game,
+        }
+    }
+
+    /// The game, or why there is none.
+    pub fn game(&self) -> WorldResult<&dyn LessonGame> {
+        self.game.as_deref().ok_or_else(no_game)
+    }
+
+    /// The game to change, or why there is none.
+    pub fn game_mut(&mut self) -> WorldResult<&mut dyn LessonGame> {
+        match self.game.as_deref_mut() {
+            Some(g) => Ok(g),
+            None => Err(no_game()),
+        }
+    }
+
+    /// Starts (or restarts) the game on `scene` at board time 0. Keeps the
+    /// view, eye choice and time scale the student had.
+    pub fn start(&mut self, scene: Scene) {
+        let mut game = (self.new_game)(scene);
+        if let Some(old) = &self.game {
+            game.set_pictures(old.pictures());
+            game.set_time_scale(old.time_scale());
+            if old
+                .observer()
+                .is_some_and(|i| i < game.scene().observers.len())
+            {
+                game.set_observer(old.observer());
+            }
+        }
+        self.game = Some(game);
+        self.generation += 1;
+    }
+
+    /// Loads a scene file; a relative path is taken from the lesson's
+    /// directory. A scene error names the file, line and field.
+    pub fn load(&self, path: PathBuf) -> WorldResult<Scene> {
+        let path = if path.is_relative() {
+            self.dir.join(path)
+        } else {
+            path
+        };
+        Ok(lightcone_engine::scene::load(&path)?)
+    }
+
+    /// Board time the physics has reached, s.
+    pub fn t(&self) -> WorldResult<f64> {
+        Ok(self.game()?.live_time())
+    }
+
+    /// Speed of light, m/s.
+    pub fn c(&self) -> WorldResult<f64> {
+        Ok(self.game()?.scene().c)
+    }
+
+    /// Whether time stands still.
+    pub fn paused(&self) -> WorldResult<bool> {
+        Ok(self.game()?.paused())
+    }
+
+    /// Stops (`true`) or restarts time.
+    pub fn set_paused(&mut self, paused: bool) -> WorldResult<()> {
+        self.game_mut()?.set_paused(paused);
+        Ok(())
+    }
+
+    /// Board seconds per real second.
+    pub fn time_scale(&self) -> WorldResult<f64> {
+        Ok(self.game()?.time_scale())
+    }
+
+    /// Sets board seconds per real second, in (0, 10⁶].
+    pub fn set_time_scale(&mut self, scale: f64) -> WorldResult<()> {
+        if !(scale.is_finite() && scale > 0.0 && scale <= 1e6) {
+            return Err(WorldError::value(format!(
+                "time_scale = {scale}: give a number in (0, 1e6]"
+            )));
+        }
+        self.game_mut()?.set_time_scale(scale);
+        Ok(())
+    }
+
+    /// Which pictures: "seen", "truth" or "split".
+    pub fn view(&self) -> WorldResult<&'static str> {
+        Ok(self.game()?.pictures().name())
+    }
+
+    /// Chooses the pictures by name (see [`Self::view`]).
+    pub fn set_view(&mut self, view: &str) -> WorldResult<()> {
+        let mode = Pictures::named(view).ok_or_else(|| {
+            WorldError::value(format!(
+                "view {view:?}: use \"seen\", \"truth\" or \"split\""
+            ))
+        })?;
+        self.game_mut()?.set_pictures(mode);
+        Ok(())
+    }
+
+    /// The scene observer whose eye is used, or `None` for the free eye.
+    pub fn observer(&self) -> WorldResult<Option<String>> {
+        let g = self.game()?;
+        Ok(g.observer()
+            .and_then(|i| g.scene().observers.get(i))
+            .map(|o| o.name.clone()))
+    }
+
+    /// Chooses the eye: a scene observer by name, or `None` for the free eye.
+    pub fn set_observer(&mut self, name: Option<&str>) -> WorldResult<()> {
+        let g = self.game_mut()?;
+        let observer = match name {
+            None => None,
+            Some(n) => Some(query::observer_index(g.scene(), Some(n))?),
+        };
+        g.set_observer(observer);
+        Ok(())
+    }
+
+    /// The effects shown: each effect's key and whether it is on.
+    pub fn effects(&self) -> WorldResult<Vec<(&'static str, bool)>> {
+        let shown = self.game()?.effects();
+        Ok(Effect::ALL
+            .iter()
+            .map(|e| (e.key(), shown.is_on(*e)))
+            .collect())
+    }
+
+    /// Turns an effect on or off in the student's view.
+    pub fn set_effect(&mut self, name: &str, on: bool) -> WorldResult<()> {
+        let e = query::effect(name)?;
+        self.game_mut()?.effects_mut().set(e, on);
+        Ok(())
+    }
+
+    /// Every puck now: the `state` record of `lightcone simulate`.
+    pub fn state(&self) -> WorldResult<StateLine> {
+        let g = self.game()?;
+        Ok(StateLine::new(g.billiard(), g.live_time()))
+    }
+
+    /// Every collision so far, as the records `lightcone simulate` prints.
+    pub fn collisions(&self) -> WorldResult<Vec<CollisionLine>> {
+        let b = self.game()?.billiard();
+        Ok(b.collisions()
+            .iter()
+            .map(|c| CollisionLine::new(b, c))
+            .collect())
+    }
+
+    /// The proper velocity γβ of puck `name` now, (x, y).
+    pub fn velocity(&self, name: &str) -> WorldResult<(f64, f64)> {
+        let g = self.game()?;
+        query::velocity(g.billiard(), name, g.live_time())
+    }
+
+    /// Strikes puck `name` now: its proper velocity γβ grows by `du`.
+    pub fn impulse(&mut self, name: &str, du: (f64, f64)) -> WorldResult<()> {
+        let g = self.game_mut()?;
+        let t = g.live_time();
+        query::impulse(g.billiard_mut(), name, t, du)
+    }
+
+    /// What `observer` (default: the first scene observer) sees at board
+    /// time `at` (default: now; `t` is the older name): the report
+    /// `lightcone observe` prints. `effects`: `None` for those shown, or
+    /// effect keys. A time after now is a `NotComputed` error.
+    pub fn observe(
+        &self,
+        observer: Option<&str>,
+        t: Option<f64>,
+        vertices: bool,
+        effects: Option<Vec<String>>,
+        at: Option<f64>,
+    ) -> WorldResult<ObserveReport> {
+        let g = self.game()?;
+        if t.is_some() && at.is_some() {
+            return Err(WorldError::value("observe: give at or t, not both"));
+        }
+        let t = query::past_time(at.or(t), g.live_time())?;
+        let fx = query::effects_from(g.effects(), effects)?;
+        query::observation(g.scene(), g.billiard(), t, observer, vertices, fx)
+    }
+
+    /// The space-time diagram at board time `at` (default: now) and that
+    /// time (see [`query::diagram`]).
+    pub fn diagram(
+        &self,
+        observer: Option<&str>,
+        size: (u32, u32),
+        at: Option<f64>,
+        axis: &str,
+        frame: Option<&str>,
+    ) -> WorldResult<(lightcone_render::headless::Image, f64)> {
+        let g = self.game()?;
+        let t = query::past_time(at, g.live_time())?;
+        let image = query::diagram(g.scene(), g.billiard(), t, observer, size, axis, frame)?;
+        Ok((image, t))
+    }
+
+    /// Opens (`on`) or closes the live space-time diagram, drawing puck
+    /// `frame`'s lines of simultaneity (`None`: only the board's), with
+    /// board `axis` "x" or "y" across.
+    pub fn show_diagram(&mut self, on: bool, frame: Option<&str>, axis: &str) -> WorldResult<()> {
+        let axis = lightcone_render::diagram::Axis::parse(axis).map_err(WorldError::value)?;
+        let g = self.game_mut()?;
+        let frame = frame
+            .map(|f| query::puck_index(g.billiard(), f))
+            .transpose()?;
+        g.set_diagram(on, frame, axis);
+        Ok(())
+    }
+
+    /// The line of simultaneity of puck `frame`'s rest frame through its
+    /// event at board time `at` (default: now).
+    pub fn simultaneity(&self, frame: &str, at: Option<f64>) -> WorldResult<SimultaneityLine> {
+        let g = self.game()?;
+        let t = query::past_time(at, g.live_time())?;
+        query::simultaneity(g.scene(), g.billiard(), frame, t)
+    }
+
+    /// Shows `text` as the lesson's message: replacing the previous one,
+    /// or with `append` as a new line after it.
+    pub fn say(&mut self, text: &str, append: bool) {
+        if append && !self.ui.text.is_empty() {
+            self.ui.text.push('\n');
+            self.ui.text.push_str(text);
+        } else {
+            self.ui.text = text.to_owned();
+        }
+    }
+
+    /// Asks the student a question with `choices` and pauses until they
+    /// answer. `answer`: index of the right choice.
+    pub fn ask(
+        &mut self,
+        question: &str,
+        choices: Vec<String>,
+        answer: Option<usize>,
+    ) -> WorldResult<()> {
+        if choices.is_empty() {
+            return Err(WorldError::value("ask: give at least one choice"));
+        }
+        if let Some(a) = answer
+            && a >= choices.len()
+        {
+            return Err(WorldError::value(format!(
+                "ask: answer {a} is not a choice index (0 to {})",
+                choices.len() - 1
+            )));
+        }
+        // A question asked over an unanswered one inherits its promise to
+        // resume.
+        let open = self
+            .ui
+            .question
+            .as_ref()
+            .is_some_and(|q| q.chosen.is_none() && q.resume);
+        let g = self.game_mut()?;
+        let resume = !g.paused() || open;
+        g.set_paused(true);
+        self.ui.question = Some(Question {
+            text: question.to_owned(),
+            choices,
+            answer,
+            chosen: None,
+            resume,
+        });
+        Ok(())
+    }
+
+    /// Records a physics claim, shown as ✓/✗ with `detail`; returns it.
+    pub fn check(&mut self, claim: &str, ok: bool, detail: &str) -> WorldResult<Claim> {
+        if self.ui.claims.len() >= MAX_CLAIMS {
+            return Err(WorldError::value(format!(
+                "world.check: a lesson may check at most {MAX_CLAIMS} claims; this is one more"
+            )));
+        }
+        if claim.len().max(detail.len()) > MAX_CLAIM_BYTES {
+            return Err(WorldError::value(format!(
+                "world.check: a claim or its detail of {} bytes; give at most {MAX_CLAIM_BYTES}",
+                claim.len().max(detail.len())
+            )));
+        }
+        let made = Claim {
+            claim: claim.to_owned(),
+            ok,
+            detail: detail.to_owned(),
+        };
+        self.ui.claims.push(made.clone());
+        Ok(made)
+    }
+
+    /// The claims checked so far, as (claim, ok, detail).
+    #[must_use]
+    pub fn claims(&self) -> Vec<(String, bool, String)> {
+        self.ui
+            .claims
+            .iter()
+            .map(|c| (c.claim.clone(), c.ok, c.detail.clone()))
+            .collect()
+    }
+
+    /// Draws a bar chart: `counts` over bins with `edges` (one more edge
+    /// than counts), with `expected` per bin drawn as a line.
+    pub fn bars(
+        &mut self,
+        title: &str,
+        edges: Vec<f64>,
+        counts: Vec<f64>,
+        expected: Option<Vec<f64>>,
+    ) -> WorldResult<()> {
+        if edges.len() != counts.len() + 1 || counts.is_empty() {
+            return Err(WorldError::value(format!(
+                "bars {title:?}: {} edges for {} counts; give one more edge than counts",
+                edges.len(),
+                counts.len()
+            )));
+        }
+        if expected.as_ref().is_some_and(|e| e.len() != counts.len()) {
+            return Err(WorldError::value(format!(
+                "bars {title:?}: expected has a different length from counts"
+            )));
+        }
+        let all = edges.iter().chain(&counts).chain(expected.iter().flatten());
+        if all.clone().any(|x| !x.is_finite()) {
+            return Err(WorldError::value(format!(
+                "bars {title:?}: every number must be finite"
+            )));
+        }
+        if counts.len() > MAX_BINS {
+            return Err(WorldError::value(format!(
+                "bars {title:?}: {} bins; give at most {MAX_BINS}",
+                counts.len()
+            )));
+        }
+        if title.len() > MAX_CLAIM_BYTES {
+            return Err(WorldError::value(format!(
+                "bars: a title of {} bytes; give at most {MAX_CLAIM_BYTES}",
+                title.len()
+            )));
+        }
+        if self.ui.bars.len() >= MAX_CHARTS && !self.ui.bars.iter().any(|b| b.title == title) {
+            return Err(WorldError::value(format!(
+                "bars {title:?}: a lesson may show at most {MAX_CHARTS} charts (one per title)"
+            )));
+        }
+        let chart = Bars {
+            title: title.to_owned(),
+            edges,
+            counts,
+            expected,
+        };
+        match self.ui.bars.iter_mut().find(|b| b.title == title) {
+            Some(b) => *b = chart,
+            None => self.ui.bars.push(chart),
+        }
+        Ok(())
+    }
+
+    /// Ends the lesson with a closing `message`: no hook runs again, and
+    /// the message is shown at once or, with `after_light_from = (t, x,
+    /// y)` (a board event: s, m), once that event's light has reached the
+    /// eye looked through.
+    pub fn finish(
+        &mut self,
+        message: &str,
+        after_light_from: Option<(f64, f64, f64)>,
+    ) -> WorldResult<()> {
+        let light = match after_light_from {
+            None => None,
+            Some((t, x, y)) => {
+                if !(t.is_finite() && x.is_finite() && y.is_finite()) {
+                    return Err(WorldError::value(format!(
+                        "finish: after_light_from = ({t}, {x}, {y}): give a board event (t s, x m, y m) of finite numbers"
+                    )));
+                }
+                Some(Event::new(t, glam::DVec3::new(x, y, 0.0)))
+            }
+        };
+        self.ui.finished = Some(message.to_owned());
+        self.ui.finish_light = light;
+        Ok(())
+    }
+
+    /// Whether `finish` was called (then no further hook will run).
+    #[must_use]
+    pub fn finished(&self) -> bool {
+        self.ui.finished.is_some()
+    }
+
+    /// `World(title, t = …, n pucks)`, or `World(no game)`.
+    #[must_use]
+    pub fn describe(&self) -> String {
+        match &self.game {
+            Some(g) => format!(
+                "World({:?}, t = {:.3} s, {} pucks)",
+                g.scene().title,
+                g.live_time(),
+                g.billiard().len()
+            ),
+            None => "World(no game)".to_owned(),
+        }
+    }
+}
