@@ -1,0 +1,107 @@
+// The page's side of a lesson run in the browser: starts the lesson's
+// worker (lesson_worker.js: Pyodide in a module Web Worker) and carries the
+// lesson protocol's JSON lines (game/src/lesson/remote.rs) both ways. The
+// game (Rust, compiled to wasm) calls it and polls it every frame:
+//
+//   lightconeLesson.open(name, source, limitSeconds)  a new worker for the
+//       lesson `name` (its file name, the lesson's __file__) whose Python
+//       is `source`; any running one is ended first
+//   lightconeLesson.send(line)  a Down line to the worker: a call
+//       {"call": hook, "args": [...], "snapshot": {...}} or the answer to a
+//       request {"ok": v, "snapshot": {...}} / {"error": [kind, message],
+//       "snapshot": {...}}; false when no worker runs
+//   lightconeLesson.take()  the messages since the last take, oldest first:
+//       {kind: "ready"} (Python and the package loaded; the lesson's code
+//       has not run), {kind: "line", line} (an Up line: a request, or a
+//       hook's {"done": ...}), {kind: "failed", error} (lessons cannot run:
+//       Pyodide did not load, no JSPI ...), {kind: "ended", why} (the worker
+//       broke down or crashed)
+//   lightconeLesson.stop()  ends the worker (the game's time limit, a reload),
+//       dropping what it sent that was not taken
+//   lightconeLesson.state()  "none" (no worker: never opened, or stopped),
+//       "loading", "ready", or "ended" (after "failed" or "ended")
+//
+// Nothing here times hooks: the game does, and calls stop().
+(function () {
+  "use strict";
+
+  let worker = null;
+  let current = "none";
+  let received = [];
+
+  // Ends the worker and forgets it (its late messages are ignored).
+  function end(next) {
+    if (worker) worker.terminate();
+    worker = null;
+    current = next;
+  }
+
+  function open(name, source, limitSeconds) {
+    end("none");
+    received = [];
+    current = "loading";
+    let w;
+    try {
+      w = new Worker("./lesson_worker.js", { type: "module" });
+    } catch (e) {
+      received.push({ kind: "failed", error: `the lesson's worker could not start: ${e}` });
+      current = "ended";
+      return;
+    }
+    worker = w;
+    w.onmessage = (e) => {
+      if (w !== worker) return;
+      const m = e.data || {};
+      if (m.kind === "ready") {
+        current = "ready";
+        received.push({ kind: "ready" });
+      } else if (m.kind === "line" && typeof m.line === "string") {
+        received.push({ kind: "line", line: m.line });
+      } else if (m.kind === "failed") {
+        received.push({ kind: "failed", error: String(m.error) });
+        end("ended");
+      } else if (m.kind === "ended") {
+        received.push({ kind: "ended", why: String(m.why) });
+        end("ended");
+      }
+    };
+    // An uncaught error in the worker, or a worker script that did not load.
+    w.onerror = (e) => {
+      if (w !== worker) return;
+      if (e && e.preventDefault) e.preventDefault();
+      const why = e && e.message ? e.message : "its script could not be loaded (./lesson_worker.js)";
+      received.push({ kind: "ended", why: `the lesson's worker stopped: ${why}` });
+      end("ended");
+    };
+    w.onmessageerror = () => {
+      if (w !== worker) return;
+      received.push({ kind: "ended", why: "the lesson's worker sent a message that cannot be read" });
+      end("ended");
+    };
+    w.postMessage({ kind: "open", name: String(name), source: String(source), limit: Number(limitSeconds) });
+  }
+
+  function send(line) {
+    if (!worker) return false;
+    worker.postMessage({ kind: "line", line: String(line) });
+    return true;
+  }
+
+  function take() {
+    const taken = received;
+    received = [];
+    return taken;
+  }
+
+  // What the stopped worker sent and was not taken is dropped with it.
+  function stop() {
+    end("none");
+    received = [];
+  }
+
+  function state() {
+    return current;
+  }
+
+  window.lightconeLesson = { open, send, take, stop, state };
+})();
