@@ -19,6 +19,7 @@ pub mod commands;
 pub mod interrupt;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod lesson;
+pub mod lesson_game;
 pub mod links;
 pub mod model;
 pub mod output;

@@ -12,11 +12,14 @@
 
 #![warn(clippy::must_use_candidate)]
 
+mod args;
 pub mod error;
 mod game;
 pub mod protocol;
 pub mod query;
+pub mod scene_code;
 mod screen;
+pub mod standin;
 mod world;
 
 pub use error::{ErrorKind, WorldError, WorldResult};

@@ -15,12 +15,23 @@
 
 use base64::Engine as _;
 use lightcone_engine::scene::{Effect, Scene};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
 use crate::LessonGame;
+use crate::args::{Arg, Bound, Vector, type_error};
 use crate::error::{ErrorKind, WorldError, WorldResult};
 use crate::world::{NO_GAME, WorldCore};
+
+/// Longest a single hook may run (a lesson's process is stopped, a
+/// browser's worker ended, past it).
+pub const HOOK_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// Longest line either side accepts from the other, bytes.
+pub const MAX_LINE: usize = 16 << 20;
+
+/// How many of its newest printed lines the lesson's panel keeps.
+pub const PRINTED_LINES: usize = 40;
 
 /// The world's methods a lesson may request (`remote.py`'s `METHODS`).
 pub const METHODS: [&str; 17] = [
@@ -49,6 +60,33 @@ pub const GETTERS: [&str; 3] = ["claims", "scene", "finished"];
 /// The attributes a lesson may set, each requested as `=name`
 /// (`remote.py`'s `SETTABLE`).
 pub const SETTABLE: [&str; 4] = ["paused", "time_scale", "view", "observer"];
+
+/// What a lesson's side writes, one JSON object a line
+/// (`{"request": {...}}` or `{"done": {...}}`).
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Up {
+    /// A `World` method, getter or setter (`=name`) for the game to run.
+    Request {
+        /// What is asked (see [`serves`]).
+        op: String,
+        /// Its positional arguments, encoded.
+        args: Vec<Value>,
+        /// Its keyword arguments, encoded.
+        kwargs: Map<String, Value>,
+    },
+    /// The hook returned (`error: None`) or raised (its traceback).
+    Done {
+        /// The traceback, if the hook raised.
+        error: Option<String>,
+        /// The lesson's watchdog stopped the hook at its limit.
+        timed_out: bool,
+        /// What the lesson printed during the hook.
+        printed: Vec<String>,
+        /// The hooks the lesson defines (sent after `setup`).
+        hooks: Vec<String>,
+    },
+}
 
 /// Whether the game serves request `op` (one of [`METHODS`], [`GETTERS`],
 /// or `=` and one of [`SETTABLE`]): a lesson that asks for anything else
@@ -158,7 +196,7 @@ pub fn scene_from_json(text: &str) -> WorldResult<Scene> {
         .map_err(|e| WorldError::from(e.of("a scene sent as JSON")))
 }
 
-fn record<T: Serialize>(class: &str, value: &T) -> WorldResult<Value> {
+pub(crate) fn record<T: Serialize>(class: &str, value: &T) -> WorldResult<Value> {
     let data = serde_json::to_value(value).map_err(|e| WorldError::value(e.to_string()))?;
     Ok(json!({ "$record": class, "data": data }))
 }
@@ -188,7 +226,7 @@ pub fn answer(
         return Ok(Value::Null);
     }
     let none = Value::Null;
-    let b = |params: &'static [&'static str]| Bound::new(op, params, args, kwargs);
+    let b = |params: &'static [&'static str]| Bound::new("World", op, params, args, kwargs);
     Ok(match op {
         "start" => {
             let a = b(&["scene"])?;
@@ -253,17 +291,7 @@ pub fn answer(
         }
         "diagram" => {
             let a = b(&["path", "observer", "size", "at", "axis", "frame"])?;
-            let size = a.opt::<Vector<2>>(2)?.map_or((1000, 700), |v| {
-                // As Python's (u32, u32): whole numbers only.
-                (v.0[0] as u32, v.0[1] as u32)
-            });
-            if let Some(v) = a.opt::<Vector<2>>(2)?
-                && v.0
-                    .iter()
-                    .any(|x| x.fract() != 0.0 || *x < 0.0 || *x > f64::from(u32::MAX))
-            {
-                return Err(a.wrong(2, "two whole numbers of pixels"));
-            }
+            let size = pixels(&a, 2, (1000, 700))?;
             let (image, t) = world.diagram(
                 a.opt::<String>(1)?.as_deref(),
                 size,
@@ -271,14 +299,8 @@ pub fn answer(
                 &a.opt::<String>(4)?.unwrap_or_else(|| "x".to_owned()),
                 a.opt::<String>(5)?.as_deref(),
             )?;
-            let png = image.png_bytes().map_err(WorldError::value)?;
-            if let Some(path) = a.opt::<String>(0)? {
-                let path = world.dir.join(path);
-                std::fs::write(&path, &png)
-                    .map_err(|e| WorldError::value(format!("{}: {e}", path.display())))?;
-            }
-            let text = base64::engine::general_purpose::STANDARD.encode(&png);
-            json!({ "$frame": [text, image.width, image.height, t] })
+            let path = a.opt::<String>(0)?.map(|p| world.dir.join(p));
+            frame(&image, t, path.as_deref())?
         }
         "show_diagram" => {
             let a = b(&["on", "frame", "axis"])?;
@@ -349,8 +371,35 @@ pub fn answer(
     })
 }
 
-fn type_error(message: String) -> WorldError {
-    WorldError::new(ErrorKind::Type, message)
+/// Argument `i` of `a` as a size in pixels (two whole numbers, as
+/// Python's `(u32, u32)`), `default` when not given.
+pub(crate) fn pixels(a: &Bound<'_>, i: usize, default: (u32, u32)) -> WorldResult<(u32, u32)> {
+    let Some(v) = a.opt::<Vector<2>>(i)? else {
+        return Ok(default);
+    };
+    let whole = |x: f64| x.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&x);
+    if !v.0.iter().all(|x| whole(*x)) {
+        return Err(a.wrong(i, "two whole numbers of pixels"));
+    }
+    // Whole and in range: exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    Ok((v.0[0] as u32, v.0[1] as u32))
+}
+
+/// An image as a frame value (`{"$frame": [png_base64, width, height,
+/// t]}`), also written as a PNG file at `path` if given.
+pub(crate) fn frame(
+    image: &lightcone_render::headless::Image,
+    t: f64,
+    path: Option<&std::path::Path>,
+) -> WorldResult<Value> {
+    let png = image.png_bytes().map_err(WorldError::value)?;
+    if let Some(path) = path {
+        std::fs::write(path, &png)
+            .map_err(|e| WorldError::value(format!("{}: {e}", path.display())))?;
+    }
+    let text = base64::engine::general_purpose::STANDARD.encode(&png);
+    Ok(json!({ "$frame": [text, image.width, image.height, t] }))
 }
 
 fn unknown(op: &str) -> WorldError {
@@ -358,171 +407,4 @@ fn unknown(op: &str) -> WorldError {
         ErrorKind::Runtime,
         format!("the game does not serve {op:?}"),
     )
-}
-
-/// A request's arguments bound to a method's parameters, as Python binds
-/// them: positional ones in order, then keywords by name.
-struct Bound<'a> {
-    op: &'a str,
-    params: &'static [&'static str],
-    values: Vec<Option<&'a Value>>,
-}
-
-impl<'a> Bound<'a> {
-    fn new(
-        op: &'a str,
-        params: &'static [&'static str],
-        args: &'a [Value],
-        kwargs: &'a Map<String, Value>,
-    ) -> WorldResult<Self> {
-        if args.len() > params.len() {
-            return Err(type_error(format!(
-                "World.{op}() takes {} positional arguments but {} were given",
-                params.len(),
-                args.len()
-            )));
-        }
-        let mut values: Vec<Option<&Value>> = vec![None; params.len()];
-        for (slot, v) in values.iter_mut().zip(args) {
-            *slot = Some(v);
-        }
-        for (k, v) in kwargs {
-            let Some(i) = params.iter().position(|p| p == k) else {
-                return Err(type_error(format!(
-                    "World.{op}() got an unexpected keyword argument '{k}'"
-                )));
-            };
-            if values[i].is_some() {
-                return Err(type_error(format!(
-                    "World.{op}() got multiple values for argument '{k}'"
-                )));
-            }
-            values[i] = Some(v);
-        }
-        Ok(Self { op, params, values })
-    }
-
-    fn value(&self, i: usize) -> Option<&'a Value> {
-        self.values[i]
-    }
-
-    fn missing(&self, i: usize) -> WorldError {
-        type_error(format!(
-            "World.{}() missing 1 required positional argument: '{}'",
-            self.op, self.params[i]
-        ))
-    }
-
-    fn wrong(&self, i: usize, what: &str) -> WorldError {
-        type_error(format!(
-            "World.{}(): argument '{}': give {what}",
-            self.op, self.params[i]
-        ))
-    }
-
-    /// Required argument `i`.
-    fn req<T: FromArg>(&self, i: usize) -> WorldResult<T> {
-        let value = self.values[i].ok_or_else(|| self.missing(i))?;
-        T::from_arg(value).map_err(|what| self.wrong(i, what))
-    }
-
-    /// Optional argument `i` (`None` when not given or `None`).
-    fn opt<T: FromArg>(&self, i: usize) -> WorldResult<Option<T>> {
-        match self.values[i] {
-            None | Some(Value::Null) => Ok(None),
-            Some(v) => T::from_arg(v).map(Some).map_err(|what| self.wrong(i, what)),
-        }
-    }
-}
-
-/// The one value of an attribute set (`world.view = "split"`).
-struct Arg<'a> {
-    name: &'a str,
-    value: &'a Value,
-}
-
-impl Arg<'_> {
-    fn get<T: FromArg>(&self) -> WorldResult<T> {
-        T::from_arg(self.value)
-            .map_err(|what| type_error(format!("world.{} = : give {what}", self.name)))
-    }
-}
-
-/// A vector as Python gives it: any sequence of `N` numbers.
-struct Vector<const N: usize>([f64; N]);
-
-/// A value read from a request's JSON argument, or what it should have
-/// been.
-trait FromArg: Sized {
-    fn from_arg(v: &Value) -> Result<Self, &'static str>;
-}
-
-impl FromArg for String {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        v.as_str().map(str::to_owned).ok_or("a str")
-    }
-}
-
-impl FromArg for f64 {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        v.as_f64().ok_or("a number")
-    }
-}
-
-impl FromArg for bool {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        v.as_bool().ok_or("True or False")
-    }
-}
-
-impl FromArg for usize {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        v.as_u64()
-            .and_then(|n| usize::try_from(n).ok())
-            .ok_or("a whole number ≥ 0")
-    }
-}
-
-impl<T: FromArg> FromArg for Option<T> {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        match v {
-            Value::Null => Ok(None),
-            v => T::from_arg(v).map(Some),
-        }
-    }
-}
-
-impl FromArg for Vec<String> {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        const WHAT: &str = "a list of str";
-        let items = v.as_array().ok_or(WHAT)?;
-        items
-            .iter()
-            .map(|x| x.as_str().map(str::to_owned).ok_or(WHAT))
-            .collect()
-    }
-}
-
-impl FromArg for Vec<f64> {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        const WHAT: &str = "a list of numbers";
-        let items = v.as_array().ok_or(WHAT)?;
-        items.iter().map(|x| x.as_f64().ok_or(WHAT)).collect()
-    }
-}
-
-impl<const N: usize> FromArg for Vector<N> {
-    fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        let what = if N == 2 {
-            "2 numbers (a tuple, list or array)"
-        } else {
-            "3 numbers (a tuple, list or array)"
-        };
-        let items = v.as_array().filter(|a| a.len() == N).ok_or(what)?;
-        let mut out = [0.0; N];
-        for (slot, x) in out.iter_mut().zip(items) {
-            *slot = x.as_f64().ok_or(what)?;
-        }
-        Ok(Self(out))
-    }
 }

@@ -45,10 +45,24 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Simulation>()?;
     m.add_class::<World>()?;
     m.add_class::<Frame>()?;
+    m.add_function(wrap_pyfunction!(standin_call, m)?)?;
     errors::register(m)
 }
 
 /// The Lightcone engine from Python (`import lightcone`).
+/// The browser's `Scene` and `Simulation` stand-ins' one call
+/// (`lightcone_lesson::standin`), here too, so that the stand-ins
+/// (web/python/_lightcone.py) are tested against this module's classes
+/// on the desktop. Not part of the module's API.
+#[pyfunction]
+#[pyo3(name = "_standin_call")]
+fn standin_call(request: &str) -> String {
+    static OBJECTS: std::sync::Mutex<Option<lightcone_lesson::standin::Objects>> =
+        std::sync::Mutex::new(None);
+    let mut objects = OBJECTS.lock().unwrap_or_else(|e| e.into_inner());
+    objects.get_or_insert_with(Default::default).call(request)
+}
+
 #[pymodule]
 fn _lightcone(m: &Bound<'_, PyModule>) -> PyResult<()> {
     register(m)

@@ -1,18 +1,13 @@
 //! `lightcone.Scene`: a validated scene, loaded or built in code.
 
-use glam::DVec3;
-use lightcone_engine::scene::{self, BuildError, Effect, rules};
+use lightcone_engine::scene::{self, Effect};
+use lightcone_lesson::scene_code;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::convert::{Vector, optional};
 use super::effect;
-use super::errors::ScenePyErr;
-
-/// An optional pair as a board-plane vector (z = 0).
-fn planar(v: Option<Vector<2>>) -> Option<DVec3> {
-    v.map(|v| DVec3::new(v.0[0], v.0[1], 0.0))
-}
+use super::errors::{ScenePyErr, world_err};
 
 /// A validated scene (see the guide, docs/guide/src/scenes.md).
 #[pyclass(module = "lightcone._lightcone")]
@@ -58,14 +53,8 @@ impl Scene {
         gravity: f64,
         description: &str,
     ) -> PyResult<Self> {
-        let size = size.pair();
-        let mut inner =
-            scene::Scene::empty(glam::DVec2::new(size.0, size.1), c).map_err(ScenePyErr::from)?;
-        inner.title = title.to_owned();
-        inner.description = description.to_owned();
-        inner
-            .set_friction(friction, gravity)
-            .map_err(ScenePyErr::from)?;
+        let inner = scene_code::new(size.pair(), c, title, friction, gravity, description)
+            .map_err(world_err)?;
         Ok(Self { inner })
     }
 
@@ -123,28 +112,19 @@ impl Scene {
         color: Option<&str>,
         velocity: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let beta = planar(optional::<2>("beta", beta)?);
-        let u = planar(optional::<2>("u", u)?);
-        let velocity = planar(optional::<2>("velocity", velocity)?);
-        let u = rules::motion(beta, velocity, u, self.inner.c)
-            .map_err(|e| ScenePyErr::from(e.of(format!("puck {name:?}"))))?;
-        let color = match color {
-            None => scene::Color::default_for(self.inner.pucks.len()),
-            Some(c) => rules::color(c).map_err(ScenePyErr::from)?,
+        let pair = |v: Option<Vector<2>>| v.map(Vector::pair);
+        let args = scene_code::PuckArgs {
+            name,
+            position: position.pair(),
+            beta: pair(optional::<2>("beta", beta)?),
+            u: pair(optional::<2>("u", u)?),
+            radius,
+            height,
+            mass,
+            color,
+            velocity: pair(optional::<2>("velocity", velocity)?),
         };
-        let position = position.pair();
-        Ok(self
-            .inner
-            .add_puck(scene::PuckSpec {
-                name: name.to_owned(),
-                position: glam::DVec2::new(position.0, position.1),
-                u,
-                radius,
-                height,
-                mass,
-                color,
-            })
-            .map_err(ScenePyErr::from)?)
+        scene_code::add_puck(&mut self.inner, &args).map_err(world_err)
     }
 
     /// Adds an observer with its eye at `position` (x, y, z) m, looking at
@@ -159,22 +139,10 @@ impl Scene {
         look_at: Option<&Bound<'_, PyAny>>,
         beta: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let look_at = optional::<3>("look_at", look_at)?;
-        let beta = optional::<3>("beta", beta)?;
-        let u = match beta {
-            None => lightcone_engine::spacetime::ProperVelocity::ZERO,
-            Some(b) => rules::from_beta(DVec3::from(b.triple()))
-                .map_err(|e| ScenePyErr::from(e.of(format!("observer {name:?} beta"))))?,
-        };
-        Ok(self
-            .inner
-            .add_observer(scene::ObserverSpec {
-                name: name.to_owned(),
-                position: DVec3::from(position.triple()),
-                look_at: look_at.map(|v| DVec3::from(v.triple())),
-                u,
-            })
-            .map_err(ScenePyErr::from)?)
+        let look_at = optional::<3>("look_at", look_at)?.map(|v| v.0);
+        let beta = optional::<3>("beta", beta)?.map(|v| v.0);
+        scene_code::add_observer(&mut self.inner, name, position.0, look_at, beta)
+            .map_err(world_err)
     }
 
     /// Turns an effect on or off (`contraction`, `light_delay`,
@@ -199,11 +167,7 @@ impl Scene {
     /// `Scene.c`; the scene is unchanged.
     #[setter]
     fn set_c(&mut self, c: f64) -> PyResult<()> {
-        self.inner = self
-            .inner
-            .with_c(c)
-            .map_err(|e: BuildError| ScenePyErr::from(e.of("Scene.c")))?;
-        Ok(())
+        scene_code::set_c(&mut self.inner, c).map_err(world_err)
     }
 
     /// Scene title.
@@ -221,17 +185,13 @@ impl Scene {
     /// Puck names, in file order.
     #[getter]
     fn pucks(&self) -> Vec<String> {
-        self.inner.pucks.iter().map(|p| p.name.clone()).collect()
+        scene_code::pucks(&self.inner)
     }
 
     /// Observer names, in file order.
     #[getter]
     fn observers(&self) -> Vec<String> {
-        self.inner
-            .observers
-            .iter()
-            .map(|o| o.name.clone())
-            .collect()
+        scene_code::observers(&self.inner)
     }
 
     /// The effects as a dict of flags.
@@ -262,11 +222,6 @@ impl Scene {
     }
 
     fn __repr__(&self) -> String {
-        format!(
-            "Scene({:?}, {} pucks, c = {} m/s)",
-            self.inner.title,
-            self.inner.pucks.len(),
-            self.inner.c
-        )
+        scene_code::describe(&self.inner)
     }
 }

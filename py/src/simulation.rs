@@ -60,15 +60,8 @@ impl Simulation {
     #[new]
     #[pyo3(signature = (scene, history = None))]
     fn new(scene: &Scene, history: Option<f64>) -> PyResult<Self> {
-        let mut billiard = Billiard::from_scene(&scene.inner);
-        if let Some(h) = history {
-            if !(h.is_finite() && h >= 0.0) {
-                return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                    "history: give a finite number of seconds ≥ 0, or None (got {h})"
-                )));
-            }
-            billiard.set_history(Some(h));
-        }
+        let billiard = lightcone_lesson::query::new_billiard(&scene.inner, history)
+            .map_err(super::errors::world_err)?;
         Ok(Self {
             state: Mutex::new(State {
                 billiard,

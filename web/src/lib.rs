@@ -9,7 +9,8 @@ use wasm_bindgen::prelude::*;
 /// fragment carries (`#scene=DATA`), else the shipped scene named by
 /// `?scene=NAME` (`.toml` optional), else the default, at `?at=T` if given,
 /// drawn with WebGL2 (or WebGPU with `?gpu=webgpu`, where the browser has
-/// it) (see
+/// it); `?lesson=NAME` or `#lesson=DATA` starts a lesson (its Python in a
+/// Web Worker), `?drive=FPS` plays it with nobody at the page (see
 /// `lightcone::links` and `lightcone::play::web_app::start`).
 #[wasm_bindgen(start)]
 pub fn start() -> Result<(), JsValue> {
@@ -31,12 +32,14 @@ pub fn start() -> Result<(), JsValue> {
     let lesson = query.as_ref().and_then(|p| p.get("lesson"));
     let at = query.as_ref().and_then(|p| p.get("at"));
     let gpu = query.as_ref().and_then(|p| p.get("gpu"));
+    let drive = query.as_ref().and_then(|p| p.get("drive"));
     let address = lightcone::play::web_app::Address {
         scene: scene.as_deref(),
         lesson: lesson.as_deref(),
         at: at.as_deref(),
         fragment: &fragment,
         gpu: gpu.as_deref(),
+        drive: drive.as_deref(),
     };
     lightcone::play::web_app::start(&address).map_err(|e| JsValue::from_str(&e))
 }

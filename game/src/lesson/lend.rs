@@ -1,13 +1,10 @@
-//! How the game lends itself to a lesson: the embedded `lightcone` module
-//! (the wheel's classes, from `lightcone-py`) and the game's side of
-//! [`LessonGame`], the only way a lesson's `World` reaches the game.
+//! The embedded `lightcone` module (the wheel's classes, from
+//! `lightcone-py`), and how the game lends itself to a lesson's `World`
+//! (`crate::lesson_game`, on every target: the browser lends it too).
 
-use lightcone_engine::physics::Billiard;
-use lightcone_engine::scene::{Effects, Scene};
-use lightcone_python::{LessonGame, Pictures};
 use pyo3::prelude::*;
 
-use crate::model::{GameState, ViewMode};
+pub use crate::lesson_game::{new_game, taken_back};
 
 /// The module as the game embeds it (registered with `append_to_inittab`
 /// before the interpreter starts). Its own name keeps its `PyInit_` symbol
@@ -16,96 +13,4 @@ use crate::model::{GameState, ViewMode};
 #[pymodule]
 pub fn lightcone_embedded(m: &Bound<'_, PyModule>) -> PyResult<()> {
     lightcone_python::register(m)
-}
-
-/// A new game at board time 0 on `scene`: what `world.start(scene)` makes.
-pub fn new_game(scene: Scene) -> Box<dyn LessonGame> {
-    Box::new(GameState::new(scene))
-}
-
-/// The game a world hands back (always a [`GameState`]: the world only
-/// holds what the host lent or [`new_game`] made).
-pub fn taken_back(game: Box<dyn LessonGame>) -> Option<GameState> {
-    game.into_any().downcast::<GameState>().ok().map(|g| *g)
-}
-
-impl LessonGame for GameState {
-    fn scene(&self) -> &Scene {
-        &self.scene
-    }
-
-    fn billiard(&self) -> &Billiard {
-        self.physics()
-    }
-
-    fn billiard_mut(&mut self) -> &mut Billiard {
-        self.physics_mut()
-    }
-
-    fn live_time(&self) -> f64 {
-        self.live_time
-    }
-
-    fn paused(&self) -> bool {
-        self.paused
-    }
-
-    fn set_paused(&mut self, paused: bool) {
-        self.paused = paused;
-    }
-
-    fn time_scale(&self) -> f64 {
-        self.time_scale
-    }
-
-    fn set_time_scale(&mut self, scale: f64) {
-        self.time_scale = scale;
-    }
-
-    fn pictures(&self) -> Pictures {
-        match self.view {
-            ViewMode::Seen => Pictures::Seen,
-            ViewMode::Truth => Pictures::Truth,
-            ViewMode::Split => Pictures::Split,
-        }
-    }
-
-    fn set_pictures(&mut self, pictures: Pictures) {
-        self.set_view(match pictures {
-            Pictures::Seen => ViewMode::Seen,
-            Pictures::Truth => ViewMode::Truth,
-            Pictures::Split => ViewMode::Split,
-        });
-    }
-
-    fn observer(&self) -> Option<usize> {
-        self.observer
-    }
-
-    fn set_observer(&mut self, observer: Option<usize>) {
-        self.observer = observer;
-    }
-
-    fn effects(&self) -> Effects {
-        self.effects
-    }
-
-    fn effects_mut(&mut self) -> &mut Effects {
-        &mut self.effects
-    }
-
-    fn set_diagram(
-        &mut self,
-        on: bool,
-        frame: Option<usize>,
-        axis: lightcone_render::diagram::Axis,
-    ) {
-        self.show.diagram = on;
-        self.show.diagram_frame = frame;
-        self.show.diagram_axis = axis;
-    }
-
-    fn into_any(self: Box<Self>) -> Box<dyn std::any::Any> {
-        self
-    }
 }

@@ -4,8 +4,7 @@
 
 use std::io::{BufRead, Read};
 
-/// Longest line either process accepts from the other, bytes.
-pub const MAX_LINE: usize = 16 << 20;
+pub use lightcone_lesson::protocol::MAX_LINE;
 
 /// Reads one line of at most [`MAX_LINE`] bytes (without its newline).
 /// `Ok(None)` at the end of the stream.

@@ -50,6 +50,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyModule, PyTuple};
 
 use crate::model::GameState;
+use lightcone_lesson::protocol::PRINTED_LINES;
 use lightcone_python::{LessonUi, World};
 
 /// The `lightcone` package's Python side, installed in the embedded
@@ -135,9 +136,6 @@ fn take_thread_errors(py: Python<'_>) -> Vec<String> {
         .and_then(|errors| errors.extract())
         .unwrap_or_default()
 }
-
-/// How many printed lines the panel keeps.
-const PRINTED_LINES: usize = 40;
 
 /// Keeps the newest printed lines on the world's screen.
 fn keep_printed(world: &Bound<'_, World>, lines: Vec<String>) {

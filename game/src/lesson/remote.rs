@@ -44,7 +44,6 @@ use std::time::{Duration, Instant};
 
 use pyo3::prelude::*;
 use pyo3::types::PyModule;
-use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use super::isolation::Isolation;
@@ -52,7 +51,7 @@ use super::line::read_line;
 use super::supervise::{self, KILL_AFTER};
 use super::{LessonHost, drain_printed, keep_printed, lend, placeholder, traceback, watchdog};
 use crate::model::GameState;
-use lightcone_lesson::protocol;
+use lightcone_lesson::protocol::{self, Up};
 use lightcone_python::World;
 
 /// How long a frame waits for the lesson before it draws: a hook that
@@ -68,28 +67,6 @@ const HOOKS: [&str; 4] = ["setup", "on_frame", "on_collision", "on_answer"];
 
 /// The Python of both sides (`remote.py`, beside this file).
 const REMOTE_PY: &str = include_str!("remote.py");
-
-/// What a lesson's process writes, one JSON object a line.
-#[derive(Debug, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub(crate) enum Up {
-    /// A `World` method, getter or setter (`=name`) for the game to run.
-    Request {
-        op: String,
-        args: Vec<Value>,
-        kwargs: serde_json::Map<String, Value>,
-    },
-    /// The hook returned (`error: None`) or raised (its traceback).
-    Done {
-        error: Option<String>,
-        /// The lesson's watchdog stopped the hook at its limit.
-        timed_out: bool,
-        /// What the lesson printed during the hook.
-        printed: Vec<String>,
-        /// The hooks the lesson defines (sent after `setup`).
-        hooks: Vec<String>,
-    },
-}
 
 /// `remote.py` as a module, loaded once per interpreter (whole before any
 /// thread sees it).

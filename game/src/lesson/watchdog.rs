@@ -33,8 +33,7 @@ use std::time::{Duration, Instant};
 use pyo3::ffi;
 use pyo3::prelude::*;
 
-/// Longest a single hook may run.
-pub const HOOK_LIMIT: Duration = Duration::from_secs(10);
+pub use lightcone_lesson::protocol::HOOK_LIMIT;
 
 /// How long after its limit a hook that did not stop ends the process.
 pub const GRACE: Duration = Duration::from_millis(800);

@@ -143,7 +143,17 @@ impl Host for Desk {
             lessons: true,
             share: false,
         };
-        let area = panels::panels(ui, state, &hud, self.lesson.host.as_ref(), size, actions);
+        let area = panels::panels(
+            ui,
+            state,
+            &hud,
+            self.lesson
+                .host
+                .as_ref()
+                .map(|h| h as &dyn super::lesson_panel::LessonStatus),
+            size,
+            actions,
+        );
         self.diagram = state
             .show
             .diagram

@@ -4,17 +4,35 @@
 
 use egui::{Color32, RichText};
 
+use std::time::Duration;
+
 use super::actions::UiAction;
-use crate::lesson::LessonHost;
-use lightcone_python::{Bars, LessonUi};
+use lightcone_lesson::{Bars, LessonUi};
+
+/// What the panel shows of a lesson host: the desktop's (a lesson in its
+/// own process, or in the game's) and the browser's (in a Web Worker).
+pub trait LessonStatus {
+    /// The lesson's name, for the heading (its file's name).
+    fn title(&self) -> String;
+    /// The hook out and how long it has run.
+    fn hook_running(&self) -> Option<(&'static str, Duration)>;
+    /// Longest a hook may run.
+    fn limit(&self) -> Duration;
+    /// Why the lesson stopped, if it did.
+    fn error(&self) -> Option<&str>;
+    /// What the lesson put on screen, lent to `f`.
+    fn screen(&self, f: &mut dyn FnMut(&LessonUi));
+    /// What the lesson waits for before its first hook (Python starting
+    /// in the browser), if anything.
+    fn starting(&self) -> Option<String> {
+        None
+    }
+}
 
 /// Draws the panel for `host`; clicks become `actions` (applied after the
 /// frame's UI).
-pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<UiAction>) {
-    let name = host.path().file_name().map_or_else(
-        || host.path().display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    );
+pub fn show(ui: &mut egui::Ui, host: &dyn LessonStatus, actions: &mut Vec<UiAction>) {
+    let name = host.title();
     ui.horizontal(|ui| {
         ui.heading(format!("Lesson: {name}"));
         if ui.button("reload (F5)").clicked() {
@@ -31,12 +49,16 @@ pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<UiAction>) {
                 format!(
                     "{hook} running {:.1} s (board time waits; stopped at {} s)",
                     running.as_secs_f64(),
-                    host.limit.as_secs_f64()
+                    host.limit().as_secs_f64()
                 ),
             );
             ui.separator();
         }
-        if let Some(error) = &host.error {
+        if let Some(waiting) = host.starting() {
+            ui.colored_label(Color32::LIGHT_YELLOW, waiting);
+            ui.separator();
+        }
+        if let Some(error) = host.error() {
             ui.colored_label(
                 Color32::from_rgb(255, 110, 110),
                 "The lesson stopped with an error. The game keeps its last state; fix the file and save (it reloads), or press reload.",
@@ -51,7 +73,7 @@ pub fn show(ui: &mut egui::Ui, host: &LessonHost, actions: &mut Vec<UiAction>) {
             );
             ui.separator();
         }
-        host.with_ui(|lesson| contents(ui, lesson, actions));
+        host.screen(&mut |lesson| contents(ui, lesson, actions));
     });
 }
 
@@ -185,4 +207,30 @@ fn bars(ui: &mut egui::Ui, chart: &Bars) {
         ));
     }
     ui.small(format!("{lo:.3} … {hi:.3}; line: expected"));
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl LessonStatus for crate::lesson::LessonHost {
+    fn title(&self) -> String {
+        self.path().file_name().map_or_else(
+            || self.path().display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        )
+    }
+
+    fn hook_running(&self) -> Option<(&'static str, Duration)> {
+        crate::lesson::LessonHost::hook_running(self)
+    }
+
+    fn limit(&self) -> Duration {
+        self.limit
+    }
+
+    fn error(&self) -> Option<&str> {
+        self.error.as_deref()
+    }
+
+    fn screen(&self, f: &mut dyn FnMut(&LessonUi)) {
+        self.with_ui(|ui| f(ui));
+    }
 }

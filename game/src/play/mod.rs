@@ -19,7 +19,6 @@ pub mod labels;
 pub mod layout;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod lesson_host;
-#[cfg(not(target_arch = "wasm32"))]
 pub mod lesson_panel;
 pub mod magnifier;
 #[cfg(not(target_arch = "wasm32"))]
@@ -38,4 +37,6 @@ pub mod trails;
 pub mod ui_paint;
 #[cfg(target_arch = "wasm32")]
 pub mod web_app;
+#[cfg(target_arch = "wasm32")]
+pub mod web_lesson;
 pub mod window;

@@ -8,14 +8,8 @@ use lightcone_engine::scene::Effect;
 
 use super::actions::{Overlay, UiAction};
 use super::layout::SceneArea;
-#[cfg(not(target_arch = "wasm32"))]
-use crate::lesson::LessonHost;
+use super::lesson_panel::LessonStatus;
 use crate::model::{GameState, ViewMode};
-
-/// The browser build has no lessons yet (they need Python): no value of
-/// this type exists there, so its lesson panel is never shown.
-#[cfg(target_arch = "wasm32")]
-pub enum LessonHost {}
 
 /// What the panels show besides the game state.
 pub struct Hud {
@@ -42,20 +36,14 @@ pub fn panels(
     ui: &mut egui::Ui,
     state: &mut GameState,
     hud: &Hud,
-    lesson: Option<&LessonHost>,
+    lesson: Option<&dyn LessonStatus>,
     size: (u32, u32),
     actions: &mut Vec<UiAction>,
 ) -> SceneArea {
     let ctx = ui.ctx().clone();
     let ppp = ctx.pixels_per_point();
-    // Only a lesson's panel (desktop) takes room on the right.
-    #[cfg_attr(target_arch = "wasm32", allow(unused_mut))]
+    // Only a lesson's panel takes room on the right.
     let mut right = size.0 as f32;
-    #[cfg(target_arch = "wasm32")]
-    if let Some(host) = lesson {
-        match *host {}
-    }
-    #[cfg(not(target_arch = "wasm32"))]
     if let Some(host) = lesson {
         egui::Panel::right("lesson")
             .default_size(340.0)
@@ -126,7 +114,8 @@ fn controls(ui: &mut egui::Ui, s: &GameState, hud: &Hud, actions: &mut Vec<UiAct
     // Where a browser user looks for what the desktop game has.
     #[cfg(target_arch = "wasm32")]
     ui.small(
-        "In the browser: no Python lessons yet, no head tracker, CAVE or \
+        "In the browser: lessons run their Python in the page (Pyodide, \
+         started the first time a lesson opens); no head tracker, CAVE or \
          render cluster (desktop only: see docs/web.md).",
     );
 }

@@ -126,7 +126,7 @@ pub fn open_path(state: &mut GameState, path: &str) -> Opened {
     if Path::new(path).extension().is_some_and(|e| e == "py") {
         let why = if cfg!(target_arch = "wasm32") {
             Some(format!(
-                "{path} is a lesson: lessons run in the desktop game (`lightcone play {path}`)"
+                "{path}: the page reads no files by name; drop the lesson file on the page (or open one of the lessons above)"
             ))
         } else if !Path::new(path).is_file() {
             Some(format!("{path}: no such lesson file"))

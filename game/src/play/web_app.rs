@@ -1,8 +1,9 @@
 //! The game in a browser tab (wasm32): the shared frame
-//! ([`super::stage`]) with what the page adds: scenes opened by link
-//! (`?scene=NAME`, `#scene=DATA`, [`crate::links`]) or by a file dropped
-//! on the page, and a *share* button that copies the link of what is
-//! open. What needs the desktop (a lesson's Python process, the tracked
+//! ([`super::stage`]) with what the page adds: scenes and lessons opened
+//! by link (`?scene=NAME`, `?lesson=NAME`, `#scene=DATA`, `#lesson=DATA`,
+//! [`crate::links`]) or by a file dropped on the page, a lesson's Python
+//! run in a Web Worker ([`super::web_lesson`]), and a *share* button that
+//! copies the link of what is open. What needs the desktop (the tracked
 //! head, CAVE outputs, the render cluster, screenshots to files) is not
 //! here.
 
@@ -14,8 +15,11 @@ use winit::window::WindowId;
 
 use super::actions::UiAction;
 use super::layout::SceneArea;
+use super::lesson_panel::LessonStatus;
 use super::panels::{self, Hud};
+use super::scene_menu::Choice;
 use super::stage::{Host, Stage};
+use super::web_lesson::WebLesson;
 use super::window::{self, Flow, Gfx};
 use crate::links::{self, Kind, SceneSource};
 use crate::model::GameState;
@@ -29,7 +33,7 @@ pub const MAX_DROPPED: usize = links::MAX_TEXT;
 pub struct Address<'a> {
     /// `?scene=NAME`, if given.
     pub scene: Option<&'a str>,
-    /// `?lesson=NAME`, if given (the page says lessons are desktop-only).
+    /// `?lesson=NAME`, if given: a shipped lesson (`.py` optional).
     pub lesson: Option<&'a str>,
     /// `?at=T`: open paused at board time `T` s (as `play --at`), from
     /// [`AT_RANGE`].
@@ -39,6 +43,13 @@ pub struct Address<'a> {
     /// `?gpu=webgpu`: draw with the browser's WebGPU where it gives an
     /// adapter (else, and by default, WebGL2; see [`WebApp::webgpu`]).
     pub gpu: Option<&'a str>,
+    /// `?drive=FPS`: play the lesson with nobody at the page, as
+    /// `lightcone lesson --fps FPS` does: board time moves 1/FPS real
+    /// seconds a frame (whatever the page's own frame rate), only between
+    /// hooks, and each question is answered with the lesson's own answer
+    /// (the first choice when it names none), until the lesson finishes.
+    /// For the browser test's comparison with the desktop.
+    pub drive: Option<&'a str>,
 }
 
 /// The board times `?at=` may name, s (the replay window's length ahead,
@@ -55,23 +66,38 @@ pub const AT_RANGE: std::ops::RangeInclusive<f64> = -60.0..=600.0;
 /// event loop is running (the browser drives it).
 pub fn start(address: &Address<'_>) -> Result<(), String> {
     let mut state = default_game()?;
-    if let Err(e) = open_address(&mut state, address) {
-        say_in_menu(&mut state, e);
+    let mut page = Page { lesson: None };
+    match open_address(&mut state, address) {
+        Ok(Some((name, text))) => page.open_lesson(&mut state, &name, text),
+        Ok(None) => {}
+        Err(e) => say_in_menu(&mut state, e),
     }
     let at = address.at.map(|at| go_to(&mut state, at));
     if let Some(Err(e)) = &at {
         say_in_menu(&mut state, e.clone());
     }
+    let drive = match address.drive.map(str::parse::<f64>) {
+        None => None,
+        Some(Ok(fps)) if fps.is_finite() && fps > 0.0 && fps <= 1000.0 => Some(fps),
+        Some(_) => {
+            say_in_menu(
+                &mut state,
+                "?drive=FPS: give frames a second in (0, 1000]".to_owned(),
+            );
+            None
+        }
+    };
     let addressed = (state.generation, state.source.clone());
     window::spawn(WebApp {
         addressed,
         stage: Stage::new(state, false),
-        page: Page,
+        page,
         frames: 0,
         stroke: None,
         publish_seen: matches!(at, Some(Ok(()))),
         cpu_ms: std::collections::VecDeque::with_capacity(CPU_FRAMES),
         webgpu: address.gpu == Some("webgpu"),
+        drive,
     })
 }
 
@@ -104,21 +130,42 @@ fn default_game() -> Result<GameState, String> {
     Ok(state)
 }
 
-/// Opens what `address` names in `state` (nothing: the default scene
-/// stays).
-fn open_address(state: &mut GameState, address: &Address<'_>) -> Result<(), String> {
+/// A lesson to start: its file's name and its text.
+type LessonFile = (String, String);
+
+/// Opens the scene `address` names in `state` (nothing: the default scene
+/// stays), or returns the lesson it names, for the page to start.
+fn open_address(
+    state: &mut GameState,
+    address: &Address<'_>,
+) -> Result<Option<LessonFile>, String> {
     if let Some(carried) = links::from_fragment(address.fragment) {
         let (kind, text) = carried.map_err(|e| e.to_string())?;
-        let name = format!("the link's {}", kind.key());
+        let name = match kind {
+            Kind::Lesson => "lesson_from_link.py".to_owned(),
+            Kind::Scene => format!("the link's {}", kind.key()),
+        };
         return open_text(state, kind, &name, text);
     }
     if let Some(name) = address.lesson {
-        return Err(format!(
-            "?lesson={name}: lessons run in the desktop game for now (`lightcone play LESSON.py`); the browser shows scenes"
-        ));
+        let file = if name.ends_with(".py") {
+            name.to_owned()
+        } else {
+            format!("{name}.py")
+        };
+        return match crate::assets::LESSONS.iter().find(|(n, _)| *n == file) {
+            Some((n, text)) => Ok(Some(((*n).to_owned(), (*text).to_owned()))),
+            None => {
+                let names: Vec<&str> = crate::assets::LESSONS.iter().map(|(n, _)| *n).collect();
+                Err(format!(
+                    "?lesson={name}: not a shipped lesson (one of {})",
+                    names.join(", ")
+                ))
+            }
+        };
     }
     let Some(name) = address.scene else {
-        return Ok(());
+        return Ok(None);
     };
     let file = if name.ends_with(".toml") {
         name.to_owned()
@@ -129,7 +176,7 @@ fn open_address(state: &mut GameState, address: &Address<'_>) -> Result<(), Stri
         Some(scene) => {
             let scene = scene.map_err(|e| e.to_string())?;
             open_scene(state, scene, SceneSource::Shipped(file));
-            Ok(())
+            Ok(None)
         }
         None => {
             let names: Vec<&str> = crate::assets::SCENES.iter().map(|(n, _)| *n).collect();
@@ -141,13 +188,16 @@ fn open_address(state: &mut GameState, address: &Address<'_>) -> Result<(), Stri
     }
 }
 
-/// Opens a file's `text` (a scene, checked as `lightcone check` does; or a
-/// lesson, which the page cannot run yet), named `name` in messages.
-fn open_text(state: &mut GameState, kind: Kind, name: &str, text: String) -> Result<(), String> {
+/// Opens a file's `text`, named `name` in messages: a scene, checked as
+/// `lightcone check` does; a lesson is returned, for the page to start.
+fn open_text(
+    state: &mut GameState,
+    kind: Kind,
+    name: &str,
+    text: String,
+) -> Result<Option<LessonFile>, String> {
     if kind == Kind::Lesson {
-        return Err(format!(
-            "{name} is a lesson: lessons run in the desktop game for now (`lightcone play LESSON.py`)"
-        ));
+        return Ok(Some((name.to_owned(), text)));
     }
     let scene = scene::parse(&text, name).map_err(|e| e.to_string())?;
     let source = SceneSource::Text {
@@ -155,7 +205,7 @@ fn open_text(state: &mut GameState, kind: Kind, name: &str, text: String) -> Res
         text,
     };
     open_scene(state, scene, source);
-    Ok(())
+    Ok(None)
 }
 
 /// `scene` in place of the game, paused on its title, as the scene menu
@@ -190,8 +240,58 @@ pub fn drop_file(name: String, text: Option<String>) {
     DROPPED.with(|d| *d.borrow_mut() = Some((name, text)));
 }
 
-/// What the page adds to the shared frame: the share button.
-struct Page;
+/// What the page adds to the shared frame: the lesson (in its worker)
+/// and the share button.
+struct Page {
+    lesson: Option<WebLesson>,
+}
+
+impl Page {
+    /// Starts the lesson `name` (its `text`) in place of the one that ran;
+    /// the game is replaced when its `setup` ends (until then board time
+    /// waits). What cannot start is said in the scene menu.
+    fn open_lesson(&mut self, state: &mut GameState, name: &str, text: String) {
+        match WebLesson::open(name, text) {
+            Ok(lesson) => {
+                self.lesson = Some(lesson);
+                state.scene_menu.open = false;
+                state.scene_menu.error = None;
+                state.intro = false;
+                state.paused = true;
+            }
+            Err(e) => say_in_menu(state, e),
+        }
+    }
+}
+
+impl Page {
+    /// One turn of the lesson with nobody at the page (`?drive=FPS`), as
+    /// `lightcone lesson` takes it (`lesson::headless::turn`): nothing once
+    /// the closing message is up or the lesson stopped; else the open
+    /// question answered with the lesson's own answer; else board time
+    /// moved 1/`fps` real seconds.
+    fn drive(&mut self, state: &mut GameState, fps: f64) {
+        let Some(lesson) = &mut self.lesson else {
+            return;
+        };
+        if !(lesson.running() || lesson.awaiting_light()) || lesson.ui().closing().is_some() {
+            return;
+        }
+        let open = lesson
+            .ui()
+            .question
+            .as_ref()
+            .filter(|q| q.chosen.is_none())
+            .map(|q| q.answer.unwrap_or(0));
+        match open {
+            Some(i) => lesson.answer(state, i),
+            None => {
+                state.paused = false;
+                state.step(1.0 / fps);
+            }
+        }
+    }
+}
 
 impl Host for Page {
     fn panels(
@@ -205,19 +305,37 @@ impl Host for Page {
             tracker: None,
             tracker_colour: egui::Color32::GRAY,
             clocks: true,
-            lesson: None,
-            lessons: false,
+            lesson: self.lesson.as_ref().map(|l| l.name().to_owned()),
+            lessons: true,
             share: true,
         };
-        panels::panels(ui, state, &hud, None, size, actions)
+        let lesson = self.lesson.as_ref().map(|l| l as &dyn LessonStatus);
+        panels::panels(ui, state, &hud, lesson, size, actions)
     }
 
     fn act(&mut self, action: UiAction, state: &mut GameState) {
-        if matches!(action, UiAction::Share) {
-            share(state);
+        match action {
+            UiAction::Share => share(state),
+            UiAction::Open(Choice::Lesson(i)) => {
+                if let Some((name, text)) = crate::assets::LESSONS.get(i) {
+                    self.open_lesson(state, name, (*text).to_owned());
+                }
+            }
+            // A scene opened in the menu ends the lesson that ran.
+            UiAction::SceneOpened => self.lesson = None,
+            UiAction::ReloadLesson => {
+                if let Some(lesson) = &mut self.lesson {
+                    lesson.reload(state);
+                }
+            }
+            UiAction::Answer(i) => {
+                if let Some(lesson) = &mut self.lesson {
+                    lesson.answer(state, i);
+                }
+            }
+            // The CAVE's eye has nothing to act on in the page.
+            _ => {}
         }
-        // The CAVE's eye and a lesson's actions have nothing to act on
-        // in the page.
     }
 }
 
@@ -323,6 +441,8 @@ struct WebApp {
     /// copy of the frame mapped back aborts), and WebGL2's are checked
     /// against the window's by the browser test (docs/web.md).
     webgpu: bool,
+    /// `?drive=FPS` ([`Address::drive`]).
+    drive: Option<f64>,
 }
 
 /// How many frames the page's frame-time median is over.
@@ -371,8 +491,10 @@ impl WebApp {
             )),
             Some(text) => open_text(state, Kind::of_file(&name), &name, text),
         };
-        if let Err(e) = opened {
-            say_in_menu(state, e);
+        match opened {
+            Ok(Some((name, text))) => self.page.open_lesson(state, &name, text),
+            Ok(None) => {}
+            Err(e) => say_in_menu(state, e),
         }
     }
 }
@@ -411,7 +533,24 @@ impl window::Game for WebApp {
         self.follow_address();
         let (_, dt) = self.stage.tick();
         self.stage.fly_free(dt);
-        self.stage.state.step(dt);
+        let state = &mut self.stage.state;
+        // As the window's lesson host: the worker's answers first, board
+        // time waiting while a hook is out, then the lesson sees the step.
+        if let Some(lesson) = &mut self.page.lesson {
+            lesson.serve(state);
+        }
+        let before = state.live_time;
+        if !self.page.lesson.as_ref().is_some_and(WebLesson::busy) {
+            match self.drive {
+                None => state.step(dt),
+                Some(fps) => self.page.drive(state, fps),
+            }
+        }
+        if let Some(lesson) = &mut self.page.lesson {
+            lesson.after_step(state, before);
+            lesson.watch_light(state);
+            publish_lesson(lesson);
+        }
         let state = &self.stage.state;
         if state.last_stroke != self.stroke {
             self.stroke = state.last_stroke;
@@ -528,4 +667,31 @@ fn first_frame_drawn() {
     let ms = page.performance().map_or(f64::NAN, |p| p.now());
     let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeFirstFrameMs".into(), &ms.into());
     web_sys::console::log_1(&format!("lightcone: first frame drawn at {ms:.0} ms").into());
+}
+
+/// Puts on the page, as `window.lightconeLessonState`, what the lesson has
+/// shown so far: a JSON object `{"name", "claims": [{"claim", "ok",
+/// "detail"}], "finished", "error", "text"}` (the claims as `lightcone
+/// lesson --json` prints them), for the browser test's comparison with
+/// the desktop.
+fn publish_lesson(lesson: &WebLesson) {
+    let ui = lesson.ui();
+    let claims: Vec<serde_json::Value> = ui
+        .claims
+        .iter()
+        .map(|c| serde_json::json!({"claim": c.claim, "ok": c.ok, "detail": c.detail}))
+        .collect();
+    let state = serde_json::json!({
+        "name": lesson.name(),
+        "claims": claims,
+        "finished": ui.finished,
+        "closing": ui.closing(),
+        "error": lesson.error,
+        "text": ui.text,
+        "question": ui.question.as_ref().map(|q| &q.text),
+    });
+    if let Some(page) = web_sys::window() {
+        let text = state.to_string();
+        let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeLessonState".into(), &text.into());
+    }
 }
