@@ -58,4 +58,10 @@ sed "s/^__version__ = .*/__version__ = \"$workspace_version\"/" web/python/_ligh
 cp game/src/lesson/remote.py web/dist/python/lightcone_remote.py
 cp game/src/lesson/bootstrap.py web/dist/python/lightcone_bootstrap.py
 cp web/python/lightcone_web_child.py web/dist/python/
+# The engine the worker's Scene and Simulation call (web-engine/), built
+# by cargo and wasm-bindgen as the game is: lightcone_engine_web.js and
+# its _bg.wasm.
+cargo build --release --target wasm32-unknown-unknown -p lightcone-engine-web
+wasm-bindgen --target web --no-typescript --out-dir web/dist \
+  "${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/release/lightcone_engine_web.wasm"
 ls -l web/dist

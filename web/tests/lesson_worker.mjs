@@ -4,14 +4,20 @@
 // (game/src/lesson/remote.rs) by hand through `window.lightconeLesson`:
 // opens lessons (their source here), sends calls, answers each request
 // with canned replies, and checks the request lines and Done messages.
-// The worker runs Pyodide with the real `lightcone` package and, when
-// web/dist has it, the real engine module (else web/tests/mock_engine.js,
-// and the output says so).
+// The worker runs Pyodide with the real `lightcone` package and the real
+// engine module (web-engine/).
 //
 //   node web/tests/lesson_worker.mjs [DIST]
 //
-// Prints JSON lines (the time from open to "ready", the files the worker
-// fetched) and exits 1 on any failure. Debian's Chromium, headless.
+// Checked: the requests a setup makes and their answers (a scene built
+// and started, an error answer raised as its class), the Done messages
+// (printed lines, hooks, tracebacks "in HOOK:" at the lesson's line), the
+// engine's Scene and Simulation against the extension's answers, a lesson
+// without setup or that does not compile, a hanging hook stopped, a
+// browser without JSPI told so, nothing fetched from another host.
+// Prints JSON lines (ms from open to "ready", a request's round trip, the
+// Pyodide files fetched), then "N passed, N failed"; exits 1 on any
+// failure. Debian's Chromium, headless.
 import { createReadStream, existsSync, readFileSync, statSync } from "node:fs";
 import { createServer } from "node:http";
 import { extname, join, normalize, dirname } from "node:path";
@@ -20,15 +26,14 @@ import { chromium } from "playwright-core";
 
 const here = dirname(fileURLToPath(import.meta.url));
 const dist = process.argv[2] || join(here, "..", "dist");
-for (const f of ["lesson_host.js", "lesson_worker.js", "pyodide/pyodide.mjs", "python/lightcone_web_child.py"]) {
+for (const f of ["lesson_host.js", "lesson_worker.js", "lightcone_engine_web.js", "pyodide/pyodide.mjs", "python/lightcone_web_child.py"]) {
   if (!existsSync(join(dist, f))) {
     console.error(`${dist}/${f} missing: run scripts/web.sh`);
     process.exit(2);
   }
 }
-const realEngine = existsSync(join(dist, "lightcone_engine_web.js"));
 
-// ---- The server: web/dist/, a blank page, the mock engine if needed.
+// ---- The server: web/dist/ and a blank page.
 
 const TYPES = {
   ".html": "text/html",
@@ -57,12 +62,11 @@ const server = createServer((req, res) => {
     res.writeHead(200, { "content-type": "text/html" });
     return res.end(PAGE);
   }
-  let file = normalize(join(dist, path));
+  const file = normalize(join(dist, path));
   if (!file.startsWith(normalize(dist))) {
     res.writeHead(403);
     return res.end();
   }
-  if (path === "/lightcone_engine_web.js" && !realEngine) file = join(here, "mock_engine.js");
   if (!existsSync(file) || !statSync(file).isFile()) {
     fetched.push(`${path} (404)`);
     res.writeHead(404);
@@ -81,13 +85,15 @@ const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
   args: ["--no-sandbox"],
 });
-let failed = false;
+let failed = 0;
+let passed = 0;
 function fail(what) {
   console.error(`FAIL ${what}`);
-  failed = true;
+  failed += 1;
 }
 function check(ok, what) {
-  if (!ok) fail(what);
+  if (ok) passed += 1;
+  else fail(what);
   return ok;
 }
 
@@ -239,7 +245,7 @@ def on_answer(world, question, chosen):
 `;
 
 const readyMs = await openReady("lessons/two_pucks.py", TWO_PUCKS);
-console.log(JSON.stringify({ lesson_worker_ready_ms: readyMs && Math.round(readyMs), engine: realEngine ? "real" : "mock" }));
+console.log(JSON.stringify({ lesson_worker_ready_ms: readyMs && Math.round(readyMs) }));
 
 if (readyMs !== null) {
   const t0 = await page.evaluate(() => window.__now());
@@ -336,8 +342,8 @@ if (readyMs !== null) {
   }
 }
 
-// ---- The engine's Scene and Simulation through the stand-in (the real
-// engine only): the lesson asserts what the extension would answer.
+// ---- The engine's Scene and Simulation through the stand-in: the lesson
+// asserts what the extension would answer.
 
 const ENGINE = `import os
 import lightcone
@@ -411,7 +417,7 @@ def setup(world):
     print("engine: all asserts hold")
 `;
 
-if (realEngine && (await openReady("engine.py", ENGINE)) !== null) {
+if ((await openReady("engine.py", ENGINE)) !== null) {
   await lesson.send(call("setup", "[]", NONE));
   const start = await request("start", "engine");
   if (start) {
@@ -515,6 +521,7 @@ await browser.close();
 server.close();
 if (failed) {
   console.error(`console: ${JSON.stringify(consoleLines.slice(-30).map((l) => l.slice(0, 200)), null, 1)}`);
+  console.log(`lesson worker: ${passed} passed, ${failed} failed`);
   process.exit(1);
 }
-console.log("lesson worker: all checks passed");
+console.log(`lesson worker: ${passed} passed, ${failed} failed`);
