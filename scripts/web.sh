@@ -25,7 +25,9 @@ fi
 rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown ||
   rustup target add wasm32-unknown-unknown
 
-cargo build --release --target wasm32-unknown-unknown -p lightcone-web
+# The game, and the engine a lesson's worker calls (web-engine/), in one
+# build (they share the engine's crates).
+cargo build --release --target wasm32-unknown-unknown -p lightcone-web -p lightcone-engine-web
 rm -rf web/dist
 mkdir -p web/dist/scenes
 wasm-bindgen --target web --no-typescript --out-dir web/dist \
@@ -58,10 +60,8 @@ sed "s/^__version__ = .*/__version__ = \"$workspace_version\"/" web/python/_ligh
 cp game/src/lesson/remote.py web/dist/python/lightcone_remote.py
 cp game/src/lesson/bootstrap.py web/dist/python/lightcone_bootstrap.py
 cp web/python/lightcone_web_child.py web/dist/python/
-# The engine the worker's Scene and Simulation call (web-engine/), built
-# by cargo and wasm-bindgen as the game is: lightcone_engine_web.js and
-# its _bg.wasm.
-cargo build --release --target wasm32-unknown-unknown -p lightcone-engine-web
+# The engine the worker's Scene and Simulation call (web-engine/, built
+# above): lightcone_engine_web.js and its _bg.wasm.
 wasm-bindgen --target web --no-typescript --out-dir web/dist \
   "${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/release/lightcone_engine_web.wasm"
 ls -l web/dist

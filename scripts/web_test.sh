@@ -44,6 +44,24 @@ if [ -x "$lightcone" ]; then
   "$lightcone" observe assets/scenes/ten_pucks.toml --at 3 >"$observed" || observed=""
 fi
 NATIVE_OBSERVE="$observed" NATIVE_PNG="$native" node web/tests/page.mjs "http://127.0.0.1:$port/" docs/web_default.png
+# The lesson's worker on its own (the game's part played by the test).
+node web/tests/lesson_worker.mjs web/dist
+# Every shipped lesson in the page against `lightcone lesson --json` on
+# the desktop (when the native game is built: after scripts/test.sh).
+if [ -x "$lightcone" ]; then
+  outcomes=$(mktemp --suffix=.json)
+  python3 - "$lightcone" "$outcomes" <<'PY'
+import json, pathlib, subprocess, sys
+exe, out = sys.argv[1], sys.argv[2]
+outcomes = {}
+for path in sorted(pathlib.Path("scripts/lessons").glob("*.py")):
+    run = subprocess.run([exe, "lesson", str(path), "--json"], capture_output=True, text=True, timeout=600)
+    outcomes[path.name] = json.loads(run.stdout)
+pathlib.Path(out).write_text(json.dumps(outcomes))
+PY
+  NATIVE_LESSONS="$outcomes" node web/tests/lessons.mjs "http://127.0.0.1:$port/" docs/web_lesson.png
+  rm -f "$outcomes"
+fi
 # The download: the wasm gzipped (as a server sends it), and the JS glue.
 wasm=web/dist/lightcone_web_bg.wasm
 echo "wasm $(stat -c %s $wasm) bytes, gzipped $(gzip -9 -c $wasm | wc -c) bytes; JS glue $(stat -c %s web/dist/lightcone_web.js) bytes"

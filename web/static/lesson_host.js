@@ -20,7 +20,13 @@
 //       dropping what it sent that was not taken
 //   lightconeLesson.state()  "none" (no worker: never opened, or stopped),
 //       "loading", "ready", or "ended" (after "failed" or "ended")
+//   lightconeLesson.onMessage(f)  has f() called after each message is
+//       received (the game wakes on it and answers a request at once,
+//       without waiting for its next frame)
 //
+// Nothing the worker sends is trusted (the lesson's Python can post
+// messages of its own): a line over 16 MiB, or more than 10 000 messages
+// waiting to be taken, ends the worker with the reason.
 // Nothing here times hooks: the game does, and calls stop().
 (function () {
   "use strict";
@@ -28,6 +34,10 @@
   let worker = null;
   let current = "none";
   let received = [];
+  let wake = null;
+  // The protocol's bounds (lightcone_lesson::protocol::MAX_LINE).
+  const MAX_LINE = 16 << 20;
+  const MAX_WAITING = 10000;
 
   // Ends the worker and forgets it (its late messages are ignored).
   function end(next) {
@@ -52,6 +62,18 @@
     w.onmessage = (e) => {
       if (w !== worker) return;
       const m = e.data || {};
+      if (received.length >= MAX_WAITING) {
+        received = [{ kind: "ended", why: `it sent more than ${MAX_WAITING} messages the game had not taken yet` }];
+        end("ended");
+        if (wake) wake();
+        return;
+      }
+      if (m.kind === "line" && typeof m.line === "string" && m.line.length > MAX_LINE) {
+        received.push({ kind: "ended", why: `it sent a line of ${m.line.length} characters (at most ${MAX_LINE})` });
+        end("ended");
+        if (wake) wake();
+        return;
+      }
       if (m.kind === "ready") {
         current = "ready";
         received.push({ kind: "ready" });
@@ -64,6 +86,7 @@
         received.push({ kind: "ended", why: String(m.why) });
         end("ended");
       }
+      if (wake) wake();
     };
     // An uncaught error in the worker, or a worker script that did not load.
     w.onerror = (e) => {
@@ -103,5 +126,9 @@
     return current;
   }
 
-  window.lightconeLesson = { open, send, take, stop, state };
+  function onMessage(f) {
+    wake = typeof f === "function" ? f : null;
+  }
+
+  window.lightconeLesson = { open, send, take, stop, state, onMessage };
 })();

@@ -269,13 +269,13 @@ impl Page {
     /// `lightcone lesson` takes it (`lesson::headless::turn`): nothing once
     /// the closing message is up or the lesson stopped; else the open
     /// question answered with the lesson's own answer; else board time
-    /// moved 1/`fps` real seconds.
-    fn drive(&mut self, state: &mut GameState, fps: f64) {
+    /// moved 1/`fps` real seconds. Whether it did anything.
+    fn drive(&mut self, state: &mut GameState, fps: f64) -> bool {
         let Some(lesson) = &mut self.lesson else {
-            return;
+            return false;
         };
         if !(lesson.running() || lesson.awaiting_light()) || lesson.ui().closing().is_some() {
-            return;
+            return false;
         }
         let open = lesson
             .ui()
@@ -290,6 +290,7 @@ impl Page {
                 state.step(1.0 / fps);
             }
         }
+        true
     }
 }
 
@@ -445,6 +446,10 @@ struct WebApp {
     drive: Option<f64>,
 }
 
+/// Longest the page takes turns of a lesson played with nobody at it
+/// between two looks at its own events, ms.
+const DRIVE_MS: f64 = 12.0;
+
 /// How many frames the page's frame-time median is over.
 const CPU_FRAMES: usize = 64;
 
@@ -527,6 +532,20 @@ impl window::Game for WebApp {
         None
     }
 
+    fn woken(&mut self) {
+        // A message from the lesson's worker: answered now, and with
+        // nobody at the page (`?drive=`) the next turns taken at once, so
+        // the lesson runs at the worker's pace, not the drawing's.
+        match self.drive {
+            Some(fps) => self.drive_turns(fps),
+            None => {
+                if let Some(lesson) = &mut self.page.lesson {
+                    lesson.serve(&mut self.stage.state);
+                }
+            }
+        }
+    }
+
     fn frame(&mut self, gfx: &mut Gfx) -> Result<Flow, String> {
         let start = page_ms();
         self.open_dropped();
@@ -540,12 +559,12 @@ impl window::Game for WebApp {
             lesson.serve(state);
         }
         let before = state.live_time;
-        if !self.page.lesson.as_ref().is_some_and(WebLesson::busy) {
-            match self.drive {
-                None => state.step(dt),
-                Some(fps) => self.page.drive(state, fps),
-            }
+        if let Some(fps) = self.drive {
+            self.drive_turns(fps);
+        } else if !self.page.lesson.as_ref().is_some_and(WebLesson::busy) {
+            state.step(dt);
         }
+        let state = &mut self.stage.state;
         if let Some(lesson) = &mut self.page.lesson {
             lesson.after_step(state, before);
             lesson.watch_light(state);
@@ -581,6 +600,36 @@ fn page_ms() -> f64 {
 }
 
 impl WebApp {
+    /// With nobody at the page (`?drive=FPS`): takes the lesson's turns
+    /// (its hooks' ends, then the next question answered or board step,
+    /// and the hooks that raised) while none is out in the worker, for at
+    /// most [`DRIVE_MS`] of the page's time, so that a lesson whose frames
+    /// call no hook is not held to the page's frame rate either.
+    fn drive_turns(&mut self, fps: f64) {
+        let until = page_ms() + DRIVE_MS;
+        let state = &mut self.stage.state;
+        loop {
+            let Some(lesson) = &mut self.page.lesson else {
+                return;
+            };
+            lesson.serve(state);
+            if lesson.busy() {
+                return;
+            }
+            let before = state.live_time;
+            if !self.page.drive(state, fps) {
+                return;
+            }
+            if let Some(lesson) = &mut self.page.lesson {
+                lesson.after_step(state, before);
+                lesson.watch_light(state);
+            }
+            if page_ms() > until {
+                return;
+            }
+        }
+    }
+
     /// Keeps the time one frame took on the page's thread (`ms`: the game's
     /// work and its WebGL calls, not the browser's compositing) and
     /// publishes the median of the last [`CPU_FRAMES`] as

@@ -47,6 +47,27 @@ extern "C" {
     /// Ends the worker.
     #[wasm_bindgen(catch, js_namespace = lightconeLesson, js_name = stop)]
     fn js_stop() -> Result<(), JsValue>;
+    /// Has `f` called after each message from the worker.
+    #[wasm_bindgen(catch, js_namespace = lightconeLesson, js_name = onMessage)]
+    fn js_on_message(f: &js_sys::Function) -> Result<(), JsValue>;
+}
+
+/// Has the page wake the game's loop at each message from the worker
+/// (`window::wake`), so a request is answered at once rather than at the
+/// next frame. Set once for the page's life.
+fn wake_on_messages() {
+    thread_local! {
+        static SET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+    if SET.with(|s| s.replace(true)) {
+        return;
+    }
+    let wake = Closure::<dyn FnMut()>::new(super::window::wake);
+    if js_on_message(wake.as_ref().unchecked_ref()).is_ok() {
+        wake.forget();
+    } else {
+        SET.with(|s| s.set(false));
+    }
 }
 
 /// One message of the page's host (`lightconeLesson.take()`).
@@ -146,6 +167,7 @@ impl WebLesson {
 
     /// A new worker, a fresh world, `setup` queued.
     fn start(&mut self) -> Result<(), String> {
+        wake_on_messages();
         js_open(&self.name, &self.source, self.limit.as_secs_f64())
             .map_err(|e| format!("the page cannot start the lesson's worker: {e:?}"))?;
         self.world = WorldCore::new(".".into(), new_game);

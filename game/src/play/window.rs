@@ -72,6 +72,29 @@ pub trait Game {
     /// One frame: the game's time, its views, its panels (through
     /// [`Gfx::run_ui`]) and the pictures drawn into the surface.
     fn frame(&mut self, gfx: &mut Gfx) -> Result<Flow, String>;
+
+    /// Woken between frames by [`wake`] (in a browser: a message from
+    /// the lesson's worker), to answer it without waiting for the next
+    /// frame.
+    fn woken(&mut self) {}
+}
+
+#[cfg(target_arch = "wasm32")]
+thread_local! {
+    /// Wakes the page's event loop ([`wake`]), once it runs.
+    static WAKER: std::cell::RefCell<Option<winit::event_loop::EventLoopProxy<()>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Asks the event loop to call [`Game::woken`] soon, between frames (in a
+/// browser; a no-op elsewhere, and before the loop runs).
+pub fn wake() {
+    #[cfg(target_arch = "wasm32")]
+    WAKER.with(|w| {
+        if let Some(proxy) = w.borrow().as_ref() {
+            let _ = proxy.send_event(());
+        }
+    });
 }
 
 /// The main window, its surface on the GPU, and egui.
@@ -300,6 +323,7 @@ pub fn run(game: &mut impl Game) -> Result<(), String> {
 pub fn spawn<G: Game + 'static>(game: G) -> Result<(), String> {
     use winit::platform::web::EventLoopExtWebSys;
     let event_loop = open_event_loop()?;
+    WAKER.with(|w| *w.borrow_mut() = Some(event_loop.create_proxy()));
     // The game lives as long as the page.
     let game: &'static mut G = Box::leak(Box::new(game));
     event_loop.spawn_app(Runner {
@@ -424,6 +448,12 @@ impl<G: Game> ApplicationHandler for Runner<'_, G> {
             }
             event if takes_input => self.game.input(gfx, &event, consumed),
             _ => {}
+        }
+    }
+
+    fn user_event(&mut self, _event_loop: &ActiveEventLoop, (): ()) {
+        if self.gfx.is_some() {
+            self.game.woken();
         }
     }
 
