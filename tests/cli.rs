@@ -1235,10 +1235,24 @@ fn link_carries_the_scene_file_that_another_inflater_reads_back() {
         piped.trim().rsplit_once('#').unwrap().1,
         format!("scene={data}")
     );
-    // A lesson (the browser build runs none yet) and a base that is no page.
+    // A lesson travels as `#lesson=`; one that does not compile is not
+    // shared (its syntax error, located); a base that is no page.
     let out = lightcone(&["link", "scripts/lessons/contraction.py"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("/#lesson="));
+    let broken = dir.join("broken.py");
+    std::fs::write(&broken, "def setup(world):\n    world.say(\"unclosed\"\n").unwrap();
+    let out = lightcone(&["link", broken.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("lesson"));
+    let why = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        why.contains("SyntaxError") && why.contains("broken.py"),
+        "{why}"
+    );
     let out = lightcone(&["link", file, "--base", "school.example"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--base school.example"));

@@ -197,6 +197,13 @@ pub fn file_link(base: &str, name: &str, text: &str) -> String {
     )
 }
 
+/// The link that opens the shipped lesson `name` (its file name,
+/// [`crate::assets::LESSONS`]) in the browser build served at `base`.
+pub fn shipped_lesson_link(base: &str, name: &str) -> String {
+    let name = name.strip_suffix(".py").unwrap_or(name);
+    format!("{}?lesson={name}", page(base))
+}
+
 /// `base` without its query or fragment.
 fn page(base: &str) -> &str {
     base.split(['?', '#']).next().unwrap_or(base)

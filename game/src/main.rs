@@ -127,11 +127,12 @@ enum Command {
         /// Scene files (TOML); the default scene when none is given.
         scenes: Vec<PathBuf>,
     },
-    /// Print the link that opens a scene file in the browser build
-    /// (`#scene=`: the file itself, compressed, in the link's fragment),
-    /// after checking it as `check` does.
+    /// Print the link that opens a scene file or a lesson in the browser
+    /// build (`#scene=` / `#lesson=`: the file itself, compressed, in the
+    /// link's fragment), after checking it (a scene as `check` does, a
+    /// lesson for Python syntax).
     Link {
-        /// Scene file (TOML).
+        /// Scene file (TOML) or lesson (.py).
         scene: PathBuf,
         /// The address the browser build is served at.
         #[arg(long, default_value = lightcone::commands::link::DEFAULT_BASE)]

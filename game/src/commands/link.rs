@@ -1,7 +1,8 @@
-//! `lightcone link SCENE.toml [--base URL]`: the link that opens a scene
-//! file in the browser build (`#scene=…`, see [`crate::links`]), for a
-//! teacher to share. The scene is checked first, as `lightcone check`
-//! does, so a broken file is never shared.
+//! `lightcone link FILE [--base URL]`: the link that opens a scene file
+//! (`#scene=…`) or a lesson (`#lesson=…`) in the browser build (see
+//! [`crate::links`]), for a teacher to share. The file is checked first: a
+//! scene as `lightcone check` does, a lesson for Python syntax, so a broken
+//! file is never shared.
 
 use std::io::Read as _;
 use std::path::Path;
@@ -17,9 +18,9 @@ use crate::output;
 pub const DEFAULT_BASE: &str = "http://localhost:8000/";
 
 /// Prints the link of `path` under `base`. Exit 1 with `check`'s located
-/// errors for a bad scene, a message for a lesson (the browser build does
-/// not run lessons yet), a file too large for a link, or a base that is not
-/// a web address.
+/// errors for a bad scene, the syntax error of a lesson that does not
+/// compile, a file too large for a link, or a base that is not a web
+/// address.
 pub fn run(path: &Path, base: &str) -> ExitCode {
     match link(path, base) {
         Ok(link) => match output::print(&format!("{link}\n")) {
@@ -36,11 +37,6 @@ pub fn run(path: &Path, base: &str) -> ExitCode {
 /// The link, or why there is none.
 fn link(path: &Path, base: &str) -> Result<String, String> {
     let name = path.display().to_string();
-    if links::Kind::of_file(&name) == links::Kind::Lesson {
-        return Err(format!(
-            "{name}: a lesson: the browser build does not run lessons yet; share the file (`lightcone play {name}`)"
-        ));
-    }
     let page = ["http://", "https://", "file://"]
         .iter()
         .find_map(|scheme| base.strip_prefix(scheme));
@@ -63,8 +59,12 @@ fn link(path: &Path, base: &str) -> Result<String, String> {
             links::MAX_TEXT >> 20
         ));
     }
-    // Checked as `lightcone check` checks it, errors located.
     let text = scene::utf8(&bytes, &name).map_err(|e| e.to_string())?;
-    scene::parse(text, &name).map_err(|e| e.to_string())?;
+    if links::Kind::of_file(&name) == links::Kind::Lesson {
+        crate::lesson::check_syntax(&name, text)?;
+    } else {
+        // Checked as `lightcone check` checks it, errors located.
+        scene::parse(text, &name).map_err(|e| e.to_string())?;
+    }
     Ok(links::file_link(base, &name, text))
 }

@@ -201,6 +201,19 @@ fn load_module<'py>(
     Ok(module)
 }
 
+/// Whether the lesson `source` (named `name`) is Python that compiles:
+/// `Err` with the syntax error, located (the lesson's code is not run).
+pub fn check_syntax(name: &str, source: &str) -> Result<(), String> {
+    init_python()?;
+    Python::attach(|py| {
+        py.import("builtins")
+            .and_then(|b| b.getattr("compile"))
+            .and_then(|compile| compile.call1((source, name, "exec")))
+            .map(|_| ())
+            .map_err(|e| traceback(py, &e))
+    })
+}
+
 /// One lesson, running or failed.
 pub struct LessonHost {
     path: PathBuf,

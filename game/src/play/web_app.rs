@@ -68,7 +68,7 @@ pub fn start(address: &Address<'_>) -> Result<(), String> {
     let mut state = default_game()?;
     let mut page = Page { lesson: None };
     match open_address(&mut state, address) {
-        Ok(Some((name, text))) => page.open_lesson(&mut state, &name, text),
+        Ok(Some((name, text, shipped))) => page.open_lesson(&mut state, &name, text, shipped),
         Ok(None) => {}
         Err(e) => say_in_menu(&mut state, e),
     }
@@ -130,8 +130,9 @@ fn default_game() -> Result<GameState, String> {
     Ok(state)
 }
 
-/// A lesson to start: its file's name and its text.
-type LessonFile = (String, String);
+/// A lesson to start: its file's name, its text, and whether it is a
+/// shipped one.
+type LessonFile = (String, String, bool);
 
 /// Opens the scene `address` names in `state` (nothing: the default scene
 /// stays), or returns the lesson it names, for the page to start.
@@ -154,7 +155,7 @@ fn open_address(
             format!("{name}.py")
         };
         return match crate::assets::LESSONS.iter().find(|(n, _)| *n == file) {
-            Some((n, text)) => Ok(Some(((*n).to_owned(), (*text).to_owned()))),
+            Some((n, text)) => Ok(Some(((*n).to_owned(), (*text).to_owned(), true))),
             None => {
                 let names: Vec<&str> = crate::assets::LESSONS.iter().map(|(n, _)| *n).collect();
                 Err(format!(
@@ -197,7 +198,7 @@ fn open_text(
     text: String,
 ) -> Result<Option<LessonFile>, String> {
     if kind == Kind::Lesson {
-        return Ok(Some((name.to_owned(), text)));
+        return Ok(Some((name.to_owned(), text, false)));
     }
     let scene = scene::parse(&text, name).map_err(|e| e.to_string())?;
     let source = SceneSource::Text {
@@ -250,8 +251,8 @@ impl Page {
     /// Starts the lesson `name` (its `text`) in place of the one that ran;
     /// the game is replaced when its `setup` ends (until then board time
     /// waits). What cannot start is said in the scene menu.
-    fn open_lesson(&mut self, state: &mut GameState, name: &str, text: String) {
-        match WebLesson::open(name, text) {
+    fn open_lesson(&mut self, state: &mut GameState, name: &str, text: String, shipped: bool) {
+        match WebLesson::open(name, text, shipped) {
             Ok(lesson) => {
                 self.lesson = Some(lesson);
                 state.scene_menu.open = false;
@@ -316,10 +317,10 @@ impl Host for Page {
 
     fn act(&mut self, action: UiAction, state: &mut GameState) {
         match action {
-            UiAction::Share => share(state),
+            UiAction::Share => share(state, self.lesson.as_ref()),
             UiAction::Open(Choice::Lesson(i)) => {
                 if let Some((name, text)) = crate::assets::LESSONS.get(i) {
-                    self.open_lesson(state, name, (*text).to_owned());
+                    self.open_lesson(state, name, (*text).to_owned(), true);
                 }
             }
             // A scene opened in the menu ends the lesson that ran.
@@ -343,18 +344,21 @@ impl Host for Page {
 /// Puts the link of what is open in the address bar and the clipboard,
 /// and says so (the link is also `window.lightconeShareLink`, for the
 /// browser test).
-fn share(state: &mut GameState) {
+fn share(state: &mut GameState, lesson: Option<&WebLesson>) {
     let Some(page) = web_sys::window() else {
-        return;
-    };
-    let Some(source) = &state.source else {
-        state.message = "this scene was not opened from a file: nothing to share".to_owned();
         return;
     };
     let Some(base) = page_address(&page) else {
         return;
     };
-    let link = links::link(&base, source);
+    let (link, what) = match (lesson, &state.source) {
+        (Some(lesson), _) => (lesson.link(&base), "lesson"),
+        (None, Some(source)) => (links::link(&base, source), "scene"),
+        (None, None) => {
+            state.message = "this scene was not opened from a file: nothing to share".to_owned();
+            return;
+        }
+    };
     show_address(&page, &link);
     let _ =
         web_sys::js_sys::Reflect::set(&page, &"lightconeShareLink".into(), &link.as_str().into());
@@ -364,7 +368,7 @@ fn share(state: &mut GameState) {
         "in the address bar: copy it from there (this page has no clipboard: it is not served over https or from localhost)"
     };
     state.message = format!(
-        "the link of this scene ({} characters) is {copied}; it opens this scene for whoever you send it to",
+        "the link of this {what} ({} characters) is {copied}; it opens this {what} for whoever you send it to",
         link.len()
     );
 }
@@ -456,9 +460,10 @@ const CPU_FRAMES: usize = 64;
 impl WebApp {
     /// Once another scene is open (from the menu, a dropped file), the
     /// address bar no longer names the one the page was opened with or
-    /// shared: it names a shipped scene (`?scene=NAME`), else the bare
-    /// page (a file's link is long: *share* makes it), so a reload never
-    /// brings back a scene that was left.
+    /// shared: it names a shipped scene (`?scene=NAME`) or lesson
+    /// (`?lesson=NAME`), else the bare page (a file's link is long:
+    /// *share* makes it), so a reload never brings back a scene that was
+    /// left.
     fn follow_address(&mut self) {
         let state = &self.stage.state;
         if state.generation == self.addressed.0 {
@@ -475,9 +480,13 @@ impl WebApp {
         let Some(base) = page_address(&page) else {
             return;
         };
-        let url = match &state.source {
-            Some(shipped @ SceneSource::Shipped(_)) => links::link(&base, shipped),
-            _ => base,
+        // A lesson's game is the lesson's: the address names the lesson
+        // (a shipped one), or keeps the link that carried it.
+        let url = match (&self.page.lesson, &state.source) {
+            (Some(lesson), _) if lesson.shipped() => lesson.link(&base),
+            (Some(_), _) => return,
+            (None, Some(shipped @ SceneSource::Shipped(_))) => links::link(&base, shipped),
+            (None, _) => base,
         };
         show_address(&page, &url);
     }
@@ -497,7 +506,7 @@ impl WebApp {
             Some(text) => open_text(state, Kind::of_file(&name), &name, text),
         };
         match opened {
-            Ok(Some((name, text))) => self.page.open_lesson(state, &name, text),
+            Ok(Some((name, text, shipped))) => self.page.open_lesson(state, &name, text, shipped),
             Ok(None) => {}
             Err(e) => say_in_menu(state, e),
         }

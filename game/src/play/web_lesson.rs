@@ -110,6 +110,8 @@ pub struct WebLesson {
     /// Its file's name, and its text (a reload starts it again).
     name: String,
     source: String,
+    /// It is a shipped lesson (`crate::assets::LESSONS`): its link names it.
+    shipped: bool,
     /// The lesson's world: its screen, and the game while a request runs.
     world: WorldCore,
     /// What the game holds while its real state is lent to the world.
@@ -143,10 +145,11 @@ impl WebLesson {
     /// `setup` runs once Python is up there, and replaces the game when it
     /// ends (until then board time waits). Fails when the page has no
     /// lesson host (an old `index.html`).
-    pub fn open(name: &str, source: String) -> Result<Self, String> {
+    pub fn open(name: &str, source: String, shipped: bool) -> Result<Self, String> {
         let mut lesson = Self {
             name: name.to_owned(),
             source,
+            shipped,
             world: WorldCore::new(".".into(), new_game),
             spare: None,
             pending: None,
@@ -488,6 +491,21 @@ impl WebLesson {
     /// The lesson's file name.
     pub fn name(&self) -> &str {
         &self.name
+    }
+
+    /// Whether it is a shipped lesson.
+    pub fn shipped(&self) -> bool {
+        self.shipped
+    }
+
+    /// The link that opens this lesson in the page served at `base`:
+    /// `?lesson=NAME` for a shipped one, else its text in `#lesson=DATA`.
+    pub fn link(&self, base: &str) -> String {
+        if self.shipped {
+            crate::links::shipped_lesson_link(base, &self.name)
+        } else {
+            crate::links::file_link(base, &self.name, &self.source)
+        }
     }
 }
 
