@@ -26,6 +26,7 @@ __all__ = [
     "SpeedOfLightError",
     "World",
     "__version__",
+    "_standin_call",
 ]
 
 class _Numbers(Protocol):
@@ -301,3 +302,9 @@ class World:
     @property
     def finished(self) -> bool:
         """Whether `finish` was called."""
+
+def _standin_call(request: str) -> str:
+    """The browser's Scene and Simulation stand-ins' one call (JSON in,
+    JSON out: lightcone_lesson::standin), for testing them against this
+    module's classes. Not part of the API."""
+    ...
