@@ -252,6 +252,9 @@ impl Page {
     /// the game is replaced when its `setup` ends (until then board time
     /// waits). What cannot start is said in the scene menu.
     fn open_lesson(&mut self, state: &mut GameState, name: &str, text: String, shipped: bool) {
+        // The old lesson's worker ends first (dropped after, it would end
+        // the new one's: the page runs one worker).
+        self.lesson = None;
         match WebLesson::open(name, text, shipped) {
             Ok(lesson) => {
                 self.lesson = Some(lesson);

@@ -509,6 +509,15 @@ impl WebLesson {
     }
 }
 
+impl Drop for WebLesson {
+    /// Its worker ends with it (a scene opened in the menu ends the
+    /// lesson). The page has one worker at a time: drop the old lesson
+    /// before opening another.
+    fn drop(&mut self) {
+        let _ = js_stop();
+    }
+}
+
 impl LessonStatus for WebLesson {
     fn title(&self) -> String {
         self.name.clone()
