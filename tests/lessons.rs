@@ -737,16 +737,26 @@ fn in_the_window_the_world_is_a_lightcone_world() {
     let path = dir.join("isinstance.py");
     std::fs::write(
         &path,
-        "import lightcone\n\
-         def setup(world):\n\
-         \x20   world.check('setup', isinstance(world, lightcone.World), type(world).__name__)\n\
-         \x20   s = lightcone.Scene(title='isinstance')\n\
-         \x20   s.add_puck('a', (0.5, 0.71), beta=(0.5, 0.0))\n\
-         \x20   world.start(s)\n\
-         def on_frame(world, t):\n\
-         \x20   world.check('on_frame', isinstance(world, lightcone.World), repr(world))\n\
-         \x20   world.check('not a scene', not isinstance(world, lightcone.Scene))\n\
-         \x20   world.finish()\n",
+        r#"import os, tempfile
+import lightcone
+def setup(world):
+    world.check('setup', isinstance(world, lightcone.World), type(world).__name__)
+    s = lightcone.Scene(title='isinstance')
+    s.add_puck('a', (0.5, 0.71), beta=(0.5, 0.0))
+    world.start(s)
+def on_frame(world, t):
+    world.check('on_frame', isinstance(world, lightcone.World), repr(world))
+    world.check('not a scene', not isinstance(world, lightcone.Scene))
+    f = world.diagram(os.path.join(tempfile.gettempdir(), 'd.png'), size=(200, 150))
+    world.check('a diagram saved by the lesson', (f.width, f.height) == (200, 150))
+    try:
+        world.diagram('d.png')
+        denied = False
+    except OSError:
+        denied = True
+    world.check('not beside the lesson: its sandbox writes only its own folder', denied)
+    world.finish()
+"#,
     )
     .unwrap();
     let (mut host, mut game) = LessonHost::load_isolated_with_limit(
@@ -763,8 +773,11 @@ fn in_the_window_the_world_is_a_lightcone_world() {
     host.settle(&mut game);
     assert!(host.error.is_none(), "{:?}", host.error);
     let claims = host.with_ui(|ui| ui.claims.clone());
-    assert_eq!(claims.len(), 3, "{claims:?}");
+    assert_eq!(claims.len(), 5, "{claims:?}");
     assert!(claims.iter().all(|c| c.ok), "{claims:?}");
+    // Saved by the lesson's own (sandboxed) process, never by the game:
+    // nothing was written beside the lesson.
+    assert!(!dir.join("d.png").exists());
 }
 
 /// The lesson template on the README's front page ("A lesson in 20 lines",

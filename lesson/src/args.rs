@@ -121,9 +121,21 @@ impl FromArg for String {
     }
 }
 
+impl FromArg for Value {
+    fn from_arg(v: &Value) -> Result<Self, &'static str> {
+        Ok(v.clone())
+    }
+}
+
+/// A number as Python gives a float: an int or a float, or a bool (an int
+/// in Python, which pyo3 takes as 0.0 or 1.0).
+fn number(v: &Value) -> Option<f64> {
+    v.as_f64().or_else(|| v.as_bool().map(f64::from))
+}
+
 impl FromArg for f64 {
     fn from_arg(v: &Value) -> Result<Self, &'static str> {
-        v.as_f64().ok_or("a number")
+        number(v).ok_or("a number")
     }
 }
 
@@ -136,6 +148,7 @@ impl FromArg for bool {
 impl FromArg for usize {
     fn from_arg(v: &Value) -> Result<Self, &'static str> {
         v.as_u64()
+            .or_else(|| v.as_bool().map(u64::from))
             .and_then(|n| usize::try_from(n).ok())
             .ok_or("a whole number ≥ 0")
     }
@@ -165,7 +178,7 @@ impl FromArg for Vec<f64> {
     fn from_arg(v: &Value) -> Result<Self, &'static str> {
         const WHAT: &str = "a list of numbers";
         let items = v.as_array().ok_or(WHAT)?;
-        items.iter().map(|x| x.as_f64().ok_or(WHAT)).collect()
+        items.iter().map(|x| number(x).ok_or(WHAT)).collect()
     }
 }
 
@@ -179,7 +192,7 @@ impl<const N: usize> FromArg for Vector<N> {
         let items = v.as_array().filter(|a| a.len() == N).ok_or(what)?;
         let mut out = [0.0; N];
         for (slot, x) in out.iter_mut().zip(items) {
-            *slot = x.as_f64().ok_or(what)?;
+            *slot = number(x).ok_or(what)?;
         }
         Ok(Self(out))
     }

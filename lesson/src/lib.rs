@@ -25,6 +25,7 @@ mod world;
 pub use error::{ErrorKind, WorldError, WorldResult};
 pub use game::{LessonGame, NewGame};
 pub use screen::{
-    Bars, Claim, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS, Pictures, Question,
+    Bars, Claim, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CHOICES, MAX_CLAIM_BYTES, MAX_CLAIMS,
+    MAX_TEXT_BYTES, Pictures, Question,
 };
-pub use world::{NO_GAME, WorldCore};
+pub use world::{NO_GAME, WorldCore, cut};

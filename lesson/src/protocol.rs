@@ -33,6 +33,21 @@ pub const MAX_LINE: usize = 16 << 20;
 /// How many of its newest printed lines the lesson's panel keeps.
 pub const PRINTED_LINES: usize = 40;
 
+/// Longest printed line the panel keeps, bytes (cut past it).
+pub const PRINTED_LINE_BYTES: usize = 4096;
+
+/// The lines a hook printed, as the panel keeps them: the newest
+/// [`PRINTED_LINES`], each cut to [`PRINTED_LINE_BYTES`].
+#[must_use]
+pub fn printed_tail(lines: Vec<String>) -> Vec<String> {
+    let skip = lines.len().saturating_sub(PRINTED_LINES);
+    lines
+        .into_iter()
+        .skip(skip)
+        .map(|l| crate::cut(&l, PRINTED_LINE_BYTES))
+        .collect()
+}
+
 /// The world's methods a lesson may request (`remote.py`'s `METHODS`).
 pub const METHODS: [&str; 17] = [
     "start",
@@ -291,16 +306,21 @@ pub fn answer(
         }
         "diagram" => {
             let a = b(&["path", "observer", "size", "at", "axis", "frame"])?;
-            let size = pixels(&a, 2, (1000, 700))?;
+            // The lesson's side saves the frame (in its own sandbox): the
+            // game writes no file a lesson names.
+            if a.opt::<Value>(0)?.is_some() {
+                return Err(WorldError::value(
+                    "world.diagram: the path is saved by the lesson's side, not sent to the game",
+                ));
+            }
             let (image, t) = world.diagram(
                 a.opt::<String>(1)?.as_deref(),
-                size,
+                pixels(&a, 2, (1000, 700))?,
                 a.opt(3)?,
                 &a.opt::<String>(4)?.unwrap_or_else(|| "x".to_owned()),
                 a.opt::<String>(5)?.as_deref(),
             )?;
-            let path = a.opt::<String>(0)?.map(|p| world.dir.join(p));
-            frame(&image, t, path.as_deref())?
+            frame(&image, t, None)?
         }
         "show_diagram" => {
             let a = b(&["on", "frame", "axis"])?;
@@ -318,7 +338,7 @@ pub fn answer(
         }
         "say" => {
             let a = b(&["text", "append"])?;
-            world.say(&a.req::<String>(0)?, a.opt(1)?.unwrap_or(false));
+            world.say(&a.req::<String>(0)?, a.opt(1)?.unwrap_or(false))?;
             none
         }
         "ask" => {

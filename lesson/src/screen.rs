@@ -73,6 +73,14 @@ pub const MAX_CLAIMS: usize = 10_000;
 /// Longest claim, or claim's detail, in bytes of UTF-8.
 pub const MAX_CLAIM_BYTES: usize = 4096;
 
+/// Longest text of the lesson's message (`say`, appended lines and all)
+/// or closing message, in bytes of UTF-8: a panel holds pages, not
+/// megabytes (a 15 MB message stopped the browser's game).
+pub const MAX_TEXT_BYTES: usize = 64 << 10;
+
+/// Most choices a question may offer.
+pub const MAX_CHOICES: usize = 16;
+
 /// Most bar charts (by title) a lesson may show at once, and most bins a
 /// chart may have.
 pub const MAX_CHARTS: usize = 64;

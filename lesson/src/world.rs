@@ -13,6 +13,7 @@ use lightcone_engine::spacetime::Event;
 use crate::error::{ErrorKind, WorldError, WorldResult};
 use crate::query::{self, SimultaneityLine};
 use crate::{Bars, Claim, LessonGame, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS};
+use crate::{MAX_CHOICES, MAX_TEXT_BYTES};
 use crate::{NewGame, Pictures, Question};
 
 /// The running game as a lesson sees it, and what the lesson shows.
@@ -267,14 +268,23 @@ impl WorldCore {
     }
 
     /// Shows `text` as the lesson's message: replacing the previous one,
-    /// or with `append` as a new line after it.
-    pub fn say(&mut self, text: &str, append: bool) {
-        if append && !self.ui.text.is_empty() {
+    /// or with `append` as a new line after it. Refused past
+    /// [`MAX_TEXT_BYTES`] in all.
+    pub fn say(&mut self, text: &str, append: bool) -> WorldResult<()> {
+        let append = append && !self.ui.text.is_empty();
+        let total = text.len() + if append { self.ui.text.len() + 1 } else { 0 };
+        if total > MAX_TEXT_BYTES {
+            return Err(WorldError::value(format!(
+                "world.say: the lesson's message would be {total} bytes; at most {MAX_TEXT_BYTES} are shown"
+            )));
+        }
+        if append {
             self.ui.text.push('\n');
             self.ui.text.push_str(text);
         } else {
             self.ui.text = text.to_owned();
         }
+        Ok(())
     }
 
     /// Asks the student a question with `choices` and pauses until they
@@ -287,6 +297,22 @@ impl WorldCore {
     ) -> WorldResult<()> {
         if choices.is_empty() {
             return Err(WorldError::value("ask: give at least one choice"));
+        }
+        if choices.len() > MAX_CHOICES {
+            return Err(WorldError::value(format!(
+                "ask: {} choices; give at most {MAX_CHOICES}",
+                choices.len()
+            )));
+        }
+        let longest = choices
+            .iter()
+            .map(String::len)
+            .chain([question.len()])
+            .max();
+        if longest.is_some_and(|n| n > MAX_CLAIM_BYTES) {
+            return Err(WorldError::value(format!(
+                "ask: a question or choice of more than {MAX_CLAIM_BYTES} bytes"
+            )));
         }
         if let Some(a) = answer
             && a >= choices.len()
@@ -414,6 +440,12 @@ impl WorldCore {
         message: &str,
         after_light_from: Option<(f64, f64, f64)>,
     ) -> WorldResult<()> {
+        if message.len() > MAX_TEXT_BYTES {
+            return Err(WorldError::value(format!(
+                "finish: a message of {} bytes; give at most {MAX_TEXT_BYTES}",
+                message.len()
+            )));
+        }
         let light = match after_light_from {
             None => None,
             Some((t, x, y)) => {
@@ -449,4 +481,19 @@ impl WorldCore {
             None => "World(no game)".to_owned(),
         }
     }
+}
+
+/// `text` cut to at most `max` bytes (at a character's boundary), with
+/// "…" when cut: for what a lesson sends that the game shows (a
+/// traceback, a printed line), whatever its length.
+#[must_use]
+pub fn cut(text: &str, max: usize) -> String {
+    if text.len() <= max {
+        return text.to_owned();
+    }
+    let mut end = max;
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!("{}…", &text[..end])
 }

@@ -383,3 +383,36 @@ fn the_standin_simulation_runs_the_engines_board() {
     );
     assert_eq!(r["error"][0], json!("RuntimeError"));
 }
+
+#[test]
+fn what_a_lesson_may_put_on_screen_is_bounded() {
+    let mut w = world();
+    let big = "y".repeat(lightcone_lesson::MAX_TEXT_BYTES + 1);
+    let (kind, _) = ask(&mut w, "say", json!([big]), json!({})).unwrap_err();
+    assert_eq!(kind, ErrorKind::Value);
+    // Appended lines count in all: the last that would pass is refused.
+    let half = "z".repeat(lightcone_lesson::MAX_TEXT_BYTES / 2);
+    ask(&mut w, "say", json!([half]), json!({})).unwrap();
+    let (kind, _) = ask(&mut w, "say", json!([half]), json!({"append": true})).unwrap_err();
+    assert_eq!(kind, ErrorKind::Value);
+    assert_eq!(w.ui.text.len(), half.len());
+    let many: Vec<String> = (0..=lightcone_lesson::MAX_CHOICES)
+        .map(|i| i.to_string())
+        .collect();
+    let (kind, _) = ask(&mut w, "ask", json!(["?", many]), json!({})).unwrap_err();
+    assert_eq!(kind, ErrorKind::Value);
+    let (kind, _) = ask(&mut w, "finish", json!([big]), json!({})).unwrap_err();
+    assert_eq!(kind, ErrorKind::Value);
+    // The game writes no file a lesson names: the lesson's side saves it.
+    let (kind, message) = ask(&mut w, "diagram", json!(["/tmp/x.png"]), json!({})).unwrap_err();
+    assert_eq!(kind, ErrorKind::Value, "{message}");
+    assert!(!std::path::Path::new("/tmp/x.png").exists() || message.contains("lesson's side"));
+    // A bool is a number, as in Python (True == 1).
+    ask(&mut w, "=time_scale", json!([true]), json!({})).unwrap();
+    assert_eq!(w.game().unwrap().time_scale(), 1.0);
+    // What a lesson printed or raised is cut for the panel.
+    let tail = protocol::printed_tail(vec!["é".repeat(5000); 50]);
+    assert_eq!(tail.len(), protocol::PRINTED_LINES);
+    assert!(tail[0].len() <= protocol::PRINTED_LINE_BYTES + '…'.len_utf8());
+    assert!(lightcone_lesson::cut(&"é".repeat(10), 5).ends_with('…'));
+}

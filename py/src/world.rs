@@ -215,7 +215,9 @@ impl World {
     /// The space-time diagram for `observer` (default: the first scene
     /// observer) at board time `at` (default: now), as a `Frame` (see
     /// `Simulation.diagram`); `frame`: a puck whose lines of simultaneity
-    /// to draw. With `path` (relative to the lesson), also saved.
+    /// to draw. With `path` (relative to the lesson), also saved, by the
+    /// lesson's own process (a sandboxed lesson writes only in its
+    /// temporary folder, `tempfile.gettempdir()`).
     #[pyo3(signature = (path = None, observer = None, size = (1000, 700), at = None, axis = "x", frame = None))]
     fn diagram(
         &self,
@@ -261,10 +263,11 @@ impl World {
     }
 
     /// Shows `text` as the lesson's message: replacing the previous one,
-    /// or with `append=True` as a new line after it.
+    /// or with `append=True` as a new line after it (64 KiB in all at
+    /// most: ValueError past it).
     #[pyo3(signature = (text, append = false))]
-    fn say(&mut self, text: &str, append: bool) {
-        self.core.say(text, append);
+    fn say(&mut self, text: &str, append: bool) -> PyResult<()> {
+        self.core.say(text, append).map_err(world_err)
     }
 
     /// Asks the student a question with `choices` (buttons) and pauses

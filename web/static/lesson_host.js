@@ -25,8 +25,10 @@
 //       without waiting for its next frame)
 //
 // Nothing the worker sends is trusted (the lesson's Python can post
-// messages of its own): a line over 16 MiB, or more than 10 000 messages
-// waiting to be taken, ends the worker with the reason.
+// messages of its own): a line over 16 Mi characters, or more than 10 000
+// messages (of any kind) waiting to be taken, ends the worker with the
+// reason; a message of no known kind is dropped without waking the game;
+// a reason the worker gives is cut to 64 Ki characters.
 // Nothing here times hooks: the game does, and calls stop().
 (function () {
   "use strict";
@@ -38,6 +40,9 @@
   // The protocol's bounds (lightcone_lesson::protocol::MAX_LINE).
   const MAX_LINE = 16 << 20;
   const MAX_WAITING = 10000;
+  const MAX_REASON = 64 << 10;
+  let junk = 0;
+  const reason = (x) => String(x).slice(0, MAX_REASON);
 
   // Ends the worker and forgets it (its late messages are ignored).
   function end(next) {
@@ -49,6 +54,7 @@
   function open(name, source, limitSeconds) {
     end("none");
     received = [];
+    junk = 0;
     current = "loading";
     let w;
     try {
@@ -62,7 +68,7 @@
     w.onmessage = (e) => {
       if (w !== worker) return;
       const m = e.data || {};
-      if (received.length >= MAX_WAITING) {
+      if (received.length + junk >= MAX_WAITING) {
         received = [{ kind: "ended", why: `it sent more than ${MAX_WAITING} messages the game had not taken yet` }];
         end("ended");
         if (wake) wake();
@@ -80,11 +86,14 @@
       } else if (m.kind === "line" && typeof m.line === "string") {
         received.push({ kind: "line", line: m.line });
       } else if (m.kind === "failed") {
-        received.push({ kind: "failed", error: String(m.error) });
+        received.push({ kind: "failed", error: reason(m.error) });
         end("ended");
       } else if (m.kind === "ended") {
-        received.push({ kind: "ended", why: String(m.why) });
+        received.push({ kind: "ended", why: reason(m.why) });
         end("ended");
+      } else {
+        junk++; // counted against the bound until the next take
+        return;
       }
       if (wake) wake();
     };
@@ -113,6 +122,7 @@
   function take() {
     const taken = received;
     received = [];
+    junk = 0;
     return taken;
   }
 

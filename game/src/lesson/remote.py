@@ -52,8 +52,16 @@ GETTERS = ("claims", "scene", "finished")
 SERVED = METHODS + GETTERS + tuple("=" + name for name in SETTABLE)
 
 
+# Largest integer sent as one (the game reads JSON numbers as 64-bit
+# integers or doubles): beyond it, as a float, or OverflowError.
+_MAX_INT = 2**63
+
+
 def encode(value):
-    """`value` as JSON data, records and scenes tagged."""
+    """`value` as JSON data, records and scenes tagged. An int too large
+    for a float raises OverflowError, as lightcone.World does."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= _MAX_INT:
+        return float(value)  # OverflowError past a double's range
     if value is None or isinstance(value, (bool, int, float, str)):
         return value
     if isinstance(value, records.Record):
@@ -162,6 +170,15 @@ class World:
         # isinstance(world, lightcone.World) holds, as in the game's
         # process (isinstance falls back on __class__).
         return lightcone.World
+
+    def diagram(self, path=None, *args, **kwargs):
+        """The space-time diagram (see lightcone.World.diagram). With `path`
+        (relative to the lesson), saved here, on the lesson's side: the
+        game writes no file a lesson names."""
+        frame = self._call("diagram", (None,) + args, kwargs)
+        if path is not None:
+            frame.save(os.path.join(self._dir, os.fspath(path)))
+        return frame
 
     def load(self, path):
         """Loads a scene file; a relative path is taken from the lesson's

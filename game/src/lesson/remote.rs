@@ -5,9 +5,11 @@
 //!
 //! The game stays in the window's process. The lesson's process holds a
 //! `World` stand-in (`remote.py`) whose methods are requests to the
-//! game's process, served on the real game by the real `lightcone.World`
-//! (the game is lent to it for the length of one request). Both ways,
-//! JSON lines:
+//! game's process, answered on the real game by the world's own
+//! operations (`lightcone_lesson::protocol::reply_line` on the host's
+//! `WorldCore`, lent the game for the length of one request: the same
+//! operations Python's `lightcone.World` wraps, and the browser's page
+//! answers its worker with). Both ways, JSON lines:
 //!
 //! - game → lesson: a call (`{"call": hook, "args": [...], "snapshot": {...}}`)
 //!   and the answer to each request (`{"ok": value}` or
@@ -22,7 +24,7 @@
 //! while it is drawn; the next frame takes their ends, waiting at most
 //! [`FRAME_BUDGET`] (`LessonHost::serve`); while a hook is out, board time
 //! waits (the window keeps drawing). Nothing the lesson
-//! sends is trusted: a line over `line::MAX_LINE` bytes, a message that is not
+//! sends is trusted: a line over `protocol::MAX_LINE` bytes, a message that is not
 //! an `Up`, a request for something the game does not serve, or a
 //! message when no call is out ends the lesson's process, with the reason.
 //!
@@ -190,22 +192,6 @@ pub fn child(path: &Path, limit: Duration, memory_mb: u64) -> u8 {
 }
 
 /// Runs the call in `line` on the lesson; what to tell the game.
-/// What the game keeps of a hook's printing: its last
-/// [`super::PRINTED_LINES`] lines, each cut to 4 096 characters, so a lesson
-/// that prints megabytes sends the game a short message (the protocol's
-/// 16 MiB line cap is for messages, not for what the lesson prints).
-fn printed_tail(mut lines: Vec<String>) -> Vec<String> {
-    const LONGEST: usize = 4096;
-    let keep = lines.len().saturating_sub(super::PRINTED_LINES);
-    lines.drain(..keep);
-    for line in &mut lines {
-        if line.chars().count() > LONGEST {
-            *line = line.chars().take(LONGEST).chain("…".chars()).collect();
-        }
-    }
-    lines
-}
-
 fn run_call(
     py: Python<'_>,
     line: &str,
@@ -217,7 +203,7 @@ fn run_call(
     let done = |error: Option<String>, timed_out: bool, hooks: Vec<String>| Up::Done {
         error,
         timed_out,
-        printed: printed_tail(drain_printed(py)),
+        printed: protocol::printed_tail(drain_printed(py)),
         hooks,
     };
     let begun = module(py)
@@ -700,18 +686,14 @@ impl LessonHost {
         let (generation, finished) = Python::attach(|py| {
             let world = self.world.bind(py);
             // What the lesson printed is untrusted text: keep a bounded tail.
-            let lines = printed
-                .into_iter()
-                .rev()
-                .take(super::PRINTED_LINES)
-                .rev()
-                .collect();
+            let lines = protocol::printed_tail(printed);
             keep_printed(world, lines);
             let w = world.borrow();
             (w.generation, w.ui.finished.is_some())
         });
         self.finished = finished;
         if let Some(error) = error {
+            let error = lightcone_lesson::cut(&error, lightcone_lesson::MAX_TEXT_BYTES);
             game.paused = true;
             self.timed_out = timed_out;
             self.pending = None;

@@ -8,10 +8,10 @@ fn a_hook_that_prints_megabytes_sends_only_what_the_panel_keeps() {
     let many: Vec<String> = (0..400_000)
         .map(|i| format!("line {i} {}", "x".repeat(30)))
         .collect();
-    let tail = printed_tail(many);
-    assert_eq!(tail.len(), super::super::PRINTED_LINES);
+    let tail = protocol::printed_tail(many);
+    assert_eq!(tail.len(), protocol::PRINTED_LINES);
     assert!(tail.last().is_some_and(|l| l.starts_with("line 399999 ")));
-    let long = printed_tail(vec!["y".repeat(40 << 20)]);
+    let long = protocol::printed_tail(vec!["y".repeat(40 << 20)]);
     assert_eq!(long[0].chars().count(), 4097);
 }
 

@@ -510,7 +510,8 @@ impl WebApp {
         };
         match opened {
             Ok(Some((name, text, shipped))) => self.page.open_lesson(state, &name, text, shipped),
-            Ok(None) => {}
+            // A scene opened: the lesson that ran ends, as from the menu.
+            Ok(None) => self.page.lesson = None,
             Err(e) => say_in_menu(state, e),
         }
     }
@@ -636,7 +637,8 @@ impl WebApp {
                 lesson.after_step(state, before);
                 lesson.watch_light(state);
             }
-            if page_ms() > until {
+            // (A page without a clock, NaN, takes one turn.)
+            if page_ms() >= until || until.is_nan() {
                 return;
             }
         }

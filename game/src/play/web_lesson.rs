@@ -23,7 +23,7 @@ use std::time::Duration;
 use lightcone_engine::report::CollisionLine;
 use lightcone_engine::scene::Scene;
 use lightcone_lesson::protocol::{self, HOOK_LIMIT, MAX_LINE, PRINTED_LINES, Up};
-use lightcone_lesson::{LessonGame, LessonUi, WorldCore};
+use lightcone_lesson::{LessonGame, LessonUi, MAX_TEXT_BYTES, WorldCore};
 use serde_json::Value;
 use wasm_bindgen::prelude::*;
 use web_time::Instant;
@@ -436,14 +436,14 @@ impl WebLesson {
         printed: Vec<String>,
     ) {
         let kept = &mut self.world.ui.printed;
-        kept.extend(printed.into_iter().rev().take(PRINTED_LINES).rev());
+        kept.extend(protocol::printed_tail(printed));
         let extra = kept.len().saturating_sub(PRINTED_LINES);
         kept.drain(..extra);
         self.finished = self.world.ui.finished.is_some();
         if let Some(error) = error {
             self.pending = None;
             let _ = js_stop();
-            return self.fail(game, error);
+            return self.fail(game, lightcone_lesson::cut(&error, MAX_TEXT_BYTES));
         }
         if hook == "setup" {
             match self.pending.take() {
@@ -478,6 +478,7 @@ impl WebLesson {
     /// Stops the hooks, pauses the game and keeps `message` for the
     /// screen and the console.
     fn fail(&mut self, game: &mut GameState, message: String) {
+        let message = lightcone_lesson::cut(&message, MAX_TEXT_BYTES);
         web_sys::console::error_1(&format!("lesson {} stopped:\n{message}", self.name).into());
         game.paused = true;
         self.error = Some(message);
