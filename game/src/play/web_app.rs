@@ -572,10 +572,15 @@ impl window::Game for WebApp {
             lesson.serve(state);
         }
         let before = state.live_time;
-        if let Some(fps) = self.drive {
-            self.drive_turns(fps);
-        } else if !self.page.lesson.as_ref().is_some_and(WebLesson::busy) {
-            state.step(dt);
+        // `?drive=` plays a lesson; without one (a scene opened from the
+        // menu after it) time runs as usual.
+        match self.drive {
+            Some(fps) if self.page.lesson.is_some() => self.drive_turns(fps),
+            _ => {
+                if !self.page.lesson.as_ref().is_some_and(WebLesson::busy) {
+                    state.step(dt);
+                }
+            }
         }
         let state = &mut self.stage.state;
         if let Some(lesson) = &mut self.page.lesson {
