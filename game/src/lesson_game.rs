@@ -8,6 +8,14 @@ use lightcone_lesson::{LessonGame, Pictures};
 
 use crate::model::{GameState, ViewMode};
 
+/// A small game for a lesson host to hold while the real one is lent to
+/// the lesson's world.
+pub fn placeholder() -> GameState {
+    let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
+        .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
+    GameState::new(scene)
+}
+
 /// A new game at board time 0 on `scene`: what `world.start(scene)` makes.
 pub fn new_game(scene: Scene) -> Box<dyn LessonGame> {
     Box::new(GameState::new(scene))

@@ -53,6 +53,15 @@ pub struct Question {
     pub resume: bool,
 }
 
+impl Question {
+    /// The choice a run with nobody to answer takes: the lesson's right
+    /// answer, or the first choice when it names none.
+    #[must_use]
+    pub fn lessons_own(&self) -> usize {
+        self.answer.unwrap_or(0)
+    }
+}
+
 /// A physics claim the lesson checked, shown as ✓ or ✗ (and failing the
 /// headless run when false).
 #[derive(Clone, Debug, PartialEq)]
@@ -131,5 +140,37 @@ impl LessonUi {
         self.finished
             .as_deref()
             .filter(|_| self.finish_light.is_none())
+    }
+
+    /// The question waiting for the student's choice, if any.
+    #[must_use]
+    pub fn open_question(&self) -> Option<&Question> {
+        self.question.as_ref().filter(|q| q.chosen.is_none())
+    }
+
+    /// The student chose `choice` for the open question: recorded.
+    /// Returns the question's text, the choice's, and whether answering
+    /// resumes time; `None` (nothing recorded) with no open question or a
+    /// choice it does not offer.
+    pub fn choose(&mut self, choice: usize) -> Option<(String, String, bool)> {
+        let q = self.question.as_mut()?;
+        if q.chosen.is_some() || choice >= q.choices.len() {
+            return None;
+        }
+        q.chosen = Some(choice);
+        Some((q.text.clone(), q.choices[choice].clone(), q.resume))
+    }
+
+    /// Lets the closing message show once the light of the event it waits
+    /// for has reached `eye` (light at `c` m/s); whether it shows now (or
+    /// never waited).
+    pub fn light_arrived(&mut self, eye: Event, c: f64) -> bool {
+        if self
+            .finish_light
+            .is_some_and(|sent| sent.light_has_reached(eye, c))
+        {
+            self.finish_light = None;
+        }
+        self.finish_light.is_none()
     }
 }

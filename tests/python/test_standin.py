@@ -53,24 +53,26 @@ def shot(lc, c=None, u=2.0):
     return scene
 
 
-def test_a_scene_built_in_code_is_the_same_scene(lc):
+def full_scene(lc):
+    """A scene built through every builder: observer, each way of giving
+    a motion, an effect, friction."""
     s = shot(lc)
     s.add_observer("eye", (1.42, -1.5, 1.2), look_at=[1.42, 0.71, 0.0])
     s.add_puck("slow", (2.2, 0.4), beta=(0.0, 0.3), radius=0.04, mass=0.3)
     s.add_puck("fast", (2.5, 1.1), velocity=(-0.5, 0.0))
     s.set_effect("doppler", True)
     s.friction = 0.1
+    return s
+
+
+def test_a_scene_built_in_code_is_the_same_scene(lc):
+    s = full_scene(lc)
     assert s.pucks == ["striker", "target", "slow", "fast"]
     assert s.observers == ["eye"]
     assert s.effects["doppler"] is True
     assert (s.title, s.description, s.friction, s.gravity) == ("The collision angle", "", 0.1, 9.80665)
     # Byte for byte the extension's scene.
-    ours = shot(extension)
-    ours.add_observer("eye", (1.42, -1.5, 1.2), look_at=[1.42, 0.71, 0.0])
-    ours.add_puck("slow", (2.2, 0.4), beta=(0.0, 0.3), radius=0.04, mass=0.3)
-    ours.add_puck("fast", (2.5, 1.1), velocity=(-0.5, 0.0))
-    ours.set_effect("doppler", True)
-    ours.friction = 0.1
+    ours = full_scene(extension)
     assert s._to_json() == ours._to_json()
     assert repr(s) == repr(ours)
 

@@ -248,14 +248,10 @@ pub fn turn(
     stepped: &mut dyn FnMut(f64),
 ) -> Turn {
     let (finished, question) = host.with_ui(|ui| {
-        let q = ui
-            .question
-            .as_ref()
-            .filter(|q| q.chosen.is_none())
-            .map(|q| {
-                let i = q.answer.unwrap_or(0);
-                (q.text.clone(), q.choices[i].clone(), i)
-            });
+        let q = ui.open_question().map(|q| {
+            let i = q.lessons_own();
+            (q.text.clone(), q.choices[i].clone(), i)
+        });
         (ui.closing().is_some(), q)
     });
     if finished {

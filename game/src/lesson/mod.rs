@@ -45,7 +45,6 @@ use std::sync::Once;
 use std::time::SystemTime;
 
 use lightcone_engine::report::CollisionLine;
-use lightcone_engine::scene::Scene;
 use pyo3::prelude::*;
 use pyo3::types::{PyModule, PyTuple};
 
@@ -254,12 +253,7 @@ pub struct LessonHost {
     shipped: Option<(String, sandbox::Scratch)>,
 }
 
-/// Builds a placeholder game for the host to hold while the real one is lent.
-pub fn placeholder() -> GameState {
-    let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
-        .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
-    GameState::new(scene)
-}
+pub use crate::lesson_game::placeholder;
 
 impl LessonHost {
     /// Loads the lesson at `path` and runs its `setup`. Returns the host
@@ -532,16 +526,7 @@ impl LessonHost {
         }
         let eye = game.eye().event;
         let c = game.scene.c;
-        Python::attach(|py| {
-            let mut w = self.world.borrow_mut(py);
-            if w.ui
-                .finish_light
-                .is_some_and(|sent| sent.light_has_reached(eye, c))
-            {
-                w.ui.finish_light = None;
-            }
-            w.ui.finish_light.is_none()
-        })
+        Python::attach(|py| self.world.borrow_mut(py).ui.light_arrived(eye, c))
     }
 
     /// Calls `hook(world, *args)` if the lesson defines it, with the game
@@ -675,15 +660,7 @@ impl LessonHost {
     /// The student chose `choice` for the open question: record it, resume
     /// time if the question paused it, and run `on_answer`.
     pub fn answer(&mut self, game: &mut GameState, choice: usize) {
-        let asked = Python::attach(|py| {
-            let mut w = self.world.borrow_mut(py);
-            let q = w.ui.question.as_mut()?;
-            if q.chosen.is_some() || choice >= q.choices.len() {
-                return None;
-            }
-            q.chosen = Some(choice);
-            Some((q.text.clone(), q.choices[choice].clone(), q.resume))
-        });
+        let asked = Python::attach(|py| self.world.borrow_mut(py).ui.choose(choice));
         let Some((question, chosen, resume)) = asked else {
             return;
         };

@@ -281,12 +281,7 @@ impl Page {
         if !(lesson.running() || lesson.awaiting_light()) || lesson.ui().closing().is_some() {
             return false;
         }
-        let open = lesson
-            .ui()
-            .question
-            .as_ref()
-            .filter(|q| q.chosen.is_none())
-            .map(|q| q.answer.unwrap_or(0));
+        let open = lesson.ui().open_question().map(|q| q.lessons_own());
         match open {
             Some(i) => lesson.answer(state, i),
             None => {

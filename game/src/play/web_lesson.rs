@@ -21,7 +21,6 @@ use std::collections::VecDeque;
 use std::time::Duration;
 
 use lightcone_engine::report::CollisionLine;
-use lightcone_engine::scene::Scene;
 use lightcone_lesson::protocol::{self, HOOK_LIMIT, MAX_LINE, PRINTED_LINES, Up};
 use lightcone_lesson::{LessonGame, LessonUi, MAX_TEXT_BYTES, WorldCore};
 use serde_json::Value;
@@ -29,7 +28,7 @@ use wasm_bindgen::prelude::*;
 use web_time::Instant;
 
 use super::lesson_panel::LessonStatus;
-use crate::lesson_game::{new_game, taken_back};
+use crate::lesson_game::{new_game, placeholder, taken_back};
 use crate::model::GameState;
 
 #[wasm_bindgen]
@@ -214,15 +213,7 @@ impl WebLesson {
     /// Shows the closing message once the light it waits for has reached
     /// the eye looked through now (as the desktop's host does).
     pub fn watch_light(&mut self, game: &GameState) {
-        let eye = game.eye().event;
-        let c = game.scene.c;
-        let ui = &mut self.world.ui;
-        if ui
-            .finish_light
-            .is_some_and(|sent| sent.light_has_reached(eye, c))
-        {
-            ui.finish_light = None;
-        }
+        self.world.ui.light_arrived(game.eye().event, game.scene.c);
     }
 
     /// Queues `hook(world, *args)` if the lesson defines it.
@@ -266,14 +257,9 @@ impl WebLesson {
     /// The student chose `choice` for the open question: recorded, time
     /// resumed if the question paused it, `on_answer` queued.
     pub fn answer(&mut self, game: &mut GameState, choice: usize) {
-        let Some(q) = self.world.ui.question.as_mut() else {
+        let Some((question, chosen, resume)) = self.world.ui.choose(choice) else {
             return;
         };
-        if q.chosen.is_some() || choice >= q.choices.len() {
-            return;
-        }
-        q.chosen = Some(choice);
-        let (question, chosen, resume) = (q.text.clone(), q.choices[choice].clone(), q.resume);
         if resume {
             game.paused = false;
         }
@@ -548,11 +534,4 @@ impl LessonStatus for WebLesson {
             )
         })
     }
-}
-
-/// A small game for the host to hold while the real one is lent.
-fn placeholder() -> GameState {
-    let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
-        .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
-    GameState::new(scene)
 }
