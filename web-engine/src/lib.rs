@@ -1,6 +1,6 @@
 //! The engine in the browser's lesson worker (`web/static/lesson_worker.js`):
 //! the Python stand-ins of `lightcone.Scene` and `lightcone.Simulation`
-//! (`web/python/_lightcone.py`) call [`lightcone_call`], which answers with
+//! (`web/python/_lightcone.py`) call `lightcone_call` (below), which answers with
 //! the same operations as the desktop's pyo3 classes
 //! (`lightcone_lesson::standin`). `scripts/web.sh` builds it with
 //! wasm-bindgen into `web/dist/lightcone_engine_web.js`. On native targets
