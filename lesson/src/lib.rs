@@ -19,6 +19,7 @@ pub mod protocol;
 pub mod query;
 pub mod scene_code;
 mod screen;
+pub mod simulation;
 pub mod standin;
 mod world;
 

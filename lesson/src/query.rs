@@ -67,19 +67,15 @@ pub fn observer_index(scene: &Scene, name: Option<&str>) -> WorldResult<usize> {
     }
 }
 
-/// The physics of `scene` at board time 0, keeping `history` s of records
-/// (`None`: all).
-pub fn new_billiard(scene: &Scene, history: Option<f64>) -> WorldResult<Billiard> {
-    let mut billiard = Billiard::from_scene(scene);
-    if let Some(h) = history {
-        if !(h.is_finite() && h >= 0.0) {
-            return Err(WorldError::value(format!(
-                "history: give a finite number of seconds ≥ 0, or None (got {h})"
-            )));
-        }
-        billiard.set_history(Some(h));
+/// A history horizon (`Simulation(scene, history=…)`): `None` (the
+/// whole run kept) or a finite number of board seconds ≥ 0.
+pub fn history_horizon(history: Option<f64>) -> WorldResult<Option<f64>> {
+    match history {
+        Some(h) if !(h.is_finite() && h >= 0.0) => Err(WorldError::value(format!(
+            "history: give a finite number of seconds ≥ 0, or None (got {h})"
+        ))),
+        h => Ok(h),
     }
-    Ok(billiard)
 }
 
 /// `t` if it is finite.

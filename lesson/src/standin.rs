@@ -15,7 +15,6 @@
 
 use std::collections::BTreeMap;
 
-use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{self, Effect, Scene};
 use serde::Deserialize;
 use serde_json::{Map, Value, json};
@@ -23,6 +22,7 @@ use serde_json::{Map, Value, json};
 use crate::args::{Arg, Bound, Vector};
 use crate::error::{ErrorKind, WorldError, WorldResult};
 use crate::protocol::{frame, pixels, record, scene_from_json};
+use crate::simulation::SimulationCore;
 use crate::{query, scene_code};
 
 /// Most simulations a lesson may hold at once (each a whole board): past
@@ -33,13 +33,8 @@ pub const MAX_SIMULATIONS: usize = 64;
 /// The simulations a lesson holds, by id.
 #[derive(Default)]
 pub struct Objects {
-    simulations: BTreeMap<u64, Simulation>,
+    simulations: BTreeMap<u64, SimulationCore>,
     next: u64,
-}
-
-struct Simulation {
-    scene: Scene,
-    billiard: Billiard,
 }
 
 #[derive(Deserialize)]
@@ -99,10 +94,9 @@ impl Objects {
                     format!("a lesson may hold at most {MAX_SIMULATIONS} simulations at once"),
                 ));
             }
-            let billiard = query::new_billiard(&scene, a.opt(1)?)?;
+            let simulation = SimulationCore::new(&scene, a.opt(1)?)?;
             self.next += 1;
-            self.simulations
-                .insert(self.next, Simulation { scene, billiard });
+            self.simulations.insert(self.next, simulation);
             return Ok(json!(self.next));
         }
         let id =
@@ -115,38 +109,38 @@ impl Objects {
             .simulations
             .get_mut(&id)
             .ok_or_else(|| WorldError::new(ErrorKind::Runtime, "this simulation was dropped"))?;
-        let now = s.billiard.time();
+        let now = s.time();
         Ok(match op {
             "run_until" => {
                 let a = b(&["t"])?;
                 let t = query::finite_time(a.req(0)?)?;
-                s.billiard.advance_to(t);
-                s.billiard.forget_old_records();
+                s.advance_to(t);
+                s.forget_old_records();
                 Value::Null
             }
             "step" => {
                 let a = b(&["dt"])?;
                 let t = query::finite_time(now + a.req::<f64>(0)?)?;
-                s.billiard.advance_to(t);
-                s.billiard.forget_old_records();
+                s.advance_to(t);
+                s.forget_old_records();
                 Value::Null
             }
             "impulse" => {
                 let a = b(&["name", "du"])?;
                 let [x, y] = a.req::<Vector<2>>(1)?.0;
-                query::impulse(&mut s.billiard, &a.req::<String>(0)?, now, (x, y))?;
+                query::impulse(s.billiard_mut(), &a.req::<String>(0)?, now, (x, y))?;
                 Value::Null
             }
             "collisions" => {
                 b(&[])?;
-                let all: WorldResult<Vec<Value>> = s
-                    .billiard
+                let b = s.billiard();
+                let all: WorldResult<Vec<Value>> = b
                     .collisions()
                     .iter()
                     .map(|c| {
                         record(
                             "Collision",
-                            &lightcone_engine::report::CollisionLine::new(&s.billiard, c),
+                            &lightcone_engine::report::CollisionLine::new(b, c),
                         )
                     })
                     .collect();
@@ -156,33 +150,26 @@ impl Objects {
                 b(&[])?;
                 record(
                     "State",
-                    &lightcone_engine::report::StateLine::new(&s.billiard, now),
+                    &lightcone_engine::report::StateLine::new(s.billiard(), now),
                 )?
             }
             "observe" => {
                 let a = b(&["observer", "vertices", "effects", "at"])?;
                 let t = query::past_time(a.opt(3)?, now)?;
-                let fx = query::effects_from(s.scene.effects, a.opt(2)?)?;
+                let fx = query::effects_from(s.scene().effects, a.opt(2)?)?;
                 let observer = a.opt::<String>(0)?;
-                let report = query::observation(
-                    &s.scene,
-                    &s.billiard,
-                    t,
-                    observer.as_deref(),
-                    a.opt(1)?.unwrap_or(false),
-                    fx,
-                )?;
+                let report = s.observe(observer.as_deref(), t, a.opt(1)?.unwrap_or(false), fx)?;
                 record("Observation", &report)?
             }
             "velocity" => {
                 let a = b(&["name"])?;
-                let (x, y) = query::velocity(&s.billiard, &a.req::<String>(0)?, now)?;
+                let (x, y) = query::velocity(s.billiard(), &a.req::<String>(0)?, now)?;
                 json!([x, y])
             }
             "simultaneity" => {
                 let a = b(&["frame", "at"])?;
                 let t = query::past_time(a.opt(1)?, now)?;
-                let line = query::simultaneity(&s.scene, &s.billiard, &a.req::<String>(0)?, t)?;
+                let line = query::simultaneity(s.scene(), s.billiard(), &a.req::<String>(0)?, t)?;
                 serde_json::to_value(line).map_err(|e| WorldError::value(e.to_string()))?
             }
             "diagram" => {
@@ -192,8 +179,8 @@ impl Objects {
                 let axis = a.opt::<String>(4)?.unwrap_or_else(|| "x".to_owned());
                 let puck = a.opt::<String>(5)?;
                 let image = query::diagram(
-                    &s.scene,
-                    &s.billiard,
+                    s.scene(),
+                    s.billiard(),
                     t,
                     observer.as_deref(),
                     pixels(&a, 2, (1000, 700))?,
@@ -209,28 +196,28 @@ impl Objects {
             }
             "history" => {
                 b(&[])?;
-                json!(s.billiard.history())
+                json!(s.billiard().history())
             }
             "forgotten_before" => {
                 b(&[])?;
-                json!(s.billiard.forgotten_before())
+                json!(s.billiard().forgotten_before())
             }
             "scene" => {
                 b(&[])?;
-                Value::String(to_json(&s.scene)?)
+                Value::String(to_json(s.scene())?)
             }
             "warnings" => {
                 b(&[])?;
-                json!(s.billiard.warnings())
+                json!(s.billiard().warnings())
             }
             "repr" => {
                 b(&[])?;
                 Value::String(format!(
                     "Simulation({:?}, t = {} s, {} pucks, {} collisions)",
-                    s.scene.title,
+                    s.scene().title,
                     now,
-                    s.billiard.len(),
-                    s.billiard.collisions().len()
+                    s.billiard().len(),
+                    s.billiard().collisions().len()
                 ))
             }
             "positions" | "velocities" | "render" => {

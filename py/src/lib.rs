@@ -20,8 +20,9 @@ mod world;
 
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::{CollisionLine, StateLine};
-use lightcone_engine::scene::{Effect, Effects, Scene as SceneModel};
+use lightcone_engine::scene::{Effect, Effects};
 use lightcone_lesson::query;
+use lightcone_lesson::simulation::SimulationCore;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 
 use errors::world_err;
@@ -121,10 +122,6 @@ fn effects_from(shown: Effects, list: Option<Vec<String>>) -> PyResult<Effects> 
     query::effects_from(shown, list).map_err(world_err)
 }
 
-fn observer_index(scene: &SceneModel, name: Option<&str>) -> PyResult<usize> {
-    query::observer_index(scene, name).map_err(world_err)
-}
-
 fn finite_time(t: f64) -> PyResult<f64> {
     query::finite_time(t).map_err(world_err)
 }
@@ -151,20 +148,6 @@ fn impulse(billiard: &mut Billiard, name: &str, t: f64, du: (f64, f64)) -> PyRes
 
 fn velocity(billiard: &Billiard, name: &str, t: f64) -> PyResult<(f64, f64)> {
     query::velocity(billiard, name, t).map_err(world_err)
-}
-
-fn observation<'py>(
-    py: Python<'py>,
-    scene: &SceneModel,
-    billiard: &Billiard,
-    t: f64,
-    observer: Option<&str>,
-    vertices: bool,
-    effects: Effects,
-) -> PyResult<Bound<'py, PyAny>> {
-    let report =
-        query::observation(scene, billiard, t, observer, vertices, effects).map_err(world_err)?;
-    to_record(py, "Observation", &report)
 }
 
 /// Before the first graphics device opens: gives Mesa's device-select layer
@@ -202,8 +185,7 @@ fn gpu() -> Result<&'static lightcone_render::gpu::Gpu, String> {
 /// Renders what `observer` sees at board time `t`, headless.
 fn render_frame(
     py: Python<'_>,
-    scene: &SceneModel,
-    billiard: &Billiard,
+    core: &mut SimulationCore,
     t: f64,
     observer: Option<&str>,
     size: (u32, u32),
@@ -224,14 +206,13 @@ fn render_frame(
             "size {size:?}: 1 to 16384 pixels a side"
         )));
     }
-    let index = observer_index(scene, observer)?;
+    let aspect = f64::from(size.0) / f64::from(size.1);
+    let (sim, view) = core.picture(observer, t, kind, aspect).map_err(world_err)?;
     quiet_runtime_dir(py)?;
     let image = py.detach(|| {
         let gpu = gpu().map_err(NoAdapterError::new_err)?;
-        lightcone_render::headless::render_billiard(
-            gpu, scene, billiard, t, index, kind, size.0, size.1,
-        )
-        .map_err(PyRuntimeError::new_err)
+        lightcone_render::headless::render_view(gpu, sim, view, size.0, size.1)
+            .map_err(PyRuntimeError::new_err)
     })?;
     Frame::from_image(&image, t)
 }

@@ -11,28 +11,21 @@ use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-use lightcone_engine::physics::Billiard;
-use lightcone_engine::scene;
+use lightcone_lesson::simulation::SimulationCore;
 use pyo3::prelude::*;
 
 use super::convert::Vector;
 use super::{Frame, Scene};
 
-/// What the lock guards.
-pub(crate) struct State {
-    pub(crate) scene: scene::Scene,
-    pub(crate) billiard: Billiard,
-}
-
 /// A running simulation of a scene: the event-anticipation physics.
 #[pyclass(module = "lightcone._lightcone", frozen)]
 pub struct Simulation {
-    state: Mutex<State>,
+    state: Mutex<SimulationCore>,
 }
 
 impl Simulation {
     /// The state, waiting without the GIL while another thread holds it.
-    fn lock(&self, py: Python<'_>) -> MutexGuard<'_, State> {
+    fn lock(&self, py: Python<'_>) -> MutexGuard<'_, SimulationCore> {
         loop {
             match self.state.try_lock() {
                 Ok(guard) => return guard,
@@ -60,41 +53,37 @@ impl Simulation {
     #[new]
     #[pyo3(signature = (scene, history = None))]
     fn new(scene: &Scene, history: Option<f64>) -> PyResult<Self> {
-        let billiard = lightcone_lesson::query::new_billiard(&scene.inner, history)
-            .map_err(super::errors::world_err)?;
+        let core = SimulationCore::new(&scene.inner, history).map_err(super::errors::world_err)?;
         Ok(Self {
-            state: Mutex::new(State {
-                billiard,
-                scene: scene.inner.clone(),
-            }),
+            state: Mutex::new(core),
         })
     }
 
     /// The history horizon, s (`None`: the whole run is kept).
     #[getter]
     fn history(&self, py: Python<'_>) -> Option<f64> {
-        self.lock(py).billiard.history()
+        self.lock(py).billiard().history()
     }
 
     /// Board time before which worldlines and collisions have been
     /// forgotten (`None` while nothing has), s.
     #[getter]
     fn forgotten_before(&self, py: Python<'_>) -> Option<f64> {
-        self.lock(py).billiard.forgotten_before()
+        self.lock(py).billiard().forgotten_before()
     }
 
     /// The scene simulated (a copy).
     #[getter]
     fn scene(&self, py: Python<'_>) -> Scene {
         Scene {
-            inner: self.lock(py).scene.clone(),
+            inner: self.lock(py).scene().clone(),
         }
     }
 
     /// Board time reached, s.
     #[getter]
     fn time(&self, py: Python<'_>) -> f64 {
-        self.lock(py).billiard.time()
+        self.lock(py).billiard().time()
     }
 
     /// Runs the physics to board time `t` (s); earlier times do nothing.
@@ -107,16 +96,16 @@ impl Simulation {
         loop {
             let (next, took) = py.detach(|| {
                 let mut s = self.state.lock().unwrap_or_else(|e| e.into_inner());
-                let now = s.billiard.time();
+                let now = s.time();
                 let next = if now + dt < t { now + dt } else { t };
                 let start = Instant::now();
-                s.billiard.advance_to(next);
+                s.advance_to(next);
                 (next, start.elapsed())
             });
             py.check_signals()?;
             if next >= t {
                 // `collisions()` then holds only the history horizon.
-                self.lock(py).billiard.forget_old_records();
+                self.lock(py).forget_old_records();
                 return Ok(());
             }
             if took < CHUNK / 2 {
@@ -138,20 +127,20 @@ impl Simulation {
     /// reaches c.
     fn impulse(&self, py: Python<'_>, name: &str, du: Vector<2>) -> PyResult<()> {
         let mut s = self.lock(py);
-        let t = s.billiard.time();
-        super::impulse(&mut s.billiard, name, t, du.pair())
+        let t = s.time();
+        super::impulse(s.billiard_mut(), name, t, du.pair())
     }
 
     /// Every collision so far, as the dicts `lightcone simulate` prints.
     fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
         let s = self.lock(py);
-        super::collisions(py, &s.billiard)
+        super::collisions(py, s.billiard())
     }
 
     /// Every puck now: the `state` dict of `lightcone simulate`.
     fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let s = self.lock(py);
-        super::state(py, &s.billiard, s.billiard.time())
+        super::state(py, s.billiard(), s.time())
     }
 
     /// What observer `observer` (default: the first) sees at board time
@@ -167,16 +156,20 @@ impl Simulation {
         effects: Option<Vec<String>>,
         at: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let s = self.lock(py);
-        let t = super::past_time(at, s.billiard.time())?;
-        let fx = super::effects_from(s.scene.effects, effects)?;
-        super::observation(py, &s.scene, &s.billiard, t, observer, vertices, fx)
+        let report = {
+            let mut s = self.lock(py);
+            let t = super::past_time(at, s.time())?;
+            let fx = super::effects_from(s.scene().effects, effects)?;
+            s.observe(observer, t, vertices, fx)
+                .map_err(super::errors::world_err)?
+        };
+        super::to_record(py, "Observation", &report)
     }
 
     /// The proper velocity γβ (dimensionless) of puck `name` now, as (x, y).
     fn velocity(&self, py: Python<'_>, name: &str) -> PyResult<(f64, f64)> {
         let s = self.lock(py);
-        super::velocity(&s.billiard, name, s.billiard.time())
+        super::velocity(s.billiard(), name, s.time())
     }
 
     /// Every puck's centre on the board at board time `at` (default: now;
@@ -187,10 +180,10 @@ impl Simulation {
     fn positions<'py>(&self, py: Python<'py>, at: Option<f64>) -> PyResult<Bound<'py, PyAny>> {
         let rows = {
             let s = self.lock(py);
-            let t = super::past_time(at, s.billiard.time())?;
-            (0..s.billiard.len())
+            let t = super::past_time(at, s.time())?;
+            (0..s.billiard().len())
                 .map(|i| {
-                    let p = s.billiard.worldline(i).position_at(t);
+                    let p = s.billiard().worldline(i).position_at(t);
                     [p.x, p.y]
                 })
                 .collect()
@@ -206,10 +199,10 @@ impl Simulation {
     fn velocities<'py>(&self, py: Python<'py>, at: Option<f64>) -> PyResult<Bound<'py, PyAny>> {
         let rows = {
             let s = self.lock(py);
-            let t = super::past_time(at, s.billiard.time())?;
-            (0..s.billiard.len())
+            let t = super::past_time(at, s.time())?;
+            (0..s.billiard().len())
                 .map(|i| {
-                    let u = s.billiard.worldline(i).proper_velocity_at(t);
+                    let u = s.billiard().worldline(i).proper_velocity_at(t);
                     [u.0.x, u.0.y]
                 })
                 .collect()
@@ -234,9 +227,9 @@ impl Simulation {
         view: &str,
         at: Option<f64>,
     ) -> PyResult<Frame> {
-        let s = self.lock(py);
-        let t = super::past_time(at, s.billiard.time())?;
-        let frame = super::render_frame(py, &s.scene, &s.billiard, t, observer, size, view)?;
+        let mut s = self.lock(py);
+        let t = super::past_time(at, s.time())?;
+        let frame = super::render_frame(py, &mut s, t, observer, size, view)?;
         if let Some(path) = path {
             frame.save(path)?;
         }
@@ -261,8 +254,17 @@ impl Simulation {
         frame: Option<&str>,
     ) -> PyResult<Frame> {
         let s = self.lock(py);
-        let t = super::past_time(at, s.billiard.time())?;
-        super::diagram::diagram_frame(&s.scene, &s.billiard, t, observer, size, axis, frame, path)
+        let t = super::past_time(at, s.time())?;
+        super::diagram::diagram_frame(
+            s.scene(),
+            s.billiard(),
+            t,
+            observer,
+            size,
+            axis,
+            frame,
+            path,
+        )
     }
 
     /// The line of simultaneity of puck `frame`'s rest frame through its
@@ -277,21 +279,21 @@ impl Simulation {
         at: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let s = self.lock(py);
-        let t = super::past_time(at, s.billiard.time())?;
-        super::diagram::simultaneity(py, &s.scene, &s.billiard, frame, t)
+        let t = super::past_time(at, s.time())?;
+        super::diagram::simultaneity(py, s.scene(), s.billiard(), frame, t)
     }
 
     /// Warnings (e.g. a Zeno sequence ended).
     fn warnings(&self, py: Python<'_>) -> Vec<String> {
-        self.lock(py).billiard.warnings().to_vec()
+        self.lock(py).billiard().warnings().to_vec()
     }
 
     /// The current view as PNG bytes, for Jupyter; None without a graphics
     /// adapter.
     fn _repr_png_(&self, py: Python<'_>) -> Option<Vec<u8>> {
-        let s = self.lock(py);
-        let t = s.billiard.time();
-        super::render_frame(py, &s.scene, &s.billiard, t, None, (640, 360), "seen")
+        let mut s = self.lock(py);
+        let t = s.time();
+        super::render_frame(py, &mut s, t, None, (640, 360), "seen")
             .ok()
             .map(|f| f.png)
     }
@@ -300,10 +302,10 @@ impl Simulation {
         let s = self.lock(py);
         format!(
             "Simulation({:?}, t = {} s, {} pucks, {} collisions)",
-            s.scene.title,
-            s.billiard.time(),
-            s.billiard.len(),
-            s.billiard.collisions().len()
+            s.scene().title,
+            s.time(),
+            s.billiard().len(),
+            s.billiard().collisions().len()
         )
     }
 }

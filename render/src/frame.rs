@@ -11,7 +11,6 @@ use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Mat4, Vec3};
 use lightcone_engine::ecs::{Apparent, BodyRef, Entity, Simulation};
 use lightcone_engine::optics::Eye;
-use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{Color, Effects, Scene};
 use lightcone_engine::worldline::RestShape;
 
@@ -276,36 +275,7 @@ pub fn scene_view(
     kind: ViewKind,
     aspect: f64,
 ) -> (Simulation, Entity) {
-    simulation_view(scene, None, index, t, kind, aspect)
-}
-
-/// As [`scene_view`], for the pucks of `billiard` (of `scene`, run at least
-/// to `t` elsewhere: the Python `Simulation`, a lesson's world) instead of
-/// the scene's own physics.
-#[must_use]
-pub fn billiard_view(
-    scene: &Scene,
-    billiard: &Billiard,
-    index: usize,
-    t: f64,
-    kind: ViewKind,
-    aspect: f64,
-) -> (Simulation, Entity) {
-    simulation_view(scene, Some(billiard), index, t, kind, aspect)
-}
-
-fn simulation_view(
-    scene: &Scene,
-    billiard: Option<&Billiard>,
-    index: usize,
-    t: f64,
-    kind: ViewKind,
-    aspect: f64,
-) -> (Simulation, Entity) {
     let mut sim = Simulation::new(scene);
-    if let Some(b) = billiard {
-        sim.replace_physics(b.clone());
-    }
     let o = &scene.observers[index];
     let view = sim.views()[index];
     let effects = kind.effects(scene.effects);
@@ -313,11 +283,8 @@ fn simulation_view(
         sim.set_view_effect(view, e, effects.is_on(e));
     }
     sim.set_framing(view, o.framing(aspect));
-    match billiard {
-        Some(_) => sim.advance_to(t),
-        // Run here to `t`: only what the view can still see is kept.
-        None => sim.run_far_to(view, t),
-    }
+    // Run here to `t`: only what the view can still see is kept.
+    sim.run_far_to(view, t);
     (sim, view)
 }
 

@@ -7,7 +7,6 @@ use super::frame::{self, Camera, FrameVertex, ViewKind};
 use super::gpu::Gpu;
 use super::pipeline::Renderer;
 use lightcone_engine::ecs::{Entity, Simulation};
-use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::Scene;
 
 /// The colour format of headless images (sRGB, 8 bits per channel).
@@ -398,27 +397,6 @@ pub fn render_view(
     let mut vertices = Vec::new();
     frame::build_view(apparent, &meshes, &mut vertices);
     draw(gpu, &vertices, &camera.into(), width, height)
-}
-
-/// Renders what observer `observer` sees at board time `t` of a billiard
-/// already run (at least) that far, framed as [`frame::scene_view`] says.
-#[allow(clippy::too_many_arguments)]
-pub fn render_billiard(
-    gpu: &Gpu,
-    scene: &Scene,
-    billiard: &Billiard,
-    t: f64,
-    observer: usize,
-    kind: ViewKind,
-    width: u32,
-    height: u32,
-) -> Result<Image, String> {
-    if observer >= scene.observers.len() {
-        return Err(format!("no observer {observer}"));
-    }
-    let aspect = f64::from(width) / f64::from(height);
-    let (mut sim, view) = frame::billiard_view(scene, billiard, observer, t, kind, aspect);
-    render_view(gpu, &mut sim, view, width, height)
 }
 
 /// Writes `bytes` to the file at `path` (created or truncated), reporting

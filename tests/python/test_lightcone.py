@@ -57,6 +57,11 @@ def test_impulse_never_reaches_c():
     assert uy == -1e9
     sim.step(0.01)
     beta = sim.state()["pucks"][1]["beta"]
+    ux, uy = sim.velocity("yellow")
+    # β = u / √(1 + u²), short of 1 by about 1/(2u²) = 5e-19 (below f64's
+    # resolution near 1): a speed computed as u itself would read 10⁹.
+    assert beta[0] == pytest.approx(ux / math.sqrt(1 + ux**2 + uy**2), abs=1e-15)
+    assert beta[1] == pytest.approx(uy / math.sqrt(1 + ux**2 + uy**2), rel=1e-15)
     assert math.hypot(*beta) <= 1.0
     with pytest.raises(KeyError):
         sim.impulse("nobody", (1.0, 0.0))
