@@ -469,7 +469,7 @@ fn drive_window_host(lesson: &str, seconds: f64) -> WindowRun {
     let (mut host, mut game) = LessonHost::load_isolated_with_limit(
         &path,
         Duration::from_secs(1),
-        lightcone::lesson::placeholder,
+        lightcone::lesson::empty_game,
         isolation(),
     )
     .unwrap();
@@ -605,7 +605,7 @@ fn a_hook_call_in_its_own_process_costs_well_under_a_frame() {
         let (mut host, mut game) = LessonHost::load_isolated_with_limit(
             &path,
             Duration::from_secs(10),
-            lightcone::lesson::placeholder,
+            lightcone::lesson::empty_game,
             isolation(),
         )
         .unwrap();
@@ -698,7 +698,7 @@ fn in_the_window_a_reload_after_a_crash_starts_a_new_process() {
     let (mut host, mut game) = LessonHost::load_isolated_with_limit(
         &path,
         Duration::from_secs(2),
-        lightcone::lesson::placeholder,
+        lightcone::lesson::empty_game,
         isolation(),
     )
     .unwrap();
@@ -762,7 +762,7 @@ def on_frame(world, t):
     let (mut host, mut game) = LessonHost::load_isolated_with_limit(
         &path,
         Duration::from_secs(5),
-        lightcone::lesson::placeholder,
+        lightcone::lesson::empty_game,
         isolation(),
     )
     .unwrap();

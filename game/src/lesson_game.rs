@@ -8,23 +8,14 @@ use lightcone_lesson::{LessonGame, Pictures};
 
 use crate::model::{GameState, ViewMode};
 
-/// A small game for a lesson host to hold while the real one is lent to
-/// the lesson's world.
-pub fn placeholder() -> GameState {
+/// A game on an empty 1 m table: the game a lesson's `setup` builds on
+/// (its `world.start(scene)` restarts it on the lesson's scene; the game
+/// shown is replaced only once setup has ended well), and what a headless
+/// run shows of a lesson that failed before starting one.
+pub fn empty_game() -> GameState {
     let scene = Scene::empty(glam::DVec2::new(1.0, 1.0), None)
         .unwrap_or_else(|_| unreachable!("a 1 m table is a valid scene"));
     GameState::new(scene)
-}
-
-/// A new game at board time 0 on `scene`: what `world.start(scene)` makes.
-pub fn new_game(scene: Scene) -> Box<dyn LessonGame> {
-    Box::new(GameState::new(scene))
-}
-
-/// The game a world hands back (always a [`GameState`]: the world only
-/// holds what the host lent or [`new_game`] made).
-pub fn taken_back(game: Box<dyn LessonGame>) -> Option<GameState> {
-    game.into_any().downcast::<GameState>().ok().map(|g| *g)
 }
 
 impl LessonGame for GameState {
@@ -103,7 +94,7 @@ impl LessonGame for GameState {
         self.show.diagram_axis = axis;
     }
 
-    fn into_any(self: Box<Self>) -> Box<dyn std::any::Any> {
-        self
+    fn restart(&mut self, scene: Scene) {
+        *self = GameState::new(scene);
     }
 }

@@ -2,18 +2,15 @@
 //! implements [`LessonGame`] on its state; this crate does not depend on
 //! the game.
 
-use std::any::Any;
-
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{Effects, Scene};
 
 use crate::Pictures;
 
 /// What a lesson may read and change of the running game. The game
-/// implements it on its state; the Python `World` holds it for the length
-/// of one hook (the game lends it), the protocol's server borrows it for
-/// one request.
-pub trait LessonGame: Any {
+/// implements it on its state; a world's call ([`crate::WorldCall`])
+/// borrows it from the game's host for one request or one hook.
+pub trait LessonGame {
     /// The scene being played.
     fn scene(&self) -> &Scene;
     /// The pucks and their worldlines.
@@ -52,9 +49,8 @@ pub trait LessonGame: Any {
         frame: Option<usize>,
         axis: lightcone_render::diagram::Axis,
     );
-    /// The game itself, for the host to take it back.
-    fn into_any(self: Box<Self>) -> Box<dyn Any>;
+    /// Starts the game again on `scene` at board time 0, as a new game
+    /// on it would start (`world.start(scene)`; the world then restores
+    /// what the student chose, see `WorldCall::start`).
+    fn restart(&mut self, scene: Scene);
 }
-
-/// Makes a new game at board time 0 on a scene (the game's constructor).
-pub type NewGame = fn(Scene) -> Box<dyn LessonGame>;

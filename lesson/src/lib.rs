@@ -3,7 +3,7 @@
 //! A lesson's hooks are given a world: the running game (board time,
 //! pucks, effects, view) and the lesson's voice on screen (text,
 //! questions, checked claims, bar charts). This crate holds that world's
-//! every operation, checked ([`WorldCore`]), what it puts on screen
+//! every operation, checked ([`WorldCall`], on a [`WorldCore`] and the game it borrows), what it puts on screen
 //! ([`LessonUi`]), and the JSON protocol by which a lesson run elsewhere
 //! asks for them ([`protocol`]). Python's `lightcone.World` (lightcone-py)
 //! wraps a `WorldCore`; the game serves a lesson run in its own process,
@@ -24,9 +24,9 @@ pub mod standin;
 mod world;
 
 pub use error::{ErrorKind, WorldError, WorldResult};
-pub use game::{LessonGame, NewGame};
+pub use game::LessonGame;
 pub use screen::{
     Bars, Claim, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CHOICES, MAX_CLAIM_BYTES, MAX_CLAIMS,
     MAX_TEXT_BYTES, Pictures, Question,
 };
-pub use world::{NO_GAME, WorldCore, cut};
+pub use world::{NO_GAME, WorldCall, WorldCore, cut};

@@ -2,7 +2,7 @@
 //! elsewhere (its own process on the desktop, a Web Worker in the
 //! browser) holds a stand-in `World` (`game/src/lesson/remote.py`) whose
 //! methods are requests; the game answers each with [`answer`] on its
-//! [`WorldCore`], as JSON.
+//! [`WorldCall`], as JSON.
 //!
 //! Values travel as JSON: records as `{"$record": class, "data": {...}}`,
 //! scenes as `{"$scene": json}` (rebuilt through every check of a scene
@@ -21,7 +21,7 @@ use serde_json::{Map, Value, json};
 use crate::LessonGame;
 use crate::args::{Arg, Bound, Vector, type_error};
 use crate::error::{ErrorKind, WorldError, WorldResult};
-use crate::world::{NO_GAME, WorldCore};
+use crate::world::{NO_GAME, WorldCall};
 
 /// Longest a single hook may run (a lesson's process is stopped, a
 /// browser's worker ended, past it).
@@ -155,10 +155,10 @@ pub fn snapshot(game: &dyn LessonGame) -> Snapshot<'_> {
 
 /// The snapshot of `world`'s game, or why it has none, as JSON.
 #[must_use]
-pub fn snapshot_value(world: &WorldCore) -> Value {
-    match world.game.as_deref() {
-        Some(g) => serde_json::to_value(snapshot(g)).unwrap_or(Value::Null),
-        None => json!({ "$none": NO_GAME }),
+pub fn snapshot_value(world: &WorldCall<'_>) -> Value {
+    match world.game() {
+        Ok(g) => serde_json::to_value(snapshot(g)).unwrap_or(Value::Null),
+        Err(_) => json!({ "$none": NO_GAME }),
     }
 }
 
@@ -176,7 +176,7 @@ pub struct Call<'a, S: Serialize> {
 
 /// The line that runs `hook(world, *args)` in the lesson.
 #[must_use]
-pub fn call_line(world: &WorldCore, hook: &str, args: &Value) -> String {
+pub fn call_line(world: &WorldCall<'_>, hook: &str, args: &Value) -> String {
     let call = Call {
         call: hook,
         args,
@@ -188,7 +188,7 @@ pub fn call_line(world: &WorldCore, hook: &str, args: &Value) -> String {
 /// The reply line to request `op` with `args` and `kwargs`, run on `world`
 /// (`op` one that [`serves`]).
 pub fn reply_line(
-    world: &mut WorldCore,
+    world: &mut WorldCall<'_>,
     op: &str,
     args: &[Value],
     kwargs: &Map<String, Value>,
@@ -218,7 +218,7 @@ pub(crate) fn record<T: Serialize>(class: &str, value: &T) -> WorldResult<Value>
 
 /// Runs request `op` on `world`: its result as JSON, or why it refused.
 pub fn answer(
-    world: &mut WorldCore,
+    world: &mut WorldCall<'_>,
     op: &str,
     args: &[Value],
     kwargs: &Map<String, Value>,
@@ -253,7 +253,7 @@ pub fn answer(
                 Some(_) => return Err(a.wrong(0, "a lightcone.Scene")),
                 None => return Err(a.missing(0)),
             };
-            world.start(scene);
+            world.start(scene)?;
             none
         }
         "pause" => {

@@ -3,6 +3,12 @@
 //! with every operation checked. Python's `lightcone.World` wraps a
 //! [`WorldCore`]; the protocol's server (`crate::protocol`) answers a
 //! lesson run elsewhere with the same operations.
+//!
+//! The world does not own the game: the game stays with its host (the
+//! window's or the page's game, a headless run's), and each call borrows
+//! it ([`WorldCore::on`] makes the [`WorldCall`] for one request or one
+//! hook), so a lesson acts on exactly what the student sees and the host
+//! never hands its game over.
 
 use std::path::PathBuf;
 
@@ -14,20 +20,29 @@ use crate::error::{ErrorKind, WorldError, WorldResult};
 use crate::query::{self, SimultaneityLine};
 use crate::{Bars, Claim, LessonGame, LessonUi, MAX_BINS, MAX_CHARTS, MAX_CLAIM_BYTES, MAX_CLAIMS};
 use crate::{MAX_CHOICES, MAX_TEXT_BYTES};
-use crate::{NewGame, Pictures, Question};
+use crate::{Pictures, Question};
 
-/// The running game as a lesson sees it, and what the lesson shows.
+/// What a lesson's world keeps between calls: what it shows, whether it
+/// has started a game, and its directory.
 pub struct WorldCore {
-    /// The game, while a hook runs (lent by the host).
-    pub game: Option<Box<dyn LessonGame>>,
     /// What the lesson shows.
     pub ui: LessonUi,
-    /// Bumped by `start`, so the host knows the collision list restarted.
+    /// Bumped by `start`, so the host knows the collision list restarted;
+    /// 0 until the lesson's first `world.start(scene)` (until then the
+    /// world has no game to speak of).
     pub generation: u64,
     /// The lesson file's directory, to resolve relative paths.
     pub dir: PathBuf,
-    /// Makes the game `start` starts.
-    new_game: NewGame,
+}
+
+/// The world for one call (a request, or a hook run in this process):
+/// the lesson's [`WorldCore`] and the game it acts on, borrowed from the
+/// game's host for that call. Every world operation is a method of it.
+pub struct WorldCall<'a> {
+    core: &'a mut WorldCore,
+    /// The host's game (`None`: the world is used where there is none,
+    /// outside a hook).
+    game: Option<&'a mut (dyn LessonGame + 'static)>,
 }
 
 /// The message of the error every game operation gives outside a hook.
@@ -38,48 +53,94 @@ fn no_game() -> WorldError {
 }
 
 impl WorldCore {
-    /// A world with no game yet, for the lesson in directory `dir`;
-    /// [`Self::start`] makes one with `new_game`.
+    /// A world with no game yet, for the lesson in directory `dir`.
     #[must_use]
-    pub fn new(dir: PathBuf, new_game: NewGame) -> Self {
+    pub fn new(dir: PathBuf) -> Self {
         Self {
-            game: None,
             ui: LessonUi::default(),
             generation: 0,
             dir,
-            new_game,
         }
     }
 
-    /// The game, or why there is none.
+    /// The world for one call on `game`, the host's (in `setup`, the game
+    /// the lesson is building: `world.start` starts it on its scene).
+    /// `None`: there is no game here (game operations say so).
+    pub fn on<'a>(&'a mut self, game: Option<&'a mut (dyn LessonGame + 'static)>) -> WorldCall<'a> {
+        WorldCall { core: self, game }
+    }
+
+    /// Whether the lesson has started a game (`world.start`).
+    #[must_use]
+    pub fn started(&self) -> bool {
+        self.generation > 0
+    }
+
+    /// The claims checked so far, as (claim, ok, detail).
+    #[must_use]
+    pub fn claims(&self) -> Vec<(String, bool, String)> {
+        self.ui
+            .claims
+            .iter()
+            .map(|c| (c.claim.clone(), c.ok, c.detail.clone()))
+            .collect()
+    }
+
+    /// Whether `finish` was called (then no further hook will run).
+    #[must_use]
+    pub fn finished(&self) -> bool {
+        self.ui.finished.is_some()
+    }
+}
+
+impl std::ops::Deref for WorldCall<'_> {
+    type Target = WorldCore;
+    fn deref(&self) -> &WorldCore {
+        self.core
+    }
+}
+
+impl std::ops::DerefMut for WorldCall<'_> {
+    fn deref_mut(&mut self) -> &mut WorldCore {
+        self.core
+    }
+}
+
+impl WorldCall<'_> {
+    /// The game, or why there is none (outside a hook, or before
+    /// `world.start`).
     pub fn game(&self) -> WorldResult<&dyn LessonGame> {
-        self.game.as_deref().ok_or_else(no_game)
+        match &self.game {
+            Some(g) if self.core.started() => Ok(&**g),
+            _ => Err(no_game()),
+        }
     }
 
     /// The game to change, or why there is none.
     pub fn game_mut(&mut self) -> WorldResult<&mut dyn LessonGame> {
-        match self.game.as_deref_mut() {
-            Some(g) => Ok(g),
-            None => Err(no_game()),
+        let started = self.core.started();
+        match &mut self.game {
+            Some(g) if started => Ok(&mut **g),
+            _ => Err(no_game()),
         }
     }
 
-    /// Starts (or restarts) the game on `scene` at board time 0. Keeps the
-    /// view, eye choice and time scale the student had.
-    pub fn start(&mut self, scene: Scene) {
-        let mut game = (self.new_game)(scene);
-        if let Some(old) = &self.game {
-            game.set_pictures(old.pictures());
-            game.set_time_scale(old.time_scale());
-            if old
-                .observer()
-                .is_some_and(|i| i < game.scene().observers.len())
-            {
-                game.set_observer(old.observer());
+    /// Starts (or restarts) the game on `scene` at board time 0. A
+    /// restart keeps the view, eye choice and time scale the student had.
+    pub fn start(&mut self, scene: Scene) -> WorldResult<()> {
+        let restart = self.core.started();
+        let g = self.game.as_deref_mut().ok_or_else(no_game)?;
+        let kept = restart.then(|| (g.pictures(), g.time_scale(), g.observer()));
+        g.restart(scene);
+        if let Some((pictures, scale, observer)) = kept {
+            g.set_pictures(pictures);
+            g.set_time_scale(scale);
+            if observer.is_some_and(|i| i < g.scene().observers.len()) {
+                g.set_observer(observer);
             }
         }
-        self.game = Some(game);
-        self.generation += 1;
+        self.core.generation += 1;
+        Ok(())
     }
 
     /// Loads a scene file; a relative path is taken from the lesson's
@@ -364,16 +425,6 @@ impl WorldCore {
         Ok(made)
     }
 
-    /// The claims checked so far, as (claim, ok, detail).
-    #[must_use]
-    pub fn claims(&self) -> Vec<(String, bool, String)> {
-        self.ui
-            .claims
-            .iter()
-            .map(|c| (c.claim.clone(), c.ok, c.detail.clone()))
-            .collect()
-    }
-
     /// Draws a bar chart: `counts` over bins with `edges` (one more edge
     /// than counts), with `expected` per bin drawn as a line.
     pub fn bars(
@@ -462,23 +513,17 @@ impl WorldCore {
         Ok(())
     }
 
-    /// Whether `finish` was called (then no further hook will run).
-    #[must_use]
-    pub fn finished(&self) -> bool {
-        self.ui.finished.is_some()
-    }
-
     /// `World(title, t = …, n pucks)`, or `World(no game)`.
     #[must_use]
     pub fn describe(&self) -> String {
-        match &self.game {
-            Some(g) => format!(
+        match self.game() {
+            Ok(g) => format!(
                 "World({:?}, t = {:.3} s, {} pucks)",
                 g.scene().title,
                 g.live_time(),
                 g.billiard().len()
             ),
-            None => "World(no game)".to_owned(),
+            Err(_) => "World(no game)".to_owned(),
         }
     }
 }

@@ -3,13 +3,11 @@
 //! kind, and the stand-ins' scenes and simulations equal to the engine's
 //! own.
 
-use std::any::Any;
-
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::scene::{Effects, Scene};
 use lightcone_lesson::protocol::{self, answer, reply_line};
 use lightcone_lesson::standin::Objects;
-use lightcone_lesson::{ErrorKind, LessonGame, Pictures, WorldCore};
+use lightcone_lesson::{ErrorKind, LessonGame, Pictures, WorldCall, WorldCore};
 use serde_json::{Map, Value, json};
 
 /// A game as small as the trait allows: a scene, its board, a view.
@@ -67,15 +65,15 @@ impl LessonGame for Board {
         &mut self.effects
     }
     fn set_diagram(&mut self, _: bool, _: Option<usize>, _: lightcone_render::diagram::Axis) {}
-    fn into_any(self: Box<Self>) -> Box<dyn Any> {
-        self
+    fn restart(&mut self, scene: Scene) {
+        *self = new_board(scene);
     }
 }
 
-fn new_board(scene: Scene) -> Box<dyn LessonGame> {
+fn new_board(scene: Scene) -> Board {
     let billiard = Billiard::from_scene(&scene);
     let effects = scene.effects;
-    Box::new(Board {
+    Board {
         scene,
         billiard,
         paused: false,
@@ -83,7 +81,20 @@ fn new_board(scene: Scene) -> Box<dyn LessonGame> {
         pictures: Pictures::Seen,
         observer: None,
         effects,
-    })
+    }
+}
+
+/// A lesson's world and the game its host holds.
+struct Host {
+    core: WorldCore,
+    board: Board,
+}
+
+impl Host {
+    /// The world for one call on the host's game.
+    fn call(&mut self) -> WorldCall<'_> {
+        self.core.on(Some(&mut self.board))
+    }
 }
 
 /// Two pucks, the first moving at u = 0.9 toward the second.
@@ -107,14 +118,19 @@ position = [1.42, -1.5, 1.2]
     lightcone_engine::scene::parse(text, "two.toml").unwrap()
 }
 
-fn world() -> WorldCore {
-    let mut w = WorldCore::new(".".into(), new_board);
-    w.start(two_pucks());
-    w
+/// A host whose lesson has started the two pucks (on an empty board).
+fn world() -> Host {
+    let empty = Scene::empty(glam::DVec2::new(1.0, 1.0), None).unwrap();
+    let mut host = Host {
+        core: WorldCore::new(".".into()),
+        board: new_board(empty),
+    };
+    host.call().start(two_pucks()).unwrap();
+    host
 }
 
 fn ask(
-    w: &mut WorldCore,
+    w: &mut WorldCall<'_>,
     op: &str,
     args: Value,
     kwargs: Value,
@@ -126,7 +142,8 @@ fn ask(
 
 #[test]
 fn requests_bind_their_arguments_as_python_binds_a_call() {
-    let mut w = world();
+    let mut host = world();
+    let mut w = host.call();
     // Positional, keyword, and both mixed: the same call.
     assert_eq!(
         ask(&mut w, "velocity", json!(["a"]), json!({})).unwrap(),
@@ -171,7 +188,8 @@ fn requests_bind_their_arguments_as_python_binds_a_call() {
 
 #[test]
 fn a_request_changes_the_game_it_is_answered_on() {
-    let mut w = world();
+    let mut host = world();
+    let mut w = host.call();
     ask(&mut w, "impulse", json!(["b", [0.0, 0.5]]), json!({})).unwrap();
     assert_eq!(
         ask(&mut w, "velocity", json!(["b"]), json!({})).unwrap(),
@@ -224,7 +242,8 @@ fn a_request_changes_the_game_it_is_answered_on() {
 
 #[test]
 fn records_and_scenes_travel_tagged() {
-    let mut w = world();
+    let mut host = world();
+    let mut w = host.call();
     let state = ask(&mut w, "state", json!([]), json!({})).unwrap();
     assert_eq!(state["$record"], json!("State"));
     assert_eq!(state["data"]["pucks"].as_array().map(Vec::len), Some(2));
@@ -257,7 +276,8 @@ fn records_and_scenes_travel_tagged() {
 
 #[test]
 fn without_a_game_every_answer_says_why_and_the_snapshot_too() {
-    let mut w = WorldCore::new(".".into(), new_board);
+    let mut core = WorldCore::new(".".into());
+    let mut w = core.on(None);
     let reply: Value =
         serde_json::from_str(&reply_line(&mut w, "state", &[], &Map::new())).unwrap();
     assert_eq!(reply["error"][0], json!("RuntimeError"));
@@ -386,7 +406,8 @@ fn the_standin_simulation_runs_the_engines_board() {
 
 #[test]
 fn what_a_lesson_may_put_on_screen_is_bounded() {
-    let mut w = world();
+    let mut host = world();
+    let mut w = host.call();
     let big = "y".repeat(lightcone_lesson::MAX_TEXT_BYTES + 1);
     let (kind, _) = ask(&mut w, "say", json!([big]), json!({})).unwrap_err();
     assert_eq!(kind, ErrorKind::Value);
@@ -415,4 +436,32 @@ fn what_a_lesson_may_put_on_screen_is_bounded() {
     assert_eq!(tail.len(), protocol::PRINTED_LINES);
     assert!(tail[0].len() <= protocol::PRINTED_LINE_BYTES + '…'.len_utf8());
     assert!(lightcone_lesson::cut(&"é".repeat(10), 5).ends_with('…'));
+}
+
+/// In `setup` the host lends the game the lesson is building: until
+/// `world.start(scene)` the world has no game to speak of, then it has
+/// exactly the host's, restarted on that scene (no game made elsewhere
+/// and handed back).
+#[test]
+fn before_start_the_setup_game_is_no_game_and_start_restarts_the_hosts() {
+    let empty = Scene::empty(glam::DVec2::new(1.0, 1.0), None).unwrap();
+    let mut host = Host {
+        core: WorldCore::new(".".into()),
+        board: new_board(empty),
+    };
+    let mut w = host.call();
+    let refused = ask(&mut w, "state", json!([]), json!({})).unwrap_err();
+    assert_eq!(
+        refused,
+        (ErrorKind::Runtime, lightcone_lesson::NO_GAME.to_owned())
+    );
+    let scene = json!({ "$scene": serde_json::to_string(&two_pucks()).unwrap() });
+    ask(&mut w, "start", json!([scene]), json!({})).unwrap();
+    assert!(ask(&mut w, "state", json!([]), json!({})).is_ok());
+    assert!(w.started());
+    assert_eq!(
+        host.board.scene,
+        two_pucks(),
+        "the host's own game was started"
+    );
 }

@@ -3,16 +3,18 @@
 //! screen: text, questions that pause for a prediction, checked claims and
 //! bar charts.
 //!
-//! The game lends its state to the world for the length of one hook call
-//! (the game's lesson host), so a hook acts on exactly what the student
-//! sees; outside a hook the world has no game, and says so. Every
-//! operation is `lightcone_lesson::WorldCore`'s (the same that answers a
+//! The world shares the game with the game's lesson host for the length
+//! of one hook call (`World::share`), so a hook acts on exactly what the
+//! student sees; outside a hook the world has no game, and says so. Every
+//! operation is `lightcone_lesson::WorldCall`'s (the same that answers a
 //! lesson run in its own process or a browser's worker): this class only
 //! converts arguments and results.
 
+use std::cell::RefCell;
 use std::path::PathBuf;
+use std::rc::Rc;
 
-use lightcone_lesson::{Claim, NewGame, WorldCore};
+use lightcone_lesson::{Claim, LessonGame, WorldCall, WorldCore, WorldResult};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -37,15 +39,41 @@ pub fn observe_claims(f: fn(&Claim)) {
 #[pyclass(module = "lightcone._lightcone", unsendable, dict)]
 pub struct World {
     core: WorldCore,
+    /// The game, shared by the host while a hook runs.
+    game: Option<Rc<RefCell<dyn LessonGame>>>,
 }
 
 impl World {
-    /// A world with no game yet, for the lesson in directory `dir`;
-    /// `world.start(scene)` makes one with `new_game`.
-    pub fn new(dir: PathBuf, new_game: NewGame) -> Self {
+    /// A world with no game yet, for the lesson in directory `dir`.
+    #[must_use]
+    pub fn new(dir: PathBuf) -> Self {
         Self {
-            core: WorldCore::new(dir, new_game),
+            core: WorldCore::new(dir),
+            game: None,
         }
+    }
+
+    /// Shares `game` with the world (for a hook; `None` when it ends). The
+    /// host keeps its own handle on the same game.
+    pub fn share(&mut self, game: Option<Rc<RefCell<dyn LessonGame>>>) {
+        self.game = game;
+    }
+
+    /// Runs world operation `f` on the shared game.
+    fn with_game<R>(
+        &mut self,
+        f: impl FnOnce(&mut WorldCall<'_>) -> WorldResult<R>,
+    ) -> PyResult<R> {
+        let mut held = match &self.game {
+            Some(g) => Some(g.try_borrow_mut().map_err(|_| {
+                pyo3::exceptions::PyRuntimeError::new_err(
+                    "the game is busy (a world call inside another)",
+                )
+            })?),
+            None => None,
+        };
+        let game = held.as_deref_mut();
+        f(&mut self.core.on(game)).map_err(world_err)
     }
 }
 
@@ -66,47 +94,45 @@ impl std::ops::DerefMut for World {
 impl World {
     /// Starts (or restarts) the game on `scene` at board time 0. Keeps the
     /// view, eye choice and time scale the student had.
-    fn start(&mut self, scene: &Scene) {
-        self.core.start(scene.inner.clone());
+    fn start(&mut self, scene: &Scene) -> PyResult<()> {
+        self.with_game(|w| w.start(scene.inner.clone()))
     }
 
     /// Loads a scene file; a relative path is taken from the lesson's
     /// directory. Raises SceneError naming the file, line and field.
-    fn load(&self, path: PathBuf) -> PyResult<Scene> {
-        let inner = self.core.load(path).map_err(world_err)?;
+    fn load(&mut self, path: PathBuf) -> PyResult<Scene> {
+        let inner = self.with_game(|w| w.load(path))?;
         Ok(Scene { inner })
     }
 
     /// A copy of the scene being played.
     #[getter]
-    fn scene(&self) -> PyResult<Scene> {
-        let g = self.core.game().map_err(world_err)?;
-        Ok(Scene {
-            inner: g.scene().clone(),
-        })
+    fn scene(&mut self) -> PyResult<Scene> {
+        let inner = self.with_game(|w| Ok(w.game()?.scene().clone()))?;
+        Ok(Scene { inner })
     }
 
     /// Board time the physics has reached, s.
     #[getter]
-    fn t(&self) -> PyResult<f64> {
-        self.core.t().map_err(world_err)
+    fn t(&mut self) -> PyResult<f64> {
+        self.with_game(|w| w.t())
     }
 
     /// Speed of light, m/s.
     #[getter]
-    fn c(&self) -> PyResult<f64> {
-        self.core.c().map_err(world_err)
+    fn c(&mut self) -> PyResult<f64> {
+        self.with_game(|w| w.c())
     }
 
     /// Whether time stands still.
     #[getter]
-    fn paused(&self) -> PyResult<bool> {
-        self.core.paused().map_err(world_err)
+    fn paused(&mut self) -> PyResult<bool> {
+        self.with_game(|w| w.paused())
     }
 
     #[setter]
     fn set_paused(&mut self, paused: bool) -> PyResult<()> {
-        self.core.set_paused(paused).map_err(world_err)
+        self.with_game(|w| w.set_paused(paused))
     }
 
     /// Stops time (the student can still fly and look around).
@@ -121,42 +147,42 @@ impl World {
 
     /// Board seconds per real second.
     #[getter]
-    fn time_scale(&self) -> PyResult<f64> {
-        self.core.time_scale().map_err(world_err)
+    fn time_scale(&mut self) -> PyResult<f64> {
+        self.with_game(|w| w.time_scale())
     }
 
     #[setter]
     fn set_time_scale(&mut self, scale: f64) -> PyResult<()> {
-        self.core.set_time_scale(scale).map_err(world_err)
+        self.with_game(|w| w.set_time_scale(scale))
     }
 
     /// Which pictures: "seen", "truth" or "split".
     #[getter]
-    fn view(&self) -> PyResult<&'static str> {
-        self.core.view().map_err(world_err)
+    fn view(&mut self) -> PyResult<&'static str> {
+        self.with_game(|w| w.view())
     }
 
     #[setter]
     fn set_view(&mut self, view: &str) -> PyResult<()> {
-        self.core.set_view(view).map_err(world_err)
+        self.with_game(|w| w.set_view(view))
     }
 
     /// The scene observer whose eye is used, or None for the free eye.
     #[getter]
-    fn observer(&self) -> PyResult<Option<String>> {
-        self.core.observer().map_err(world_err)
+    fn observer(&mut self) -> PyResult<Option<String>> {
+        self.with_game(|w| w.observer())
     }
 
     #[setter]
     fn set_observer(&mut self, name: Option<&str>) -> PyResult<()> {
-        self.core.set_observer(name).map_err(world_err)
+        self.with_game(|w| w.set_observer(name))
     }
 
     /// The effects shown, as a dict of flags.
     #[getter]
-    fn effects<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    fn effects<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        for (key, on) in self.core.effects().map_err(world_err)? {
+        for (key, on) in self.with_game(|w| w.effects())? {
             d.set_item(key, on)?;
         }
         Ok(d)
@@ -164,31 +190,31 @@ impl World {
 
     /// Turns an effect on or off in the student's view.
     fn set_effect(&mut self, name: &str, on: bool) -> PyResult<()> {
-        self.core.set_effect(name, on).map_err(world_err)
+        self.with_game(|w| w.set_effect(name, on))
     }
 
     /// Every puck now: the `state` dict of `lightcone simulate`.
-    fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        super::to_record(py, "State", &self.core.state().map_err(world_err)?)
+    fn state<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        super::to_record(py, "State", &self.with_game(|w| w.state())?)
     }
 
     /// Every collision so far, as the dicts `lightcone simulate` prints.
-    fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
-        let all = self.core.collisions().map_err(world_err)?;
+    fn collisions<'py>(&mut self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let all = self.with_game(|w| w.collisions())?;
         all.iter()
             .map(|c| super::to_record(py, "Collision", c))
             .collect()
     }
 
     /// The proper velocity γβ of puck `name` now, as (x, y).
-    fn velocity(&self, name: &str) -> PyResult<(f64, f64)> {
-        self.core.velocity(name).map_err(world_err)
+    fn velocity(&mut self, name: &str) -> PyResult<(f64, f64)> {
+        self.with_game(|w| w.velocity(name))
     }
 
     /// Strikes puck `name` now: its proper velocity γβ (dimensionless)
     /// grows by `du` (two numbers: tuple, list or array).
     fn impulse(&mut self, name: &str, du: super::convert::Vector<2>) -> PyResult<()> {
-        self.core.impulse(name, du.pair()).map_err(world_err)
+        self.with_game(|w| w.impulse(name, du.pair()))
     }
 
     /// What `observer` (default: the first scene observer) sees at board
@@ -197,7 +223,7 @@ impl World {
     /// list of effect names. A time after now raises NotComputedError.
     #[pyo3(signature = (observer = None, t = None, vertices = false, effects = None, at = None))]
     fn observe<'py>(
-        &self,
+        &mut self,
         py: Python<'py>,
         observer: Option<&str>,
         t: Option<f64>,
@@ -205,10 +231,7 @@ impl World {
         effects: Option<Vec<String>>,
         at: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let report = self
-            .core
-            .observe(observer, t, vertices, effects, at)
-            .map_err(world_err)?;
+        let report = self.with_game(|w| w.observe(observer, t, vertices, effects, at))?;
         super::to_record(py, "Observation", &report)
     }
 
@@ -220,7 +243,7 @@ impl World {
     /// temporary folder, `tempfile.gettempdir()`).
     #[pyo3(signature = (path = None, observer = None, size = (1000, 700), at = None, axis = "x", frame = None))]
     fn diagram(
-        &self,
+        &mut self,
         path: Option<PathBuf>,
         observer: Option<&str>,
         size: (u32, u32),
@@ -228,10 +251,7 @@ impl World {
         axis: &str,
         frame: Option<&str>,
     ) -> PyResult<super::Frame> {
-        let (image, t) = self
-            .core
-            .diagram(observer, size, at, axis, frame)
-            .map_err(world_err)?;
+        let (image, t) = self.with_game(|w| w.diagram(observer, size, at, axis, frame))?;
         let picture = super::Frame::from_image(&image, t)?;
         if let Some(path) = path {
             picture.save(self.core.dir.join(path))?;
@@ -245,7 +265,7 @@ impl World {
     /// records the choice.
     #[pyo3(signature = (on = true, frame = None, axis = "x"))]
     fn show_diagram(&mut self, on: bool, frame: Option<&str>, axis: &str) -> PyResult<()> {
-        self.core.show_diagram(on, frame, axis).map_err(world_err)
+        self.with_game(|w| w.show_diagram(on, frame, axis))
     }
 
     /// The line of simultaneity of puck `frame`'s rest frame through its
@@ -253,12 +273,12 @@ impl World {
     /// `Simulation.simultaneity`.
     #[pyo3(signature = (frame, at = None))]
     fn simultaneity<'py>(
-        &self,
+        &mut self,
         py: Python<'py>,
         frame: &str,
         at: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let line = self.core.simultaneity(frame, at).map_err(world_err)?;
+        let line = self.with_game(|w| w.simultaneity(frame, at))?;
         super::to_plain(py, &line)
     }
 
@@ -267,7 +287,7 @@ impl World {
     /// most: ValueError past it).
     #[pyo3(signature = (text, append = false))]
     fn say(&mut self, text: &str, append: bool) -> PyResult<()> {
-        self.core.say(text, append).map_err(world_err)
+        self.with_game(|w| w.say(text, append))
     }
 
     /// Asks the student a question with `choices` (buttons) and pauses
@@ -275,14 +295,14 @@ impl World {
     /// `answer`: index of the right choice, to tell the student.
     #[pyo3(signature = (question, choices, answer = None))]
     fn ask(&mut self, question: &str, choices: Vec<String>, answer: Option<usize>) -> PyResult<()> {
-        self.core.ask(question, choices, answer).map_err(world_err)
+        self.with_game(|w| w.ask(question, choices, answer))
     }
 
     /// Records a physics claim: shown as ✓/✗ with `detail`; a false claim
     /// fails the headless lesson run. Returns `ok`.
     #[pyo3(signature = (claim, ok, detail = ""))]
     fn check(&mut self, claim: &str, ok: bool, detail: &str) -> PyResult<bool> {
-        let made = self.core.check(claim, ok, detail).map_err(world_err)?;
+        let made = self.with_game(|w| w.check(claim, ok, detail))?;
         if let Some(f) = CLAIM_OBSERVER.get() {
             f(&made);
         }
@@ -305,9 +325,7 @@ impl World {
         counts: Vec<f64>,
         expected: Option<Vec<f64>>,
     ) -> PyResult<()> {
-        self.core
-            .bars(title, edges, counts, expected)
-            .map_err(world_err)
+        self.with_game(|w| w.bars(title, edges, counts, expected))
     }
 
     /// Ends the lesson with a closing `message`: no hook runs again (the
@@ -323,12 +341,12 @@ impl World {
         message: &str,
         after_light_from: Option<super::convert::Vector<3>>,
     ) -> PyResult<()> {
-        self.core
-            .finish(
+        self.with_game(|w| {
+            w.finish(
                 message,
                 after_light_from.map(super::convert::Vector::triple),
             )
-            .map_err(world_err)
+        })
     }
 
     /// Whether `finish` was called (then no further hook will run).
@@ -337,7 +355,8 @@ impl World {
         self.core.finished()
     }
 
-    fn __repr__(&self) -> String {
-        self.core.describe()
+    fn __repr__(&mut self) -> String {
+        self.with_game(|w| Ok(w.describe()))
+            .unwrap_or_else(|e| format!("World(<{e}>)"))
     }
 }

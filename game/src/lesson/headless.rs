@@ -137,7 +137,7 @@ pub fn run_reporting(
         return Err(format!("--fps {fps}: give a positive frame rate"));
     }
     // Headless, a lesson that fails before starting a game needs no table.
-    let (host, game) = LessonHost::load_with_limit(path, hook_limit, super::placeholder)?;
+    let (host, game) = LessonHost::load_with_limit(path, hook_limit, super::empty_game)?;
     Ok(drive(path, host, game, until, fps, report))
 }
 
@@ -152,7 +152,7 @@ pub fn run_isolated(
     isolation: super::isolation::Isolation,
 ) -> Result<Outcome, String> {
     let (host, game) =
-        LessonHost::load_isolated_with_limit(path, hook_limit, super::placeholder, isolation)?;
+        LessonHost::load_isolated_with_limit(path, hook_limit, super::empty_game, isolation)?;
     Ok(drive(path, host, game, until, fps, &mut |_| {}))
 }
 

@@ -13,8 +13,11 @@
 //! The interpreter is embedded (`append_to_inittab`, then auto-initialised)
 //! with the game's own copy of the `lightcone` module, so a lesson always
 //! talks to the engine it is shown in, never to a different installed
-//! wheel. The game lends its state to the [`World`] for the length of one
-//! hook call: the hook acts on exactly what the student sees.
+//! wheel. The game is shared with the [`World`] for the length of one
+//! hook call (a pyclass cannot hold a borrow, so through a shared cell
+//! the host takes back after): the hook acts on exactly what the student
+//! sees. The window's and the page's hosts share nothing: each request
+//! borrows their game (`lightcone_lesson::WorldCall`).
 //!
 //! A hook that raises does not take the game down: its traceback is shown,
 //! the hooks stop, the game keeps the state it had (time pauses), and a
@@ -39,8 +42,10 @@ pub use isolation::Isolation;
 
 pub use watchdog::{GRACE, HARD_STOP_STATUS, HOOK_LIMIT};
 
+use std::cell::RefCell;
 use std::ffi::CString;
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 use std::sync::Once;
 use std::time::SystemTime;
 
@@ -51,6 +56,9 @@ use pyo3::types::{PyModule, PyTuple};
 use crate::model::GameState;
 use lightcone_lesson::protocol::PRINTED_LINES;
 use lightcone_python::{LessonUi, World};
+
+/// The game as Python's `World` holds it while a hook runs.
+type SharedGame = Rc<RefCell<dyn lightcone_lesson::LessonGame>>;
 
 /// The `lightcone` package's Python side, installed in the embedded
 /// interpreter around the embedded extension module.
@@ -253,7 +261,7 @@ pub struct LessonHost {
     shipped: Option<(String, sandbox::Scratch)>,
 }
 
-pub use crate::lesson_game::placeholder;
+pub use crate::lesson_game::empty_game;
 
 impl LessonHost {
     /// Loads the lesson at `path` and runs its `setup`. Returns the host
@@ -363,13 +371,13 @@ impl LessonHost {
     /// A host for the lesson at `path`, nothing loaded yet.
     fn new(path: &Path, limit: std::time::Duration) -> Result<Self, String> {
         init_python()?;
-        let world = Python::attach(|py| Py::new(py, World::new(lesson_dir(path), lend::new_game)))
+        let world = Python::attach(|py| Py::new(py, World::new(lesson_dir(path))))
             .map_err(|e| format!("cannot start the lesson host: {e}"))?;
         Ok(Self {
             path: path.to_path_buf(),
             module: None,
             world: std::mem::ManuallyDrop::new(world),
-            spare: Some(placeholder()),
+            spare: Some(empty_game()),
             seen_collisions: 0,
             generation: 0,
             modified: None,
@@ -423,21 +431,30 @@ impl LessonHost {
             let module = load_module(py, &self.path, source, &dir)?;
             // A fresh world (screen, attributes, no game): setup builds it.
             let dir = self.world.borrow(py).dir.clone();
-            *self.world = Py::new(py, World::new(dir, lend::new_game))?;
+            *self.world = Py::new(py, World::new(dir))?;
             let world = self.world.bind(py);
+            // The game setup builds, shared with the world while it runs.
+            let building = Rc::new(RefCell::new(empty_game()));
+            world
+                .borrow_mut()
+                .share(Some(building.clone() as SharedGame));
             let setup = module.call_method1("setup", (world,));
             drop(running);
+            world.borrow_mut().share(None);
             keep_printed(world, drain_printed(py));
             setup?;
-            let game = world.borrow_mut().game.take().and_then(lend::taken_back);
-            if game.is_none() {
+            let started = world.borrow().started();
+            let game = Rc::try_unwrap(building)
+                .map(RefCell::into_inner)
+                .unwrap_or_else(|shared| shared.replace(empty_game()));
+            if !started {
                 return Err(pyo3::exceptions::PyRuntimeError::new_err(format!(
                     "{}: setup(world) did not call world.start(scene)",
                     self.path.display()
                 )));
             }
             self.module = Some(module.unbind());
-            Ok(game)
+            Ok(Some(game))
         });
         match result {
             Ok(game) => {
@@ -541,11 +558,14 @@ impl LessonHost {
         let Some(spare) = self.spare.take() else {
             return;
         };
-        let lent = std::mem::replace(game, spare);
+        // Python's World reaches the game through a shared cell for the
+        // hook's length (a pyclass cannot hold a borrow); the host's own
+        // handle takes it back after.
+        let lent = Rc::new(RefCell::new(std::mem::replace(game, spare)));
         let limit = self.limit;
         let result = Python::attach(|py| {
             let world = self.world.bind(py);
-            world.borrow_mut().game = Some(Box::new(lent));
+            world.borrow_mut().share(Some(lent.clone() as SharedGame));
             let result = {
                 // Only the hook itself is timed.
                 let _running = watchdog::Running::start(limit, hook);
@@ -560,12 +580,11 @@ impl LessonHost {
                     None => Ok(()),
                 }
             };
+            world.borrow_mut().share(None);
             keep_printed(world, drain_printed(py));
-            let back = world.borrow_mut().game.take().and_then(lend::taken_back);
             let generation = world.borrow().generation;
             let finished = world.borrow().ui.finished.is_some();
             (
-                back,
                 generation,
                 finished,
                 result
@@ -576,15 +595,14 @@ impl LessonHost {
                     }),
             )
         });
-        let (back, generation, finished, outcome) = result;
+        let (generation, finished, outcome) = result;
         self.finished = finished;
-        // The world always holds a game inside a hook (start replaces, it
-        // never removes), so `back` is the lent game or a restarted one.
-        if let Some(back) = back {
-            self.spare = Some(std::mem::replace(game, back));
-        } else {
-            self.spare = Some(placeholder());
-        }
+        // The world let go of its handle: the host's is the only one
+        // (`world.start` restarted the game in place, if it was called).
+        let back = Rc::try_unwrap(lent)
+            .map(RefCell::into_inner)
+            .unwrap_or_else(|shared| shared.replace(empty_game()));
+        self.spare = Some(std::mem::replace(game, back));
         if generation != self.generation {
             self.generation = generation;
             self.seen_collisions = 0;

@@ -6,8 +6,8 @@
 //! The game stays in the window's process. The lesson's process holds a
 //! `World` stand-in (`remote.py`) whose methods are requests to the
 //! game's process, answered on the real game by the world's own
-//! operations (`lightcone_lesson::protocol::reply_line` on the host's
-//! `WorldCore`, lent the game for the length of one request: the same
+//! operations (`lightcone_lesson::protocol::reply_line` on a `WorldCall`
+//! of the host's world that borrows the game for one request: the same
 //! operations Python's `lightcone.World` wraps, and the browser's page
 //! answers its worker with). Both ways, JSON lines:
 //!
@@ -51,8 +51,10 @@ use serde_json::Value;
 use super::isolation::Isolation;
 use super::line::read_line;
 use super::supervise::{self, KILL_AFTER};
-use super::{LessonHost, drain_printed, keep_printed, lend, placeholder, traceback, watchdog};
+use super::{LessonHost, drain_printed, keep_printed, traceback, watchdog};
+use crate::lesson_game::empty_game;
 use crate::model::GameState;
+use lightcone_lesson::WorldCall;
 use lightcone_lesson::protocol::{self, Up};
 use lightcone_python::World;
 
@@ -466,7 +468,7 @@ impl LessonHost {
         self.seen_collisions = 0;
         let fresh = Python::attach(|py| {
             let dir = self.world.borrow(py).dir.clone();
-            Py::new(py, World::new(dir, lend::new_game))
+            Py::new(py, World::new(dir))
         });
         match fresh {
             Ok(w) => Python::attach(|_| *self.world = w),
@@ -507,40 +509,29 @@ impl LessonHost {
         }
     }
 
-    /// Lends the game (or, in `setup`, the game the lesson is building)
-    /// to the world for `f`, and takes it back.
-    fn lend<R>(
+    /// Runs `f` on the world for one request, borrowing the game: the
+    /// student's, or in `setup` the game the lesson is building (shown
+    /// once setup has ended well).
+    fn on_world<R>(
         &mut self,
         game: &mut GameState,
         setup: bool,
-        f: impl FnOnce(Python<'_>, &Bound<'_, World>) -> R,
+        f: impl FnOnce(&mut WorldCall<'_>) -> R,
     ) -> R {
-        let lent = if setup {
-            self.pending.take()
+        let target = if setup {
+            self.pending.get_or_insert_with(empty_game)
         } else {
-            let spare = self.spare.take().unwrap_or_else(placeholder);
-            Some(std::mem::replace(game, spare))
+            game
         };
-        let (result, back, generation) = Python::attach(|py| {
-            let world = self.world.bind(py);
-            world.borrow_mut().game =
-                lent.map(|g| Box::new(g) as Box<dyn lightcone_python::LessonGame>);
-            let result = f(py, world);
-            let back = world.borrow_mut().game.take().and_then(lend::taken_back);
-            (result, back, world.borrow().generation)
+        let (result, generation) = Python::attach(|py| {
+            let mut world = self.world.borrow_mut(py);
+            let result = f(&mut world.on(Some(target)));
+            (result, world.generation)
         });
-        if setup {
-            self.pending = back;
-        } else {
-            // The world always holds a game inside a hook (start replaces,
-            // it never removes): the lent one or a restarted one.
-            if let Some(back) = back {
-                self.spare = Some(std::mem::replace(game, back));
-            }
-            if generation != self.generation {
-                self.generation = generation;
-                self.seen_collisions = 0;
-            }
+        if !setup && generation != self.generation {
+            // world.start in a hook: the collision list restarted.
+            self.generation = generation;
+            self.seen_collisions = 0;
         }
         result
     }
@@ -581,8 +572,9 @@ impl LessonHost {
                     }
                     let line = if hook == "setup" {
                         // No game yet: the world says why, in its words.
-                        self.lend(game, true, |_, world| {
-                            Ok::<_, String>(protocol::call_line(&world.borrow(), hook, &args))
+                        Python::attach(|py| {
+                            let mut world = self.world.borrow_mut(py);
+                            Ok::<_, String>(protocol::call_line(&world.on(None), hook, &args))
                         })
                     } else {
                         // Built from the game itself, without Python.
@@ -632,8 +624,8 @@ impl LessonHost {
                             false,
                         );
                     }
-                    let reply = self.lend(game, hook == "setup", |_, world| {
-                        protocol::reply_line(&mut world.borrow_mut(), &op, &args, &kwargs)
+                    let reply = self.on_world(game, hook == "setup", |world| {
+                        protocol::reply_line(world, &op, &args, &kwargs)
                     });
                     if let Some(r) = &self.remote {
                         r.send(reply.into_bytes());
@@ -702,12 +694,12 @@ impl LessonHost {
         }
         if hook == "setup" {
             match self.pending.take() {
-                Some(new) => {
+                Some(new) if generation > 0 => {
                     *game = new;
                     self.generation = generation;
                     self.seen_collisions = 0;
                 }
-                None => {
+                _ => {
                     game.paused = true;
                     self.remote = None;
                     self.fail(format!(

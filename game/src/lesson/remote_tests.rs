@@ -2,6 +2,8 @@
 //! process (`super` is `lesson::remote`).
 
 use super::*;
+use std::cell::RefCell;
+use std::rc::Rc;
 
 #[test]
 fn a_hook_that_prints_megabytes_sends_only_what_the_panel_keeps() {
@@ -52,11 +54,14 @@ fn the_snapshot_says_what_the_python_world_says() {
     game.effects
         .set(lightcone_engine::scene::Effect::Doppler, false);
     let ours = serde_json::to_value(protocol::snapshot(&game)).unwrap();
-    let world = Python::attach(|py| Py::new(py, World::new(".".into(), lend::new_game))).unwrap();
+    let world = Python::attach(|py| Py::new(py, World::new(".".into()))).unwrap();
     // The getters of `lightcone.World`, read by Python on the same game.
     let theirs = Python::attach(|py| -> PyResult<String> {
         let w = world.bind(py);
-        w.borrow_mut().game = Some(Box::new(game));
+        let shared: Rc<RefCell<dyn lightcone_lesson::LessonGame>> = Rc::new(RefCell::new(game));
+        w.borrow_mut().share(Some(shared));
+        // As after the lesson's `world.start(scene)`.
+        w.borrow_mut().generation = 1;
         let json = py.import("json")?;
         let d = pyo3::types::PyDict::new(py);
         for name in [
@@ -71,7 +76,7 @@ fn the_snapshot_says_what_the_python_world_says() {
             d.set_item(name, w.getattr(name)?)?;
         }
         let text = json.call_method1("dumps", (d,))?.extract::<String>()?;
-        w.borrow_mut().game = None;
+        w.borrow_mut().share(None);
         Ok(text)
     })
     .unwrap();

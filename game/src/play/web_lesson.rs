@@ -4,7 +4,8 @@
 //! runs it in a child process: the same protocol (the JSON lines of
 //! `lightcone_lesson::protocol`), carried by `postMessage` instead of a
 //! pipe, the same hooks, and the same world's operations answered here
-//! on the game (`lightcone_lesson::WorldCore`).
+//! on the game (`lightcone_lesson::WorldCall`, borrowing the game for
+//! each request: the page keeps it).
 //!
 //! The page never waits for the worker: each frame takes what has
 //! arrived (a request is answered at once, a hook's end taken), sends the
@@ -22,13 +23,13 @@ use std::time::Duration;
 
 use lightcone_engine::report::CollisionLine;
 use lightcone_lesson::protocol::{self, HOOK_LIMIT, MAX_LINE, PRINTED_LINES, Up};
-use lightcone_lesson::{LessonGame, LessonUi, MAX_TEXT_BYTES, WorldCore};
+use lightcone_lesson::{LessonUi, MAX_TEXT_BYTES, WorldCall, WorldCore};
 use serde_json::Value;
 use wasm_bindgen::prelude::*;
 use web_time::Instant;
 
 use super::lesson_panel::LessonStatus;
-use crate::lesson_game::{new_game, placeholder, taken_back};
+use crate::lesson_game::empty_game;
 use crate::model::GameState;
 
 #[wasm_bindgen]
@@ -111,10 +112,8 @@ pub struct WebLesson {
     source: String,
     /// It is a shipped lesson (`crate::assets::LESSONS`): its link names it.
     shipped: bool,
-    /// The lesson's world: its screen, and the game while a request runs.
+    /// The lesson's world: its screen (the game stays the page's).
     world: WorldCore,
-    /// What the game holds while its real state is lent to the world.
-    spare: Option<GameState>,
     /// The game `setup` is building.
     pending: Option<GameState>,
     /// Python is up in the worker.
@@ -149,8 +148,7 @@ impl WebLesson {
             name: name.to_owned(),
             source,
             shipped,
-            world: WorldCore::new(".".into(), new_game),
-            spare: None,
+            world: WorldCore::new(".".into()),
             pending: None,
             ready: false,
             opened: Instant::now(),
@@ -172,7 +170,7 @@ impl WebLesson {
         wake_on_messages();
         js_open(&self.name, &self.source, self.limit.as_secs_f64())
             .map_err(|e| format!("the page cannot start the lesson's worker: {e:?}"))?;
-        self.world = WorldCore::new(".".into(), new_game);
+        self.world = WorldCore::new(".".into());
         self.pending = None;
         self.ready = false;
         self.opened = Instant::now();
@@ -316,7 +314,8 @@ impl WebLesson {
             return;
         }
         let line = if hook == "setup" {
-            protocol::call_line(&self.world, hook, &args)
+            // No game yet: the world says why, in its words.
+            protocol::call_line(&self.world.on(None), hook, &args)
         } else {
             let call = protocol::Call {
                 call: hook,
@@ -351,7 +350,7 @@ impl WebLesson {
                         "it asked the game for {op:?}, which the game does not serve"
                     ));
                 }
-                let reply = self.lend(game, hook == "setup", |world| {
+                let reply = self.on_world(game, hook == "setup", |world| {
                     protocol::reply_line(world, &op, &args, &kwargs)
                 });
                 js_send(&reply).map_err(|e| format!("cannot answer: {e:?}"))?;
@@ -382,33 +381,25 @@ impl WebLesson {
         Ok(())
     }
 
-    /// Lends the game (or, in `setup`, the game the lesson is building) to
-    /// the world for `f`, and takes it back.
-    fn lend<R>(
+    /// Runs `f` on the world for one request, borrowing the game: the
+    /// student's, or in `setup` the game the lesson is building (shown
+    /// once setup has ended well).
+    fn on_world<R>(
         &mut self,
         game: &mut GameState,
         setup: bool,
-        f: impl FnOnce(&mut WorldCore) -> R,
+        f: impl FnOnce(&mut WorldCall<'_>) -> R,
     ) -> R {
-        let lent = if setup {
-            self.pending.take()
+        let target = if setup {
+            self.pending.get_or_insert_with(empty_game)
         } else {
-            let spare = self.spare.take().unwrap_or_else(placeholder);
-            Some(std::mem::replace(game, spare))
+            game
         };
-        self.world.game = lent.map(|g| Box::new(g) as Box<dyn LessonGame>);
-        let result = f(&mut self.world);
-        let back = self.world.game.take().and_then(taken_back);
-        if setup {
-            self.pending = back;
-        } else if let Some(back) = back {
-            // The world always holds a game inside a hook (start replaces,
-            // it never removes): the lent one or a restarted one.
-            self.spare = Some(std::mem::replace(game, back));
-            if self.world.generation != self.generation {
-                self.generation = self.world.generation;
-                self.seen_collisions = 0;
-            }
+        let result = f(&mut self.world.on(Some(target)));
+        if !setup && self.world.generation != self.generation {
+            // world.start in a hook: the collision list restarted.
+            self.generation = self.world.generation;
+            self.seen_collisions = 0;
         }
         result
     }
@@ -433,12 +424,12 @@ impl WebLesson {
         }
         if hook == "setup" {
             match self.pending.take() {
-                Some(new) => {
+                Some(new) if self.world.started() => {
                     *game = new;
                     self.generation = self.world.generation;
                     self.seen_collisions = 0;
                 }
-                None => {
+                _ => {
                     let _ = js_stop();
                     self.fail(
                         game,
