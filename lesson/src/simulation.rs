@@ -6,10 +6,15 @@
 //!
 //! The core is the engine's `ecs::Simulation` (the frame schedule every
 //! front end runs: the window, `lightcone observe`, the CAVE), built once
-//! for the scene with one view per scene observer. Board time is advanced
-//! on its physics; a question about what an observer sees runs one frame
-//! of the schedule at the time asked and reads that observer's view, so
-//! an `observe` builds no world and copies no billiard.
+//! for the scene with one view per scene observer, at the first question
+//! about what an observer sees (until then only the physics is held, so
+//! a simulation run for its collisions costs no more than its billiard).
+//! Board time is advanced on its physics; a question about what an
+//! observer sees runs one frame of the schedule at the time asked and
+//! reads that observer's view, so an `observe` builds no world and copies
+//! no billiard. With the paper's sampled optics the samples are taken
+//! afresh for each question (at 0 and at the time asked, as a new
+//! simulation would), so answers never depend on earlier questions.
 
 use lightcone_engine::camera::DEFAULT_ASPECT;
 use lightcone_engine::ecs::{Entity, Simulation};
@@ -25,8 +30,16 @@ use crate::query;
 pub struct SimulationCore {
     /// The scene simulated (as given).
     scene: Scene,
-    /// Its world: physics (`Billiard`), bodies, observers and views.
-    sim: Simulation,
+    /// Its physics, and once asked what an observer sees, its world.
+    held: Held,
+}
+
+/// What a [`SimulationCore`] holds.
+enum Held {
+    /// The physics alone (nothing has been observed yet).
+    Physics(Box<Billiard>),
+    /// The world: physics (`Billiard`), bodies, observers and views.
+    World(Box<Simulation>),
 }
 
 impl SimulationCore {
@@ -35,13 +48,13 @@ impl SimulationCore {
     /// records are kept; `None` keeps the whole run.
     pub fn new(scene: &Scene, history: Option<f64>) -> WorldResult<Self> {
         let history = query::history_horizon(history)?;
-        let mut sim = Simulation::new(scene);
+        let mut billiard = Billiard::from_scene(scene);
         if history.is_some() {
-            sim.physics_mut().set_history(history);
+            billiard.set_history(history);
         }
         Ok(Self {
             scene: scene.clone(),
-            sim,
+            held: Held::Physics(Box::new(billiard)),
         })
     }
 
@@ -54,30 +67,51 @@ impl SimulationCore {
     /// The physics: worldlines and collisions so far.
     #[must_use]
     pub fn billiard(&self) -> &Billiard {
-        self.sim.physics()
+        match &self.held {
+            Held::Physics(b) => b,
+            Held::World(sim) => sim.physics(),
+        }
     }
 
     /// The physics, to strike a puck.
     pub fn billiard_mut(&mut self) -> &mut Billiard {
-        self.sim.physics_mut()
+        match &mut self.held {
+            Held::Physics(b) => b,
+            Held::World(sim) => sim.physics_mut(),
+        }
+    }
+
+    /// The world with its views, built at the first call (the physics
+    /// moved into it).
+    fn world(&mut self) -> &mut Simulation {
+        if let Held::Physics(b) = &mut self.held {
+            let mut sim = Simulation::new(&self.scene);
+            let fresh = Box::new(Billiard::from_scene(&self.scene));
+            sim.replace_physics(*std::mem::replace(b, fresh));
+            self.held = Held::World(Box::new(sim));
+        }
+        match &mut self.held {
+            Held::World(sim) => sim,
+            Held::Physics(_) => unreachable!("the world was built just above"),
+        }
     }
 
     /// Board time the physics has reached, s.
     #[must_use]
     pub fn time(&self) -> f64 {
-        self.sim.physics().time()
+        self.billiard().time()
     }
 
     /// Runs the physics to board time `t`, s (earlier times do nothing).
     /// The views are not drawn on the way: they are asked at one time
     /// ([`Self::observe`]), as `ecs::Simulation::run_far_to` runs.
     pub fn advance_to(&mut self, t: f64) {
-        self.sim.physics_mut().advance_to(t);
+        self.billiard_mut().advance_to(t);
     }
 
     /// Forgets collision records older than the history horizon.
     pub fn forget_old_records(&mut self) {
-        self.sim.physics_mut().forget_old_records();
+        self.billiard_mut().forget_old_records();
     }
 
     /// What `observer` (default: the first scene observer) sees at board
@@ -92,7 +126,7 @@ impl SimulationCore {
         effects: Effects,
     ) -> WorldResult<ObserveReport> {
         let view = self.frame_view(observer, t, effects, DEFAULT_ASPECT)?;
-        ObserveReport::of_view(&self.sim, view, vertices)
+        ObserveReport::of_view(self.world(), view, vertices)
             .ok_or_else(|| WorldError::new(ErrorKind::Runtime, "the observer saw nothing"))
     }
 
@@ -110,7 +144,7 @@ impl SimulationCore {
     ) -> WorldResult<(&mut Simulation, Entity)> {
         let effects = kind.effects(self.scene.effects);
         let view = self.frame_view(observer, t, effects, aspect)?;
-        Ok((&mut self.sim, view))
+        Ok((self.world(), view))
     }
 
     /// Sets `observer`'s view to `effects` and the framing of an `aspect`
@@ -123,15 +157,22 @@ impl SimulationCore {
         aspect: f64,
     ) -> WorldResult<Entity> {
         let index = query::observer_index(&self.scene, observer)?;
-        let view = *self.sim.views().get(index).ok_or_else(|| {
+        let framing = self.scene.observers[index].framing(aspect);
+        let sampled = self.scene.optics.sampled;
+        let sim = self.world();
+        let view = *sim.views().get(index).ok_or_else(|| {
             WorldError::new(ErrorKind::Runtime, format!("observer {index} has no view"))
         })?;
         for e in Effect::ALL {
-            self.sim.set_view_effect(view, e, effects.is_on(e));
+            sim.set_view_effect(view, e, effects.is_on(e));
         }
-        self.sim
-            .set_framing(view, self.scene.observers[index].framing(aspect));
-        self.sim.advance_to(t);
+        sim.set_framing(view, framing);
+        if sampled {
+            // Samples at 0 and at `t` only, as a new simulation takes them.
+            sim.restart_sampled_history();
+            sim.advance_to(0.0);
+        }
+        sim.advance_to(t);
         Ok(view)
     }
 }

@@ -207,10 +207,13 @@ fn render_frame(
         )));
     }
     let aspect = f64::from(size.0) / f64::from(size.1);
-    let (sim, view) = core.picture(observer, t, kind, aspect).map_err(world_err)?;
+    // The observer is checked before the graphics device, as before.
+    query::observer_index(core.scene(), observer).map_err(world_err)?;
     quiet_runtime_dir(py)?;
     let image = py.detach(|| {
         let gpu = gpu().map_err(NoAdapterError::new_err)?;
+        // The frame itself runs without the GIL, after the device is found.
+        let (sim, view) = core.picture(observer, t, kind, aspect).map_err(world_err)?;
         lightcone_render::headless::render_view(gpu, sim, view, size.0, size.1)
             .map_err(PyRuntimeError::new_err)
     })?;

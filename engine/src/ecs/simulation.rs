@@ -160,6 +160,17 @@ impl Simulation {
         self.schedule.run(&mut self.world);
     }
 
+    /// Forgets what the paper's sampled optics (`[optics] method =
+    /// "sampled"`) has recorded, keeping its capacity: the next frames
+    /// sample afresh. For a view asked about past times in any order (the
+    /// Python `Simulation`): a frame at 0 then one at `t` samples what a
+    /// new simulation run to `t` samples. Nothing for exact optics.
+    pub fn restart_sampled_history(&mut self) {
+        if let Some(mut history) = self.world.get_resource_mut::<History>() {
+            history.0.clear();
+        }
+    }
+
     /// Board time of the last frame, s.
     pub fn time(&self) -> f64 {
         self.world.resource::<Clock>().t

@@ -65,6 +65,14 @@ impl SampledHistory {
         }
     }
 
+    /// Forgets every frame, keeping the bodies and the capacity.
+    pub fn clear(&mut self) {
+        self.times.clear();
+        for track in &mut self.tracks {
+            *track = Track::default();
+        }
+    }
+
     /// Frames held.
     #[must_use]
     pub fn len(&self) -> usize {
