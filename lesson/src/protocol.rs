@@ -158,8 +158,13 @@ pub fn snapshot(game: &dyn LessonGame) -> Snapshot<'_> {
 pub fn snapshot_value(world: &WorldCall<'_>) -> Value {
     match world.game() {
         Ok(g) => serde_json::to_value(snapshot(g)).unwrap_or(Value::Null),
-        Err(_) => json!({ "$none": NO_GAME }),
+        Err(_) => no_snapshot(),
     }
+}
+
+/// The snapshot where there is no game (a call of `setup`): why.
+fn no_snapshot() -> Value {
+    json!({ "$none": NO_GAME })
 }
 
 /// A call line: `{"call": hook, "args": [...], "snapshot": {...}}`.
@@ -174,15 +179,24 @@ pub struct Call<'a, S: Serialize> {
     pub snapshot: S,
 }
 
-/// The line that runs `hook(world, *args)` in the lesson.
+/// The line that runs `hook(world, *args)` in the lesson, its snapshot
+/// taken of `game` (`None` for `setup`: there is no game yet, and the
+/// snapshot says why).
 #[must_use]
-pub fn call_line(world: &WorldCall<'_>, hook: &str, args: &Value) -> String {
-    let call = Call {
-        call: hook,
-        args,
-        snapshot: snapshot_value(world),
+pub fn call_line(game: Option<&dyn LessonGame>, hook: &str, args: &Value) -> String {
+    let line = match game {
+        Some(g) => serde_json::to_string(&Call {
+            call: hook,
+            args,
+            snapshot: snapshot(g),
+        }),
+        None => serde_json::to_string(&Call {
+            call: hook,
+            args,
+            snapshot: no_snapshot(),
+        }),
     };
-    serde_json::to_string(&call).unwrap_or_default()
+    line.unwrap_or_default()
 }
 
 /// The reply line to request `op` with `args` and `kwargs`, run on `world`

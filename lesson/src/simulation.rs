@@ -20,7 +20,7 @@ use lightcone_engine::camera::DEFAULT_ASPECT;
 use lightcone_engine::ecs::{Entity, Simulation};
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::ObserveReport;
-use lightcone_engine::scene::{Effect, Effects, Scene};
+use lightcone_engine::scene::{Effects, Scene};
 use lightcone_render::frame::ViewKind;
 
 use crate::error::{ErrorKind, WorldError, WorldResult};
@@ -163,9 +163,7 @@ impl SimulationCore {
         let view = *sim.views().get(index).ok_or_else(|| {
             WorldError::new(ErrorKind::Runtime, format!("observer {index} has no view"))
         })?;
-        for e in Effect::ALL {
-            sim.set_view_effect(view, e, effects.is_on(e));
-        }
+        sim.set_view_effects(view, effects);
         sim.set_framing(view, framing);
         if sampled {
             // Samples at 0 and at `t` only, as a new simulation takes them.

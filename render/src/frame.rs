@@ -279,9 +279,7 @@ pub fn scene_view(
     let o = &scene.observers[index];
     let view = sim.views()[index];
     let effects = kind.effects(scene.effects);
-    for e in lightcone_engine::scene::Effect::ALL {
-        sim.set_view_effect(view, e, effects.is_on(e));
-    }
+    sim.set_view_effects(view, effects);
     sim.set_framing(view, o.framing(aspect));
     // Run here to `t`: only what the view can still see is kept.
     sim.run_far_to(view, t);

@@ -4,7 +4,7 @@
 use lightcone_engine::ecs::Simulation;
 use lightcone_engine::physics::Billiard;
 use lightcone_engine::report::ObserveReport;
-use lightcone_engine::scene::{self, Effect, Effects};
+use lightcone_engine::scene::{self, Effects};
 
 /// What observer `index` of `scene` sees at board time `t` of `billiard`
 /// (run at least that far elsewhere: the Python `Simulation`, a lesson's
@@ -23,9 +23,7 @@ pub fn report(
     let mut sim = Simulation::new(scene);
     sim.replace_physics(billiard.clone());
     let view = *sim.views().get(index)?;
-    for e in Effect::ALL {
-        sim.set_view_effect(view, e, effects.is_on(e));
-    }
+    sim.set_view_effects(view, effects);
     sim.advance_to(t);
     ObserveReport::of_view(&sim, view, vertices)
 }
@@ -44,9 +42,7 @@ pub fn report_at(
 ) -> Option<ObserveReport> {
     let mut sim = Simulation::new(scene);
     let view = *sim.views().get(index)?;
-    for e in Effect::ALL {
-        sim.set_view_effect(view, e, effects.is_on(e));
-    }
+    sim.set_view_effects(view, effects);
     // Only what the views can still see at `t` is kept (bounded memory).
     sim.run_far_to(view, t);
     ObserveReport::of_view(&sim, view, vertices)

@@ -398,6 +398,14 @@ impl Simulation {
         }
     }
 
+    /// Gives `view` exactly the effects in `effects`; takes hold at the
+    /// next frame.
+    pub fn set_view_effects(&mut self, view: Entity, effects: Effects) {
+        for e in Effect::ALL {
+            self.set_view_effect(view, e, effects.is_on(e));
+        }
+    }
+
     /// Turns `effect` on or off for every view; takes hold at the next
     /// frame.
     pub fn set_effect(&mut self, effect: Effect, on: bool) {

@@ -54,8 +54,8 @@ use super::supervise::{self, KILL_AFTER};
 use super::{LessonHost, drain_printed, keep_printed, traceback, watchdog};
 use crate::lesson_game::empty_game;
 use crate::model::GameState;
-use lightcone_lesson::WorldCall;
 use lightcone_lesson::protocol::{self, Up};
+use lightcone_lesson::{LessonGame, WorldCall};
 use lightcone_python::World;
 
 /// How long a frame waits for the lesson before it draws: a hook that
@@ -570,34 +570,14 @@ impl LessonHost {
                         remote.queue.clear();
                         return;
                     }
-                    let line = if hook == "setup" {
-                        // No game yet: the world says why, in its words.
-                        Python::attach(|py| {
-                            let mut world = self.world.borrow_mut(py);
-                            Ok::<_, String>(protocol::call_line(&world.on(None), hook, &args))
-                        })
-                    } else {
-                        // Built from the game itself, without Python.
-                        serde_json::to_string(&protocol::Call {
-                            call: hook,
-                            args: &args,
-                            snapshot: protocol::snapshot(game),
-                        })
-                        .map_err(|e| e.to_string())
-                    };
+                    // Built from the game itself, without Python (no game
+                    // yet in `setup`).
+                    let shown = (hook != "setup").then_some(&*game as &dyn LessonGame);
+                    let line = protocol::call_line(shown, hook, &args);
                     let Some(remote) = self.remote.as_mut() else {
                         return;
                     };
-                    match line {
-                        Ok(line) => remote.send(line.into_bytes()),
-                        Err(e) => {
-                            return self.stop(
-                                game,
-                                Some(format!("cannot call {hook}: {e}")),
-                                false,
-                            );
-                        }
-                    }
+                    remote.send(line.into_bytes());
                     let out = (hook, Instant::now());
                     remote.out = Some(out);
                     out

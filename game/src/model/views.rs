@@ -7,7 +7,7 @@
 use glam::DVec3;
 use lightcone_engine::ecs::{Apparent, Entity, Vantage};
 use lightcone_engine::optics::{Emission, Seen};
-use lightcone_engine::scene::{Effect, Effects};
+use lightcone_engine::scene::Effects;
 use lightcone_engine::spacetime::{Event, ProperVelocity};
 use lightcone_engine::worldline::Worldline;
 use lightcone_render::frame::{Camera, ViewKind};
@@ -119,9 +119,7 @@ impl GameState {
             ),
         };
         if self.sim.view_effects(view) != Some(effects) {
-            for e in Effect::ALL {
-                self.sim.set_view_effect(view, e, effects.is_on(e));
-            }
+            self.sim.set_view_effects(view, effects);
         }
         let framing = match self.framing {
             Framing::Look => Aim::Look {

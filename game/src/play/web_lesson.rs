@@ -23,7 +23,7 @@ use std::time::Duration;
 
 use lightcone_engine::report::CollisionLine;
 use lightcone_lesson::protocol::{self, HOOK_LIMIT, MAX_LINE, PRINTED_LINES, Up};
-use lightcone_lesson::{LessonUi, MAX_TEXT_BYTES, WorldCall, WorldCore};
+use lightcone_lesson::{LessonGame, LessonUi, MAX_TEXT_BYTES, WorldCall, WorldCore};
 use serde_json::Value;
 use wasm_bindgen::prelude::*;
 use web_time::Instant;
@@ -313,17 +313,9 @@ impl WebLesson {
             self.queue.clear();
             return;
         }
-        let line = if hook == "setup" {
-            // No game yet: the world says why, in its words.
-            protocol::call_line(&self.world.on(None), hook, &args)
-        } else {
-            let call = protocol::Call {
-                call: hook,
-                args: &args,
-                snapshot: protocol::snapshot(game),
-            };
-            serde_json::to_string(&call).unwrap_or_default()
-        };
+        // No game yet in `setup`: the snapshot says why.
+        let shown = (hook != "setup").then_some(&*game as &dyn LessonGame);
+        let line = protocol::call_line(shown, hook, &args);
         if let Err(e) = js_send(&line) {
             return self.end(game, format!("cannot call {hook}: {e:?}"));
         }
