@@ -106,12 +106,21 @@ fn braking_gases_on_other_cloths_give_the_same_contacts_as_the_reference_loop() 
         }
         assert_eq!(a.len(), b.len(), "seed {seed}");
         assert!(a.len() >= 20, "seed {seed}: only {} contacts", a.len());
-        // And the same final state, bit for bit.
+        // And the same final state, to rounding. (Not to the bit: a pair is
+        // often predicted at different times in the two loops, and where
+        // the separation is within its rounding of zero its sign is noise
+        // from float to float, so two searches from different starts can
+        // stop at sign changes a few ulps apart.)
         for i in 0..fast.len() {
-            assert_eq!(
-                fast.worldline(i).last(),
-                slow.worldline(i).last(),
-                "seed {seed}: puck {i}"
+            let (x, y) = (fast.worldline(i).last(), slow.worldline(i).last());
+            let close = |p: f64, q: f64| (p - q).abs() <= 1e-12 * (1.0 + p.abs().max(q.abs()));
+            assert!(
+                close(x.start.t, y.start.t)
+                    && (x.start.position - y.start.position).length() <= 1e-12
+                    && (x.u.0 - y.u.0).length() <= 1e-12 * (1.0 + x.u.0.length())
+                    && close(x.orientation, y.orientation)
+                    && close(x.proper_time, y.proper_time),
+                "seed {seed}: puck {i}: {x:?} against {y:?}"
             );
         }
     }

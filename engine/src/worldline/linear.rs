@@ -159,6 +159,13 @@ impl Segment {
         self.deceleration
     }
 
+    /// The speed of light its velocities were derived with, m/s.
+    #[inline]
+    #[must_use]
+    pub fn speed_of_light(&self) -> f64 {
+        self.c
+    }
+
     /// Whether this is a braking segment (moving, decelerating).
     #[inline]
     #[must_use]

@@ -70,18 +70,50 @@ pub fn bound(radii: [f64; 2], gamma_pair: f64, slide: f64, early: f64) -> f64 {
 /// (radius `radius`, m) contracted by `1/γ` along the unit direction `n` of
 /// its motion on the board (any unit direction at rest, where `1/γ = 1`).
 /// Pucks move in the board plane, so directions are `(cos, sin)` in it.
+///
+/// It also keeps the board velocity (m/s) it moves with: [`gap_min`] tries
+/// the direction of motion as a candidate axis.
 #[derive(Clone, Copy, Debug)]
-struct Outline {
+pub struct Outline {
     nx: f64,
     ny: f64,
     inverse_gamma: f64,
     radius: f64,
+    velocity: DVec3,
 }
 
 impl Outline {
-    fn of(segment: &Segment, radius: f64) -> Self {
+    /// The shape of a puck of rest radius `radius` (m) on `segment` (a
+    /// uniform or rest one: its one contraction).
+    #[must_use]
+    pub fn of(segment: &Segment, radius: f64) -> Self {
         let map = segment.lorentz_map();
-        let n = map.direction();
+        Self::from_map(
+            map.direction(),
+            map.inverse_gamma(),
+            radius,
+            segment.velocity(),
+        )
+    }
+
+    /// The shape of a puck of rest radius `radius` (m) moving with proper
+    /// velocity `u` on a board where light moves at `c` (m/s): the same
+    /// values, to the bit, as [`Self::of`] the uniform segment with that
+    /// proper velocity (what a braking segment's tangent is), without
+    /// building the segment.
+    #[must_use]
+    pub fn moving(u: crate::spacetime::ProperVelocity, radius: f64, c: f64) -> Self {
+        let gamma = u.gamma();
+        let speed = u.0.length();
+        let direction = if speed > 0.0 {
+            u.0 / speed
+        } else {
+            DVec3::ZERO
+        };
+        Self::from_map(direction, 1.0 / gamma, radius, u.0 * (c / gamma))
+    }
+
+    fn from_map(n: DVec3, inverse_gamma: f64, radius: f64, velocity: DVec3) -> Self {
         let (nx, ny) = if n.x == 0.0 && n.y == 0.0 {
             (1.0, 0.0)
         } else {
@@ -90,9 +122,16 @@ impl Outline {
         Self {
             nx,
             ny,
-            inverse_gamma: map.inverse_gamma(),
+            inverse_gamma,
             radius,
+            velocity,
         }
+    }
+
+    /// The rest radius, m.
+    #[must_use]
+    pub fn radius(&self) -> f64 {
+        self.radius
     }
 
     /// Support function in the unit direction `(cos, sin)`, m: `R
@@ -104,6 +143,42 @@ impl Outline {
         let along = (self.nx * cos + self.ny * sin) * self.inverse_gamma;
         let across = self.nx * sin - self.ny * cos;
         self.radius * (across * across + along * along).sqrt()
+    }
+
+    /// The point of the shape farthest along the unit direction `(cos,
+    /// sin)`, as an offset from its centre, m: `R contract(contract(m)) /
+    /// |contract(m)|` (the rest-frame rim point `R contract(m)/|contract(m)|`,
+    /// contracted).
+    #[inline(always)]
+    fn support_point(&self, cos: f64, sin: f64) -> DVec3 {
+        let ig = self.inverse_gamma;
+        let along = self.nx * cos + self.ny * sin;
+        let across = self.nx * sin - self.ny * cos;
+        let scale = self.radius / (across * across + along * ig * (along * ig)).sqrt();
+        let (a, c) = (along * ig * ig * scale, across * scale);
+        DVec3::new(self.nx * a - self.ny * c, self.ny * a + self.nx * c, 0.0)
+    }
+
+    /// The offset `w` (m, from the centre) in units of the shape: `|r|/R`
+    /// for the rest-frame offset `r` it is the contraction of (1 on the
+    /// rim, below 1 inside).
+    #[inline(always)]
+    fn elliptic_norm(&self, w: DVec3) -> f64 {
+        let along = self.nx * w.x + self.ny * w.y;
+        let across = self.nx * w.y - self.ny * w.x;
+        let rest = along / self.inverse_gamma;
+        (across * across + rest * rest).sqrt() / self.radius
+    }
+
+    /// How fast the support in the unit direction `(cos, sin)` grows while
+    /// `1/γ` changes at `rate` (1/s), m/s: `R ((n·m)²/γ) rate / |contract(m)|`.
+    #[must_use]
+    pub fn support_rate(&self, cos: f64, sin: f64, rate: f64) -> f64 {
+        let ig = self.inverse_gamma;
+        let along = self.nx * cos + self.ny * sin;
+        let across = self.nx * sin - self.ny * cos;
+        let contracted = along * ig;
+        self.radius * along * contracted * rate / (across * across + contracted * contracted).sqrt()
     }
 
     /// The support's first and second derivatives in the direction's angle
@@ -173,8 +248,13 @@ pub fn penetration(
 /// at once: a separating axis, not always the widest.
 #[must_use]
 pub fn gap(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
-    centre_line_gap(a, radius_a, b, radius_b, d)
-        .unwrap_or_else(|| gap_min(a, radius_a, b, radius_b, d))
+    gap_of(&Outline::of(a, radius_a), &Outline::of(b, radius_b), d)
+}
+
+/// [`gap`] of two shapes given as outlines.
+#[must_use]
+pub fn gap_of(oa: &Outline, ob: &Outline, d: DVec3) -> (f64, DVec3) {
+    centre_line_gap_of(oa, ob, d).unwrap_or_else(|| gap_min_of(oa, ob, d))
 }
 
 /// [`gap`]'s quick answer: the line of centres separates the shapes often
@@ -188,10 +268,14 @@ fn centre_line_gap(
     radius_b: f64,
     d: DVec3,
 ) -> Option<(f64, DVec3)> {
+    centre_line_gap_of(&Outline::of(a, radius_a), &Outline::of(b, radius_b), d)
+}
+
+/// [`centre_line_gap`] of two outlines.
+fn centre_line_gap_of(oa: &Outline, ob: &Outline, d: DVec3) -> Option<(f64, DVec3)> {
     let dist = d.length();
     if dist > 0.0 {
         let m = d / dist;
-        let (oa, ob) = (Outline::of(a, radius_a), Outline::of(b, radius_b));
         let g = oa.support(m.x, m.y) + ob.support(m.x, m.y) - dist;
         if g <= 0.0 {
             return Some((g, m)); // separated: the exact value is not needed
@@ -239,8 +323,13 @@ fn scan() -> &'static ([f64; SAMPLES], [f64; SAMPLES]) {
 /// [`first_touch`] needs.
 #[must_use]
 pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3) -> (f64, DVec3) {
-    let (oa, ob) = (Outline::of(a, radius_a), Outline::of(b, radius_b));
-    let f = |cos: f64, sin: f64| gap_along(&oa, &ob, cos, sin, d);
+    gap_min_of(&Outline::of(a, radius_a), &Outline::of(b, radius_b), d)
+}
+
+/// [`gap_min`] of two outlines.
+#[must_use]
+pub fn gap_min_of(oa: &Outline, ob: &Outline, d: DVec3) -> (f64, DVec3) {
+    let f = |cos: f64, sin: f64| gap_along(oa, ob, cos, sin, d);
     // Candidates: a uniform scan, plus where the function has its kinks and
     // narrow valleys: a fast puck's shape is a thin ellipse whose support
     // is smallest (a valley of angular width ~1/γ) along its motion.
@@ -255,7 +344,7 @@ pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3)
             best = (v, DVec3::new(cos[k], sin[k], 0.0));
         }
     }
-    for axis in [a.velocity(), b.velocity(), d] {
+    for axis in [oa.velocity, ob.velocity, d] {
         let axis = DVec3::new(axis.x, axis.y, 0.0);
         let length = axis.length();
         if length > 0.0 {
@@ -267,41 +356,22 @@ pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3)
             }
         }
     }
-    // Refinement within one scan step either side of a candidate, without
-    // trigonometry: the direction turned by the angle φ is
-    // `((1 − s²) m + 2 s m⊥) / (1 + s²)` with `s = tan(φ/2)`, monotone in
-    // φ, so a search over `s` sees the same one valley. Newton's method on
-    // the slope, kept inside a bracket of its sign changes; golden section
-    // where the slopes at the ends do not bracket a minimum.
-    let half = half_step_tangent();
     let refine = |m0: DVec3| {
-        let across = DVec3::new(-m0.y, m0.x, 0.0);
-        let turned = |s: f64| (m0 * (1.0 - s * s) + across * (2.0 * s)) * (1.0 + s * s).recip();
-        let slopes = |s: f64| {
-            let m = turned(s);
-            let (a1, a2) = oa.support_slopes(m.x, m.y);
-            let (b1, b2) = ob.support_slopes(m.x, m.y);
-            // In the angle φ, then in s (dφ/ds = 2/(1 + s²)).
-            let first = a1 + b1 - (m.x * d.y - m.y * d.x);
-            let second = a2 + b2 + (m.x * d.x + m.y * d.y);
-            let w = 1.0 + s * s;
-            let (ds, dds) = (2.0 / w, -4.0 * s / (w * w));
-            (first * ds, second * ds * ds + first * dds)
-        };
-        let s = slope_root(slopes, -half, half).unwrap_or_else(|| {
-            golden_min(
+        refine_near(oa, ob, d, m0).unwrap_or_else(|| {
+            let (across, half) = (DVec3::new(-m0.y, m0.x, 0.0), half_step_tangent());
+            let s = golden_min(
                 |s| {
-                    let m = turned(s);
+                    let m = turned(m0, across, s);
                     f(m.x, m.y)
                 },
                 -half,
                 half,
                 80,
             )
-            .1
-        });
-        let m = turned(s);
-        (f(m.x, m.y), m)
+            .1;
+            let m = turned(m0, across, s);
+            (f(m.x, m.y), m)
+        })
     };
     let mut result = best;
     let mut keep = |(v, m): (f64, DVec3)| {
@@ -334,6 +404,100 @@ pub fn gap_min(a: &Segment, radius_a: f64, b: &Segment, radius_b: f64, d: DVec3)
         }
     }
     result
+}
+
+/// The direction `m0` turned by the angle `φ = 2 atan s` towards `across`
+/// (`m0` turned by +90°), without trigonometry: `((1 − s²) m0 + 2 s
+/// across) / (1 + s²)`, monotone in `φ`.
+#[inline(always)]
+fn turned(m0: DVec3, across: DVec3, s: f64) -> DVec3 {
+    (m0 * (1.0 - s * s) + across * (2.0 * s)) * (1.0 + s * s).recip()
+}
+
+/// The minimum of the gap function's integrand `h_a(m) + h_b(m) − m·d`
+/// within one scan step (`2π / SAMPLES`) either side of the unit direction
+/// `m0`, and where it is, if the slope brackets one there: Newton's method
+/// on the slope in `s = tan(φ/2)` (a search over `s` sees the same one
+/// valley), kept inside a bracket of its sign changes. `None` where the
+/// slopes at the two ends do not bracket a minimum.
+///
+/// A value below zero is minus the length of a separating axis's gap, so
+/// minus a lower bound of the shapes' distance whatever its accuracy; and
+/// where the shapes are apart the integrand has one valley below zero (its
+/// sublevel sets below zero are arcs: the directions that separate two
+/// convex shapes by more than a given amount form one arc), so a local
+/// minimum below zero is the global one, [`gap_min`]'s value to rounding.
+#[must_use]
+pub fn refine_near(oa: &Outline, ob: &Outline, d: DVec3, m0: DVec3) -> Option<(f64, DVec3)> {
+    let across = DVec3::new(-m0.y, m0.x, 0.0);
+    let slopes = |s: f64| {
+        let m = turned(m0, across, s);
+        let (a1, a2) = oa.support_slopes(m.x, m.y);
+        let (b1, b2) = ob.support_slopes(m.x, m.y);
+        // In the angle φ, then in s (dφ/ds = 2/(1 + s²)).
+        let first = a1 + b1 - (m.x * d.y - m.y * d.x);
+        let second = a2 + b2 + (m.x * d.x + m.y * d.y);
+        let w = 1.0 + s * s;
+        let (ds, dds) = (2.0 / w, -4.0 * s / (w * w));
+        (first * ds, second * ds * ds + first * dds)
+    };
+    let half = half_step_tangent();
+    let s = slope_root(slopes, -half, half)?;
+    let m = turned(m0, across, s);
+    Some((gap_along(oa, ob, m.x, m.y, d), m))
+}
+
+/// [`refine_near`] for a start `m0` near the minimum already (the last
+/// probe's axis in a search over time): Newton's method on the slope from
+/// `m0` itself, without first checking the ends of the step either side;
+/// `None` if a step leaves them or the function is not convex there.
+/// Whatever it returns is the integrand's value at the direction returned
+/// (so a negative one is minus a separating axis's gap), as for
+/// [`refine_near`].
+#[must_use]
+pub fn refine_warm(oa: &Outline, ob: &Outline, d: DVec3, m0: DVec3) -> Option<(f64, DVec3)> {
+    let across = DVec3::new(-m0.y, m0.x, 0.0);
+    let half = half_step_tangent();
+    let mut s = 0.0f64;
+    for _ in 0..8 {
+        let m = turned(m0, across, s);
+        let (a1, a2) = oa.support_slopes(m.x, m.y);
+        let (b1, b2) = ob.support_slopes(m.x, m.y);
+        let first = a1 + b1 - (m.x * d.y - m.y * d.x);
+        let second = a2 + b2 + (m.x * d.x + m.y * d.y);
+        let w = 1.0 + s * s;
+        let (ds, dds) = (2.0 / w, -4.0 * s / (w * w));
+        let (f1, f2) = (first * ds, second * ds * ds + first * dds);
+        if !(f2 > 0.0) {
+            return None;
+        }
+        let step = f1 / f2;
+        s -= step;
+        if !(s.abs() <= half) {
+            return None;
+        }
+        if step.abs() <= 8.0 * f64::EPSILON * half {
+            let m = turned(m0, across, s);
+            return Some((gap_along(oa, ob, m.x, m.y, d), m));
+        }
+    }
+    let m = turned(m0, across, s);
+    Some((gap_along(oa, ob, m.x, m.y, d), m))
+}
+
+/// Whether two shapes whose centres are `d` apart (m, b − a) are shown to
+/// overlap near the unit direction `m` (the one of a local minimum of the
+/// gap function's integrand above zero, [`refine_near`]): the midpoint of
+/// `a`'s farthest point along `m` and `b`'s farthest along `−m` lies inside
+/// both (elliptic norms below 1, to rounding). Where the shapes overlap
+/// along `m` by a depth `δ` and `m` is the contact normal, that midpoint is
+/// `δ/2` inside each. `false` says nothing.
+#[must_use]
+pub fn overlap_near(oa: &Outline, ob: &Outline, d: DVec3, m: DVec3) -> bool {
+    let pa = oa.support_point(m.x, m.y);
+    let pb = d - ob.support_point(m.x, m.y);
+    let q = (pa + pb) * 0.5;
+    oa.elliptic_norm(q) < 1.0 && ob.elliptic_norm(q - d) < 1.0
 }
 
 /// Where the slope of a function of `s` changes sign from negative to

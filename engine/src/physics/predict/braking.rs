@@ -25,12 +25,12 @@
 //! puck that stops with `G(t_stop) ≥ 0` never touches it (it may rest
 //! against it with no event).
 //!
-//! ## Puck–puck: Lipschitz root isolation
+//! ## Puck–puck: root isolation by proved bounds
 //!
 //! The *separation* `σ(t)` is minus the signed gap of the two board shapes
 //! ([`overlap::gap`]): positive while they are apart, and then a lower
-//! bound of their distance (the line-of-centres axis, or the minimising
-//! one). The distance changes no faster than
+//! bound of their distance (the line-of-centres axis, or the widest one).
+//! The distance changes no faster than
 //!
 //! ```text
 //! L = V + 0.385 (R_a a_a + R_b a_b)/c,   V ≥ max |v_b(t) − v_a(t)|
@@ -40,14 +40,15 @@
 //! while braking, and a bound on the relative speed from the proper speeds'
 //! linear fall and the directions: `relative_speed_bound`; the support `R|contract(m)|`
 //! changes at `R |d(1/γ)/dt| = R (a/c) u/γ³ ≤ 0.385 R a/c`, and the distance
-//! of convex bodies is 1-Lipschitz in each body's support). Hence on an
-//! interval `[t₁, t₂]` with `σ(t₁) + σ(t₂) > L (t₂ − t₁)` the shapes cannot
-//! touch (`σ(t) ≥ max(σ(t₁) − L(t − t₁), σ(t₂) − L(t₂ − t))` there). The
-//! search ([`first_contact`]) splits `[now, t_end]` depth-first, earliest
-//! half first, discarding intervals so excluded: the first interval whose
-//! end overlaps contains the *first* contact (every earlier time was
-//! excluded), and it is halved down to adjacent floats. No fixed step is
-//! taken: an interval is only ever discarded by the bound. The window ends
+//! of convex bodies is 1-Lipschitz in each body's support). Along one axis
+//! `m` the separation is sharper than that: it moves at `m·(v_b − v_a)`,
+//! which changes by at most `(a_a + a_b) Δt` (a braking puck's board
+//! acceleration is `a/γ³ ≤ a`), plus the supports' change. The search
+//! ([`isolation::first_contact_before`](super::isolation)) proves stretches
+//! of `[now, t_end]` apart with these bounds, depth-first, earliest first,
+//! so the first interval whose end overlaps contains the *first* contact,
+//! and closes in on it superlinearly (the module doc there). No fixed step
+//! is taken: a stretch is only ever discarded by a bound. The window ends
 //! when the last braking puck stops (then both rest, or the rest of the
 //! motion is uniform and the closed form of [`puck_puck::predict`] takes
 //! over).
@@ -66,9 +67,10 @@
 //!   time a doubling step finds them apart, not from a proven bracket.
 //! * The search is the cost of friction (BENCHMARKS.md, Friction): the
 //!   event loop prunes pairs first (`predict::bounds::braking_touch`) and
-//!   stops the search at its earliest event so far ([`pair_before`]), but
-//!   each step near a touch is an overlap scan, and the final approach to
-//!   the touch converges only linearly.
+//!   stops the search at its earliest event so far ([`pair_before`]); a
+//!   probe where the rest discs overlap is a local axis search from the
+//!   last probe's axis, and an overlap scan only where that does not find
+//!   the shapes apart.
 //!
 //! ## The collision convention
 //!
@@ -82,6 +84,7 @@
 
 use glam::{DVec2, DVec3};
 
+use super::isolation::{Probe, Rates, first_contact_before};
 use super::puck_cushion::{self, Cushion, CushionContact};
 use super::puck_puck::{self, Mover, PairContact};
 use crate::physics::overlap;
@@ -199,67 +202,6 @@ fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     hi
 }
 
-/// The first board time in `[t0, t1]` at which `sep` (a separation, > 0
-/// while apart) is ≤ 0, for a `sep` that changes no faster than `lip` per
-/// second where it is positive: Lipschitz root isolation (module doc).
-/// `None` if it stays positive. `sep(t0)` must be > 0.
-///
-/// An interval shorter than a few ulps of its time on which `sep` stays
-/// positive at both ends but cannot be excluded is a touch deeper than
-/// `lip` × that width at most; it is taken as no contact.
-pub fn first_contact(sep: impl Fn(f64) -> f64, t0: f64, t1: f64, lip: f64) -> Option<f64> {
-    first_contact_before(sep, t0, t1, lip, f64::INFINITY)
-}
-
-/// [`first_contact`], given up (`None`) once every interval left begins
-/// after `horizon` (s): the same search, cut short, so a contact at or
-/// before `horizon` is found to the same bits (the intervals are split and
-/// visited in the same order, earliest first; only later ones are never
-/// visited).
-pub fn first_contact_before(
-    sep: impl Fn(f64) -> f64,
-    t0: f64,
-    t1: f64,
-    lip: f64,
-    horizon: f64,
-) -> Option<f64> {
-    if t1.is_nan() || t0.is_nan() || t1 <= t0 {
-        return None;
-    }
-    let s1 = sep(t1);
-    // Depth-first, earliest first: a stack of intervals (a, σa, b, σb).
-    let mut stack = vec![(t0, sep(t0), t1, s1)];
-    let mut evaluations = 0usize;
-    while let Some((a, sa, b, sb)) = stack.pop() {
-        if a > horizon {
-            return None; // and every interval still on the stack is later
-        }
-        if sb > 0.0 && sa + sb > lip * (b - a) {
-            continue; // no touch anywhere in [a, b]
-        }
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            if sb <= 0.0 {
-                return Some(b);
-            }
-            continue; // a graze shallower than lip × ulp
-        }
-        evaluations += 1;
-        if evaluations > 200_000 {
-            // Never met in tests; a bound against a pathological `sep`.
-            return (sb <= 0.0).then_some(b);
-        }
-        let sm = sep(m);
-        stack.push((m, sm, b, sb));
-        if sm <= 0.0 {
-            // The first touch is in [a, m]: nothing later matters.
-            stack.clear();
-        }
-        stack.push((a, sa, m, sm));
-    }
-    None
-}
-
 /// A bound on the relative board speed `|v_b − v_a|` of two segments
 /// (each braking along its direction, uniform or at rest) over board times
 /// `[from, end]`, m/s: how fast the centres' offset, and so the
@@ -299,10 +241,80 @@ fn speed_at(s: &Segment, t: f64) -> f64 {
 /// Separation of the two board shapes at `t` (> 0 apart; a lower bound of
 /// their distance) and the unit axis, from `a` towards `b`.
 fn separation(a: &Segment, ra: f64, b: &Segment, rb: f64, t: f64) -> (f64, DVec3) {
-    let (ta, tb) = (a.tangent_at(t), b.tangent_at(t));
+    let (oa, ob) = outlines_at(a, ra, b, rb, t);
     let d = b.position_at(t) - a.position_at(t);
-    let (g, m) = overlap::gap(&ta, ra, &tb, rb, d);
+    let (g, m) = overlap::gap_of(&oa, &ob, d);
     (-g, m)
+}
+
+/// [`separation`] for the root isolation's probes: the same sign, and where
+/// the rest discs overlap the widest separation (not only the line of
+/// centres') when a local search from `hint` (the last probe's axis) finds
+/// the shapes apart, which then needs no scan ([`overlap::refine_near`]: a
+/// local minimum below zero is the global one). The value is the
+/// separation along the axis returned, which the bounds of
+/// [`isolation`](super::isolation) need.
+///
+/// Where the rest discs overlap and the local search finds them not apart,
+/// an overlap is taken as shown when [`overlap::overlap_near`] finds a
+/// point inside both near its axis (no scan either); otherwise the scan
+/// decides. Also returns the two outlines.
+fn separation_near(
+    a: &Segment,
+    ra: f64,
+    b: &Segment,
+    rb: f64,
+    t: f64,
+    hint: Option<DVec3>,
+) -> (f64, DVec3, [overlap::Outline; 2]) {
+    let (oa, ob) = outlines_at(a, ra, b, rb, t);
+    let d = b.position_at(t) - a.position_at(t);
+    let dist = d.length();
+    let local = |refined: Option<(f64, DVec3)>| {
+        refined.filter(|&(g, m)| g < 0.0 || overlap::overlap_near(&oa, &ob, d, m))
+    };
+    if dist < ra + rb && dist > 0.0 {
+        // Within rounding of the touch the sign decides the contact's time,
+        // so it must not depend on which probes came before: the axis is
+        // then searched from the line of centres, a function of `t` alone.
+        let canonical = 1e-12 * (ra + rb);
+        let warm = hint.and_then(|m0| local(overlap::refine_warm(&oa, &ob, d, m0)));
+        let found = warm
+            .filter(|&(g, _)| g.abs() > canonical)
+            .or_else(|| local(overlap::refine_near(&oa, &ob, d, d / dist)));
+        if let Some((g, m)) = found {
+            return (-g, m, [oa, ob]);
+        }
+    }
+    let (g, m) = overlap::gap_of(&oa, &ob, d);
+    (-g, m, [oa, ob])
+}
+
+/// How fast `1/γ` of a puck on `segment` grows at board time `t`, 1/s:
+/// `(a/c) u/γ³` while it brakes (`u` falls at `a/c`), 0 before its start,
+/// at rest or moving uniformly.
+fn inverse_gamma_rate(segment: &Segment, t: f64) -> f64 {
+    if !segment.is_braking() || t <= segment.start.t {
+        return 0.0;
+    }
+    let u = segment.u_at(t).0.length();
+    let gamma = 1.0f64.hypot(u);
+    segment.deceleration() / segment.speed_of_light() * u / (gamma * gamma * gamma)
+}
+
+/// The two pucks' board shapes at `t`: those of their tangent segments
+/// ([`Segment::tangent_at`]), without building them.
+fn outlines_at(
+    a: &Segment,
+    ra: f64,
+    b: &Segment,
+    rb: f64,
+    t: f64,
+) -> (overlap::Outline, overlap::Outline) {
+    (
+        overlap::Outline::moving(a.u_at(t), ra, a.speed_of_light()),
+        overlap::Outline::moving(b.u_at(t), rb, b.speed_of_light()),
+    )
 }
 
 /// The pair frame of two proper velocities: the normalised sum of their
@@ -313,16 +325,110 @@ fn pair_frame(ua: ProperVelocity, ub: ProperVelocity) -> ProperVelocity {
 }
 
 /// The event on `segment` simultaneous with `contact` in the frame moving
-/// with `frame`: the root of `φ(t) = c (t − t_c) − β·(x(t) − x_c)`, which
-/// increases (`φ′ = c − β·v > 0`), bracketed by doubling steps and bisected
-/// to adjacent floats.
-fn simultaneous(segment: &Segment, contact: Event, frame: ProperVelocity, c: f64) -> Event {
+/// with `frame`: the first float `t` with `φ(t) ≥ 0`, `φ(t) = c (t − t_c)
+/// − β·(x(t) − x_c)`, which increases (`φ′ = c − β·v > 0`). Newton's
+/// method from `guess` (the last round's kick, or the contact's time),
+/// then a walk of a few ulps to that float; where Newton does not settle
+/// (never met), doubling steps bracket the root and it is bisected to
+/// adjacent floats.
+fn simultaneous(
+    segment: &Segment,
+    contact: Event,
+    frame: ProperVelocity,
+    c: f64,
+    guess: f64,
+) -> Event {
     let beta = frame.beta();
     let phi = |t: f64| c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
+    let t = newton_first_float(phi, |t| c - beta.dot(segment.velocity_at(t)), guess)
+        .unwrap_or_else(|| simultaneous_bracketed(segment, contact, &phi, frame, c));
+    Event::new(t, segment.position_at(t))
+}
+
+/// [`simultaneous`]'s time to rounding only: Newton's method from `guess`
+/// until a step is down to a few ulps; `None` if it does not settle.
+fn simultaneous_near(
+    segment: &Segment,
+    contact: Event,
+    frame: ProperVelocity,
+    c: f64,
+    guess: f64,
+) -> Option<f64> {
+    let beta = frame.beta();
+    let mut t = guess;
+    for _ in 0..16 {
+        let value = c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
+        let rate = c - beta.dot(segment.velocity_at(t));
+        if !(rate > 0.0) {
+            return None;
+        }
+        let next = t - value / rate;
+        if !next.is_finite() {
+            return None;
+        }
+        let settled = (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
+        t = next;
+        if settled {
+            return Some(t);
+        }
+    }
+    None
+}
+
+/// The first float at which an increasing `f` (slope `slope`, > 0) is ≥ 0,
+/// by Newton's method from `t`, then a walk to the float (at most 64 ulps
+/// each way); `None` if either does not settle.
+fn newton_first_float(
+    f: impl Fn(f64) -> f64,
+    slope: impl Fn(f64) -> f64,
+    mut t: f64,
+) -> Option<f64> {
+    for _ in 0..16 {
+        let (value, rate) = (f(t), slope(t));
+        if !(rate > 0.0) || !value.is_finite() {
+            return None;
+        }
+        let next = t - value / rate;
+        if !next.is_finite() {
+            return None;
+        }
+        let settled = (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
+        t = next;
+        if settled {
+            if f(t) >= 0.0 {
+                for _ in 0..64 {
+                    if f(t.next_down()) < 0.0 {
+                        return Some(t);
+                    }
+                    t = t.next_down();
+                }
+            } else {
+                for _ in 0..64 {
+                    t = t.next_up();
+                    if f(t) >= 0.0 {
+                        return Some(t);
+                    }
+                }
+            }
+            return None;
+        }
+    }
+    None
+}
+
+/// [`simultaneous`]'s fallback: the root of `phi` bracketed by doubling
+/// steps from the contact's time and bisected to adjacent floats.
+fn simultaneous_bracketed(
+    segment: &Segment,
+    contact: Event,
+    phi: &impl Fn(f64) -> f64,
+    frame: ProperVelocity,
+    c: f64,
+) -> f64 {
     let scale = (segment.position_at(contact.t) - contact.position).length() / c;
-    let mut step =
-        scale.max(1e-300) * frame.gamma() * frame.gamma() + f64::EPSILON * contact.t.abs();
+    let first = scale.max(1e-300) * frame.gamma() * frame.gamma() + f64::EPSILON * contact.t.abs();
     let (mut lo, mut hi) = (contact.t, contact.t);
+    let mut step = first;
     for _ in 0..2100 {
         if phi(lo) <= 0.0 {
             break;
@@ -330,7 +436,7 @@ fn simultaneous(segment: &Segment, contact: Event, frame: ProperVelocity, c: f64
         lo = contact.t - step;
         step *= 2.0;
     }
-    step = scale.max(1e-300) * frame.gamma() * frame.gamma() + f64::EPSILON * contact.t.abs();
+    step = first;
     for _ in 0..2100 {
         if phi(hi) >= 0.0 {
             break;
@@ -338,12 +444,11 @@ fn simultaneous(segment: &Segment, contact: Event, frame: ProperVelocity, c: f64
         hi = contact.t + step;
         step *= 2.0;
     }
-    let t = if phi(lo) == 0.0 {
+    if phi(lo) == 0.0 {
         lo
     } else {
         bisect(|t| -phi(t), lo, hi)
-    };
-    Event::new(t, segment.position_at(t))
+    }
 }
 
 /// The next contact of two pucks, at least one on a braking segment, from
@@ -452,8 +557,50 @@ fn pair_with_bound(
     if end > from {
         let lip = speed_bound(sa, sb, from, end, c) * (1.0 + 1e-9)
             + SHAPE_RATE * (ra * sa.deceleration() + rb * sb.deceleration()) / c;
-        let sep = |t: f64| separation(sa, ra, sb, rb, t).0;
-        if let Some(t) = first_contact_before(sep, from, end, lip, cut) {
+        // The probes' slopes and how fast they can change (isolation's
+        // module doc). With both segments begun, a probe's rate is the
+        // exact slope of the separation along its axis, supports included;
+        // the slope's own rate is then bounded by the relative
+        // acceleration (`a/γ³ ≤ a` each) plus the supports' curvature in
+        // time, `R (a/c)² (1 + 0.385² γ)` each (from `|d(1/γ)/dt| ≤ 0.385
+        // a/c`, `|d²(1/γ)/dt²| ≤ (a/c)²`, `∂h/∂(1/γ) ≤ R` and `∂²h/∂(1/γ)²
+        // ≤ 0.385 R γ`; γ at most the segment's start value). A segment
+        // that begins inside the window changes its supports' rate at
+        // once there, so then the rate is the centres' part only and the
+        // supports' change is bounded by the shape rate.
+        let exact_slope = sa.start.t <= from && sb.start.t <= from;
+        let accel = sa.deceleration() + sb.deceleration();
+        let curvature = |s: &Segment, r: f64| {
+            let k = s.deceleration() / c;
+            r * k * k * (1.0 + 0.15 * s.u.gamma())
+        };
+        let rates = if exact_slope {
+            Rates {
+                lip,
+                shape: 0.0,
+                accel: (accel + curvature(sa, ra) + curvature(sb, rb)) * (1.0 + 1e-9),
+            }
+        } else {
+            Rates {
+                lip,
+                shape: SHAPE_RATE * (ra * sa.deceleration() + rb * sb.deceleration()) / c
+                    * (1.0 + 1e-9),
+                accel: accel * (1.0 + 1e-9),
+            }
+        };
+        // Each probe starts its axis search from the last probe's axis.
+        let hint = std::cell::Cell::new(None);
+        let probe = |t: f64| {
+            let (sigma, m, [oa, ob]) = separation_near(sa, ra, sb, rb, t, hint.get());
+            hint.set(Some(m));
+            let mut rate = m.dot(sb.velocity_at(t) - sa.velocity_at(t));
+            if exact_slope {
+                rate -= oa.support_rate(m.x, m.y, inverse_gamma_rate(sa, t))
+                    + ob.support_rate(m.x, m.y, inverse_gamma_rate(sb, t));
+            }
+            Probe { sigma, rate }
+        };
+        if let Some(t) = first_contact_before(probe, from, end, rates, cut) {
             let (_, m) = separation(sa, ra, sb, rb, t);
             // A braking puck that would stop within rounding of the touch
             // rests against the other: no event (no Zeno bounces).
@@ -510,19 +657,27 @@ fn in_pair_frame(sa: &Segment, sb: &Segment, contact: Event, c: f64) -> PairCont
     // change by a factor ~ a R/c², 0.03 on the paper's table; at most 32).
     let mut frame = pair_frame(sa.u_at(contact.t), sb.u_at(contact.t));
     let mut rounds = 0;
-    let kicks = loop {
-        let kicks = [
-            simultaneous(sa, contact, frame, c),
-            simultaneous(sb, contact, frame, c),
-        ];
-        let next = pair_frame(sa.u_at(kicks[0].t), sb.u_at(kicks[1].t));
+    // The rounds need the kicks only to rounding (Newton's method alone);
+    // the kicks kept are then found to the float in the last frame.
+    let mut guesses = [contact.t; 2];
+    loop {
+        for (guess, s) in guesses.iter_mut().zip([sa, sb]) {
+            if let Some(t) = simultaneous_near(s, contact, frame, c, *guess) {
+                *guess = t;
+            }
+        }
+        let next = pair_frame(sa.u_at(guesses[0]), sb.u_at(guesses[1]));
         rounds += 1;
         let moved = (next.0 - frame.0).length();
         if moved <= 1e-15 * (1.0 + frame.0.length()) || rounds == 32 {
-            break kicks;
+            break;
         }
         frame = next;
-    };
+    }
+    let kicks = [
+        simultaneous(sa, contact, frame, c, guesses[0]),
+        simultaneous(sb, contact, frame, c, guesses[1]),
+    ];
     let to_pair = Boost::into_frame(frame);
     let (ua, ub) = (
         to_pair.apply_velocity(sa.u_at(kicks[0].t)),

@@ -222,21 +222,6 @@ fn the_relative_speed_bound_finds_the_contacts_the_sum_of_speeds_finds() {
 }
 
 #[test]
-fn first_contact_before_a_horizon_finds_the_same_root_or_gives_up() {
-    // Two dips, at 0.5 and 3: a horizon after the first keeps it to the
-    // bit; one between them finds nothing; one before both gives up.
-    let sep = |t: f64| ((t - 0.5).abs() - 1e-6).min((t - 3.0).abs() - 0.1);
-    let full = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
-    assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, 0.6), Some(full));
-    assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, full), Some(full));
-    let sep = |t: f64| (t - 3.0).abs() - 0.1;
-    let later = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
-    assert!((later - 2.9).abs() < 1e-15, "{later}");
-    assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, 1.0), None);
-    assert_eq!(first_contact_before(sep, 0.0, 10.0, 1.0, 3.0), Some(later));
-}
-
-#[test]
 fn a_braking_pair_before_a_horizon_is_the_same_contact_to_the_bit() {
     // Random braking pairs near each other (proper speeds to 20, γ to
     // 20, so kicks can precede their contact by several R/c): every
@@ -340,21 +325,6 @@ fn bisect_ends_at_adjacent_floats_within_twice_the_bisection_count() {
             count.get()
         );
     }
-}
-
-#[test]
-fn first_contact_never_misses_a_brief_dip() {
-    // σ(t) = |t − 0.5| − 1e-4 + …: a dip below zero of width 2e-4 in
-    // [0, 10], with Lipschitz constant 1. A fixed step of 1e-3 would
-    // miss it.
-    let sep = |t: f64| (t - 0.5).abs() - 1e-4;
-    let t = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
-    assert!((t - (0.5 - 1e-4)).abs() < 1e-15, "{t}");
-    // And an earlier dip wins over a deeper later one.
-    let sep = |t: f64| ((t - 0.5).abs() - 1e-6).min((t - 3.0).abs() - 0.5);
-    let t = first_contact(sep, 0.0, 10.0, 1.0).unwrap();
-    assert!((t - (0.5 - 1e-6)).abs() < 1e-15, "{t}");
-    assert!(first_contact(|t: f64| (t - 0.5).abs() + 1e-9, 0.0, 10.0, 1.0).is_none());
 }
 
 #[test]

@@ -2,6 +2,7 @@
 
 pub mod bounds;
 pub mod braking;
+pub mod isolation;
 pub mod pair;
 pub mod puck_cushion;
 pub mod puck_puck;
