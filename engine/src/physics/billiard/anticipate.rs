@@ -164,6 +164,7 @@ impl Billiard {
         // This puck's side of every bound, worked out once.
         let own = self.hot[i];
         let own_now = own.position_at(now);
+        let mut own_reach = None;
         for j in candidates {
             if self.reference {
                 bounded.push((f64::NEG_INFINITY, j as u32));
@@ -172,14 +173,16 @@ impl Billiard {
             let other = &self.hot[j];
             let limit = best.t.min(other.exit);
             let bound = if own.braking || other.braking {
-                let (a, b) = (i.min(j), i.max(j));
-                bounds::braking_touch(
-                    self.pucks[a].worldline.last(),
-                    self.pucks[a].radius,
-                    self.pucks[b].worldline.last(),
-                    self.pucks[b].radius,
-                    now,
-                )
+                let own_reach = *own_reach.get_or_insert_with(|| {
+                    bounds::BrakingReach::of(self.pucks[i].worldline.last(), now)
+                });
+                let reach = bounds::BrakingReach::of(self.pucks[j].worldline.last(), now);
+                let (ri, rj) = (self.pucks[i].radius, self.pucks[j].radius);
+                if i < j {
+                    bounds::braking_touch(&own_reach, ri, &reach, rj, now, limit)
+                } else {
+                    bounds::braking_touch(&reach, rj, &own_reach, ri, now, limit)
+                }
             } else {
                 bounds::disc_touch(
                     own_now,

@@ -113,6 +113,14 @@ impl Outline {
         Self::from_map(direction, 1.0 / gamma, radius, u.0 * (c / gamma))
     }
 
+    /// The shape of a puck of rest radius `radius` (m) moving along the
+    /// unit direction `n` (zero at rest) with `1/γ = inverse_gamma` and
+    /// board velocity `velocity` (m/s).
+    #[must_use]
+    pub fn along(n: DVec3, inverse_gamma: f64, radius: f64, velocity: DVec3) -> Self {
+        Self::from_map(n, inverse_gamma, radius, velocity)
+    }
+
     fn from_map(n: DVec3, inverse_gamma: f64, radius: f64, velocity: DVec3) -> Self {
         let (nx, ny) = if n.x == 0.0 && n.y == 0.0 {
             (1.0, 0.0)
@@ -429,6 +437,23 @@ fn turned(m0: DVec3, across: DVec3, s: f64) -> DVec3 {
 /// minimum below zero is the global one, [`gap_min`]'s value to rounding.
 #[must_use]
 pub fn refine_near(oa: &Outline, ob: &Outline, d: DVec3, m0: DVec3) -> Option<(f64, DVec3)> {
+    refine_within(oa, ob, d, m0, half_step_tangent())
+}
+
+/// [`refine_near`] over directions within `2 atan(half)` of `m0` either
+/// side (`half = tan(π/12)`: 30°), for a start that may be farther from
+/// the minimum than one scan step (the line of centres of contracted
+/// shapes). What it returns means the same: a value below zero is the
+/// global minimum (one valley below zero), any value is the integrand's at
+/// the direction returned.
+#[must_use]
+pub fn refine_within(
+    oa: &Outline,
+    ob: &Outline,
+    d: DVec3,
+    m0: DVec3,
+    half: f64,
+) -> Option<(f64, DVec3)> {
     let across = DVec3::new(-m0.y, m0.x, 0.0);
     let slopes = |s: f64| {
         let m = turned(m0, across, s);
@@ -441,7 +466,6 @@ pub fn refine_near(oa: &Outline, ob: &Outline, d: DVec3, m0: DVec3) -> Option<(f
         let (ds, dds) = (2.0 / w, -4.0 * s / (w * w));
         (first * ds, second * ds * ds + first * dds)
     };
-    let half = half_step_tangent();
     let s = slope_root(slopes, -half, half)?;
     let m = turned(m0, across, s);
     Some((gap_along(oa, ob, m.x, m.y, d), m))
@@ -456,8 +480,20 @@ pub fn refine_near(oa: &Outline, ob: &Outline, d: DVec3, m0: DVec3) -> Option<(f
 /// [`refine_near`].
 #[must_use]
 pub fn refine_warm(oa: &Outline, ob: &Outline, d: DVec3, m0: DVec3) -> Option<(f64, DVec3)> {
+    refine_warm_within(oa, ob, d, m0, half_step_tangent())
+}
+
+/// [`refine_warm`] over directions within `2 atan(half)` of `m0` either
+/// side (as [`refine_within`] is to [`refine_near`]).
+#[must_use]
+pub fn refine_warm_within(
+    oa: &Outline,
+    ob: &Outline,
+    d: DVec3,
+    m0: DVec3,
+    half: f64,
+) -> Option<(f64, DVec3)> {
     let across = DVec3::new(-m0.y, m0.x, 0.0);
-    let half = half_step_tangent();
     let mut s = 0.0f64;
     for _ in 0..8 {
         let m = turned(m0, across, s);

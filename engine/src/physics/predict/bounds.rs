@@ -46,25 +46,40 @@ pub fn leaves_reach(d0: DVec3, v: DVec3, reach: f64) -> Option<f64> {
 /// A lower bound on the board time at which pucks on segments `sa` and
 /// `sb` (rest radii `ra`, `rb`, m) can touch from `now` on, when either is
 /// braking (for two uniform segments [`disc_touch`] is sharper); `None`
-/// when they never can. Each centre moves on a straight line, never faster
-/// than at `now` (braking only slows it: `|x(t) − x(now)| ≤ |v(now)| (t −
-/// now)`), and a braking one no farther than to where it stops. Every
-/// Lorentz-contracted (or Born-rigid) body lies inside its rest disc, so
-/// the pucks touch only once the two displacements together have closed
-/// the gap between the rest discs, `|Δx(now)| − ra − rb`. The gap is
-/// shrunk by 1e-9 relative so rounding never makes the bound late.
+/// when they never can. Every Lorentz-contracted (or Born-rigid) body lies
+/// inside its rest disc, so the pucks touch only once their rest discs
+/// do. Two bounds of when that can be, the later returned:
+///
+/// * Each centre moves on a straight line, never faster than at `now`
+///   (braking only slows it: `|x(t) − x(now)| ≤ |v(now)| (t − now)`), and a
+///   braking one no farther than to where it stops: the gap between the
+///   rest discs, `|Δx(now)| − ra − rb`, must be closed at the sum of the
+///   speeds.
+/// * Up to `limit` (s; the caller only asks whether they can touch before
+///   it), each centre is within `a τ²/2` of where uniform motion at its
+///   velocity at `now` would take it, `τ = t − now` (its board deceleration
+///   is `a/γ³ ≤ a`, `a` its proper one; it is uniform before its segment
+///   begins), so the rest discs can meet only where the uniform motions'
+///   centres come within `ra + rb + (a_a + a_b) τ_max²/2`: [`disc_touch`]
+///   with that reach. Past `limit` this says nothing, so a time after
+///   `limit` is returned where it finds none before.
+///
+/// The gap is shrunk, and the reach grown, by 1e-9 relative so rounding
+/// never makes the bound late.
+///
+/// Each puck is given by its [`BrakingReach`] at `now` (one puck's is
+/// worked out once for all its partners).
 #[must_use]
-pub fn braking_touch(sa: &Segment, ra: f64, sb: &Segment, rb: f64, now: f64) -> Option<f64> {
-    let motion = |s: &Segment| {
-        let x = s.position_at(now).truncate();
-        let speed = s.velocity_at(now).truncate().length();
-        let left = s.stop_time().map_or(f64::INFINITY, |stop| {
-            (s.position_at(stop.max(now)).truncate() - x).length()
-        });
-        (x, speed, if s.is_rest() { 0.0 } else { left })
-    };
-    let (xa, va, la) = motion(sa);
-    let (xb, vb, lb) = motion(sb);
+pub fn braking_touch(
+    a: &BrakingReach,
+    ra: f64,
+    b: &BrakingReach,
+    rb: f64,
+    now: f64,
+    limit: f64,
+) -> Option<f64> {
+    let (xa, va, la) = (a.position, a.velocity, a.left);
+    let (xb, vb, lb) = (b.position, b.velocity, b.left);
     let gap = ((xb - xa).length() - (ra + rb)) * (1.0 - 1e-9) - 1e-12;
     if gap <= 0.0 {
         return Some(now);
@@ -72,8 +87,54 @@ pub fn braking_touch(sa: &Segment, ra: f64, sb: &Segment, rb: f64, now: f64) -> 
     if la + lb < gap {
         return None; // they stop apart
     }
-    let closing = va + vb;
-    (closing > 0.0).then(|| now + gap / closing)
+    let closing = va.length() + vb.length();
+    if !(closing > 0.0) {
+        return None;
+    }
+    let first = now + gap / closing;
+    if !(first <= limit && limit.is_finite()) {
+        return Some(first);
+    }
+    let tau = limit - now;
+    let slack = 0.5 * (a.deceleration + b.deceleration) * tau * tau;
+    let reach = ra + rb + slack * (1.0 + 1e-9);
+    match disc_touch(xa, va, 0.5 * reach, xb, vb, 0.5 * reach, now) {
+        Some(t) if t <= limit => Some(t.max(first)),
+        _ => Some(limit.next_up()),
+    }
+}
+
+/// What [`braking_touch`] needs of one puck at a board time: where its
+/// centre is (m, board plane), its board velocity (m/s), how far it still
+/// moves before it stops (m; ∞ if it never does, 0 at rest), and its proper
+/// deceleration (m/s², 0 unless it brakes).
+#[derive(Clone, Copy, Debug)]
+pub struct BrakingReach {
+    position: DVec2,
+    velocity: DVec2,
+    left: f64,
+    deceleration: f64,
+}
+
+impl BrakingReach {
+    /// The puck on `segment` at board time `now`.
+    #[must_use]
+    pub fn of(segment: &Segment, now: f64) -> Self {
+        let position = segment.position_at(now).truncate();
+        let left = if segment.is_rest() {
+            0.0
+        } else {
+            segment.stop_time().map_or(f64::INFINITY, |stop| {
+                (segment.position_at(stop.max(now)).truncate() - position).length()
+            })
+        };
+        Self {
+            position,
+            velocity: segment.velocity_at(now).truncate(),
+            left,
+            deceleration: segment.deceleration(),
+        }
+    }
 }
 
 /// A lower bound on when two pucks, moving uniformly as `a` and `b` say,

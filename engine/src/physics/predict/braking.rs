@@ -91,6 +91,10 @@ use crate::physics::overlap;
 use crate::spacetime::{Boost, Event, FourVector, ProperVelocity};
 use crate::worldline::Segment;
 
+/// `tan(π/12)`: the axis search from the line of centres looks 30° either
+/// side of it ([`overlap::refine_within`]).
+const WIDE: f64 = 0.267_949_192_431_122_7;
+
 /// Bound on `R |d(1/γ)/dt| / (R a / c)`: `max u/(1 + u²)^{3/2} = 2/(3√3)`.
 const SHAPE_RATE: f64 = 0.385;
 
@@ -260,46 +264,106 @@ fn separation(a: &Segment, ra: f64, b: &Segment, rb: f64, t: f64) -> (f64, DVec3
 /// point inside both near its axis (no scan either); otherwise the scan
 /// decides. Also returns the two outlines.
 fn separation_near(
-    a: &Segment,
-    ra: f64,
-    b: &Segment,
-    rb: f64,
-    t: f64,
+    oa: &overlap::Outline,
+    ob: &overlap::Outline,
+    d: DVec3,
     hint: Option<DVec3>,
-) -> (f64, DVec3, [overlap::Outline; 2]) {
-    let (oa, ob) = outlines_at(a, ra, b, rb, t);
-    let d = b.position_at(t) - a.position_at(t);
+) -> (f64, DVec3) {
+    let (ra, rb) = (oa.radius(), ob.radius());
     let dist = d.length();
     let local = |refined: Option<(f64, DVec3)>| {
-        refined.filter(|&(g, m)| g < 0.0 || overlap::overlap_near(&oa, &ob, d, m))
+        refined.filter(|&(g, m)| g < 0.0 || overlap::overlap_near(oa, ob, d, m))
     };
     if dist < ra + rb && dist > 0.0 {
         // Within rounding of the touch the sign decides the contact's time,
         // so it must not depend on which probes came before: the axis is
         // then searched from the line of centres, a function of `t` alone.
         let canonical = 1e-12 * (ra + rb);
-        let warm = hint.and_then(|m0| local(overlap::refine_warm(&oa, &ob, d, m0)));
-        let found = warm
-            .filter(|&(g, _)| g.abs() > canonical)
-            .or_else(|| local(overlap::refine_near(&oa, &ob, d, d / dist)));
+        let warm = hint.and_then(|m0| local(overlap::refine_warm(oa, ob, d, m0)));
+        let found = warm.filter(|&(g, _)| g.abs() > canonical).or_else(|| {
+            let centres = d / dist;
+            local(overlap::refine_warm_within(oa, ob, d, centres, WIDE))
+                .or_else(|| local(overlap::refine_within(oa, ob, d, centres, WIDE)))
+        });
         if let Some((g, m)) = found {
-            return (-g, m, [oa, ob]);
+            return (-g, m);
         }
     }
-    let (g, m) = overlap::gap_of(&oa, &ob, d);
-    (-g, m, [oa, ob])
+    let (g, m) = overlap::gap_of(oa, ob, d);
+    (-g, m)
 }
 
-/// How fast `1/γ` of a puck on `segment` grows at board time `t`, 1/s:
-/// `(a/c) u/γ³` while it brakes (`u` falls at `a/c`), 0 before its start,
-/// at rest or moving uniformly.
-fn inverse_gamma_rate(segment: &Segment, t: f64) -> f64 {
-    if !segment.is_braking() || t <= segment.start.t {
-        return 0.0;
+/// A puck's motion on one segment, for the probes of one search: the
+/// braking law worked out once, then per board time one square root.
+struct Motion<'a> {
+    segment: &'a Segment,
+    law: crate::worldline::sliding::Braking,
+    /// `a/c`, 1/s (0 unless braking).
+    rate: f64,
+}
+
+/// Where a puck is and how it moves at one board time ([`Motion::at`]).
+struct MotionState {
+    position: DVec3,
+    velocity: DVec3,
+    /// Its board shape there (the tangent segment's).
+    outline: overlap::Outline,
+    /// How fast `1/γ` grows there, 1/s: `(a/c) u/γ³` while braking, 0
+    /// before the segment begins, at rest or moving uniformly.
+    inverse_gamma_rate: f64,
+}
+
+impl<'a> Motion<'a> {
+    fn of(segment: &'a Segment) -> Self {
+        let braking = segment.is_braking();
+        Self {
+            segment,
+            law: segment.braking_law(),
+            rate: if braking {
+                segment.deceleration() / segment.speed_of_light()
+            } else {
+                0.0
+            },
+        }
     }
-    let u = segment.u_at(t).0.length();
-    let gamma = 1.0f64.hypot(u);
-    segment.deceleration() / segment.speed_of_light() * u / (gamma * gamma * gamma)
+
+    /// The state at board time `t`: the values of [`Segment::position_at`],
+    /// [`Segment::velocity_at`] and the tangent's shape, to rounding.
+    fn at(&self, t: f64, radius: f64) -> MotionState {
+        let s = self.segment;
+        let dt = t - s.start.t;
+        if self.rate == 0.0 || dt <= 0.0 {
+            return MotionState {
+                position: s.position_at(t),
+                velocity: s.velocity(),
+                outline: overlap::Outline::along(
+                    s.direction(),
+                    1.0 / s.gamma(),
+                    radius,
+                    s.velocity(),
+                ),
+                inverse_gamma_rate: 0.0,
+            };
+        }
+        let law = &self.law;
+        let moving = dt.min(law.stop_time());
+        let u = law.proper_speed_at(moving);
+        let gamma = (1.0 + u * u).sqrt();
+        let distance = law.c * moving * (law.u0 + u) / (law.gamma0() + gamma);
+        let velocity = s.direction() * (law.c * u / gamma);
+        let inverse_gamma = gamma.recip();
+        MotionState {
+            position: s.start.position + s.direction() * distance,
+            velocity,
+            outline: overlap::Outline::along(
+                if u > 0.0 { s.direction() } else { DVec3::ZERO },
+                inverse_gamma,
+                radius,
+                velocity,
+            ),
+            inverse_gamma_rate: self.rate * u * inverse_gamma * inverse_gamma * inverse_gamma,
+        }
+    }
 }
 
 /// The two pucks' board shapes at `t`: those of their tangent segments
@@ -590,18 +654,23 @@ fn pair_with_bound(
         };
         // Each probe starts its axis search from the last probe's axis.
         let hint = std::cell::Cell::new(None);
+        let (motion_a, motion_b) = (Motion::of(sa), Motion::of(sb));
         let probe = |t: f64| {
-            let (sigma, m, [oa, ob]) = separation_near(sa, ra, sb, rb, t, hint.get());
+            let (a, b) = (motion_a.at(t, ra), motion_b.at(t, rb));
+            let d = b.position - a.position;
+            let (sigma, m) = separation_near(&a.outline, &b.outline, d, hint.get());
             hint.set(Some(m));
-            let mut rate = m.dot(sb.velocity_at(t) - sa.velocity_at(t));
+            let mut rate = m.dot(b.velocity - a.velocity);
             if exact_slope {
-                rate -= oa.support_rate(m.x, m.y, inverse_gamma_rate(sa, t))
-                    + ob.support_rate(m.x, m.y, inverse_gamma_rate(sb, t));
+                rate -= a.outline.support_rate(m.x, m.y, a.inverse_gamma_rate)
+                    + b.outline.support_rate(m.x, m.y, b.inverse_gamma_rate);
             }
             Probe { sigma, rate }
         };
         if let Some(t) = first_contact_before(probe, from, end, rates, cut) {
-            let (_, m) = separation(sa, ra, sb, rb, t);
+            // The axis there, as the probes find it from `t` alone.
+            let (a, b) = (motion_a.at(t, ra), motion_b.at(t, rb));
+            let (_, m) = separation_near(&a.outline, &b.outline, b.position - a.position, None);
             // A braking puck that would stop within rounding of the touch
             // rests against the other: no event (no Zeno bounces).
             let left = |s: &Segment| {
