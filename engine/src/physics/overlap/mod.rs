@@ -504,12 +504,12 @@ pub fn refine_warm_within(
         let w = 1.0 + s * s;
         let (ds, dds) = (2.0 / w, -4.0 * s / (w * w));
         let (f1, f2) = (first * ds, second * ds * ds + first * dds);
-        if !(f2 > 0.0) {
+        if f2.is_nan() || f2 <= 0.0 {
             return None;
         }
         let step = f1 / f2;
         s -= step;
-        if !(s.abs() <= half) {
+        if s.is_nan() || s.abs() > half {
             return None;
         }
         if step.abs() <= 8.0 * f64::EPSILON * half {

@@ -88,7 +88,7 @@ pub fn braking_touch(
         return None; // they stop apart
     }
     let closing = va.length() + vb.length();
-    if !(closing > 0.0) {
+    if closing.is_nan() || closing <= 0.0 {
         return None;
     }
     let first = now + gap / closing;

@@ -423,7 +423,7 @@ fn simultaneous_near(
     for _ in 0..16 {
         let value = c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
         let rate = c - beta.dot(segment.velocity_at(t));
-        if !(rate > 0.0) {
+        if rate.is_nan() || rate <= 0.0 {
             return None;
         }
         let next = t - value / rate;
@@ -449,7 +449,7 @@ fn newton_first_float(
 ) -> Option<f64> {
     for _ in 0..16 {
         let (value, rate) = (f(t), slope(t));
-        if !(rate > 0.0) || !value.is_finite() {
+        if rate.is_nan() || rate <= 0.0 || !value.is_finite() {
             return None;
         }
         let next = t - value / rate;
