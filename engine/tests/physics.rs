@@ -263,23 +263,16 @@ fn three_pucks_in_simultaneous_contact() {
             puck("c", bx, y - dy, ProperVelocity::ZERO),
         ],
     );
+    b.set_recording(true);
     b.advance_to(1.5);
     let hits = pair_collisions(&b);
-    assert!(hits.len() >= 2, "{hits:?}");
-    // Unperturbed, A would touch both at once. But A's velocity changes at
-    // the event simultaneous (in the pair frame) with its contact with B,
-    // before that contact on the board, so it meets C deflected and a
-    // little later: within the time light takes to cross a puck.
-    assert!(
-        (hits[0].t - hits[1].t).abs() < 2.0 * R / C,
-        "{} vs {}",
-        hits[0].t,
-        hits[1].t
-    );
-    // A meets B first (first by name), and C is then struck by the A that
-    // B has already deflected: resolution is sequential and deterministic,
-    // and 4-momentum is conserved exactly. (A truly simultaneous three-body
-    // outcome is not unique; see docs/guide/src/collisions.md.)
+    // A's velocity changes from both contacts at the same board time (the
+    // two are mirror images about A's track): one contact of three pucks,
+    // resolved together (`physics::resolve::simultaneous`), not one after
+    // the other in the order of the names.
+    assert_eq!(hits.len(), 1, "{hits:?}");
+    assert_eq!(hits[0].pucks.len(), 3);
+    assert_eq!(b.stats().simultaneous_contacts, 1);
     assert_eq!(b.stats().overlapping_kicks, 0);
     let total = |t: f64| {
         (0..3).fold(FourMomentum::default(), |s, i| {
@@ -294,6 +287,18 @@ fn three_pucks_in_simultaneous_contact() {
     assert!(
         (p0.energy - p1.energy).abs() < 1e-12 * p0.energy,
         "{p0:?} {p1:?}"
+    );
+    // Mirror images stay mirror images: A on its track, B and C reflected
+    // about it, whatever their names' order.
+    let ua = b.worldline(0).proper_velocity_at(1.5).0;
+    assert!(ua.y.abs() < 1e-12 * ua.length(), "{ua}");
+    let (xb, xc) = (
+        b.worldline(1).position_at(1.5),
+        b.worldline(2).position_at(1.5),
+    );
+    assert!(
+        (xb.x - xc.x).abs() < 1e-12 && ((xb.y - y) + (xc.y - y)).abs() < 1e-12,
+        "{xb} {xc}"
     );
     // B is pushed up and C down: they fly apart.
     let (ub, uc) = (

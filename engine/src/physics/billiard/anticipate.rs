@@ -13,25 +13,40 @@ impl Billiard {
     }
 
     /// Whether pucks `a` and `b` have collided and nothing has changed
-    /// either since.
+    /// either since: their last kicks are of one contact, one is the
+    /// other's partner there (two strikers of one puck, `simultaneous`,
+    /// are not), and neither has changed since (see `Puck::kicked_by`).
     pub(super) fn settled(&self, a: usize, b: usize) -> bool {
         let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
-        pa.settled == Some((b as u32, pa.version, pb.version))
+        match (pa.kicked_by, pb.kicked_by) {
+            (Some((ca, va, partner_a)), Some((cb, vb, partner_b))) => {
+                ca == cb
+                    && va == pa.version
+                    && vb == pb.version
+                    && (partner_a as usize == b || partner_b as usize == a)
+            }
+            _ => false,
+        }
     }
 
+    /// Whether a kick of a contact between pucks `a` and `b` is still
+    /// ahead of one of them: a kick whose partner is the other, or (a
+    /// contact of several pucks, `simultaneous`) a kick of the contact
+    /// whose kick the other has taken last.
     pub(super) fn pending_with(&self, a: usize, b: usize) -> bool {
         let waits = |x: usize, y: usize| {
-            self.pucks[x]
-                .pending
-                .iter()
-                .any(|&k| self.kicks[k].is_some_and(|kick| kick.partner as usize == y))
+            let taken = self.pucks[y].kicked_by.map(|(contact, _, _)| contact);
+            self.pucks[x].pending.iter().any(|&k| {
+                self.kicks[k]
+                    .is_some_and(|kick| kick.partner as usize == y || Some(kick.contact) == taken)
+            })
         };
         waits(a, b) || waits(b, a)
     }
 
     /// The next contact of pucks `a` and `b` from board time `now` on
     /// ([`pair::contact`]; `board_only` for a settled pair, see
-    /// `Puck::settled`). Only a contact processed at or before `horizon`
+    /// `Puck::kicked_by`). Only a contact processed at or before `horizon`
     /// (s) counts: a braking pair's search stops there (not on the
     /// reference path, which searches on so that the test comparing the
     /// two loops checks the cut).

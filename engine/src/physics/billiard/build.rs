@@ -35,7 +35,6 @@ impl Billiard {
                 version: 0,
                 pending: SmallVec::new(),
                 kicked_by: None,
-                settled: None,
                 quick: (f64::NEG_INFINITY, 0),
             })
             .collect();

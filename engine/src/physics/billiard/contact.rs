@@ -235,6 +235,14 @@ impl Billiard {
         if zeno && self.merge_zeno_cluster(a, b, hit.contact.position) {
             return;
         }
+        // Another contact on one of them at this same board time: resolved
+        // together, whatever their order (`simultaneous`).
+        if !zeno
+            && let Some((centre, others)) = self.simultaneous_with(a, b, &hit, predicted_at)
+            && self.joint_contact([a, b], hit, centre, others, contact_id)
+        {
+            return;
+        }
         let restitution = if zeno { 0.0 } else { self.restitution };
         let after = if hit.on_board {
             self.board_push(a, b, before, hit.normal, restitution)
@@ -250,26 +258,10 @@ impl Billiard {
         // The overlap bound is reported only in the collision record: with
         // recording off (long runs) its board-frame depth test, a full
         // overlap scan, is skipped.
-        let overlap_bound = if !self.record {
-            0.0
+        let overlap_bound = if self.record {
+            self.overlap_bound_of([a, b], times, before, after, hit.gamma_pair)
         } else {
-            let first = if times[0] <= times[1] { 0 } else { 1 };
-            let second = 1 - first;
-            let closing = after[first].u.velocity(self.c) - before[second].u.velocity(self.c);
-            let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
-            let early = overlap::depth(
-                &self.pucks[a].worldline.last().tangent_at(times[first]),
-                ra,
-                &self.pucks[b].worldline.last().tangent_at(times[first]),
-                rb,
-                times[first],
-            );
-            overlap::bound(
-                [ra, rb],
-                hit.gamma_pair,
-                (times[second] - times[first]) * closing.length(),
-                early,
-            )
+            0.0
         };
 
         let record = self.record.then(|| {
@@ -338,6 +330,38 @@ impl Billiard {
         }
     }
 
+    /// The most pucks `ab` may overlap on the board because of their
+    /// contact (m), for its record: each puck's kick at `times` (s), from
+    /// `before` to `after` ([`overlap::bound`], with the depth the first
+    /// kick's new shape has against the other's old one).
+    pub(super) fn overlap_bound_of(
+        &self,
+        ab: [usize; 2],
+        times: [f64; 2],
+        before: [Body; 2],
+        after: [Body; 2],
+        gamma_pair: f64,
+    ) -> f64 {
+        let [a, b] = ab;
+        let first = if times[0] <= times[1] { 0 } else { 1 };
+        let second = 1 - first;
+        let closing = after[first].u.velocity(self.c) - before[second].u.velocity(self.c);
+        let (ra, rb) = (self.pucks[a].radius, self.pucks[b].radius);
+        let early = overlap::depth(
+            &self.pucks[a].worldline.last().tangent_at(times[first]),
+            ra,
+            &self.pucks[b].worldline.last().tangent_at(times[first]),
+            rb,
+            times[first],
+        );
+        overlap::bound(
+            [ra, rb],
+            gamma_pair,
+            (times[second] - times[first]) * closing.length(),
+            early,
+        )
+    }
+
     /// The outcome of a contact found on the board (pucks `a`, `b` touching
     /// or overlapping there now, closing along `normal`), both kicks now.
     ///
@@ -383,9 +407,11 @@ impl Billiard {
             let (sa, sb) = (wa.last(), wb.last());
             let v_rel = sb.velocity() - sa.velocity();
             let still = 1e-12 * (sa.velocity().length() + sb.velocity().length());
-            let m = match overlap::penetration(sa, ra, sb, rb, t) {
+            let found = overlap::penetration(sa, ra, sb, rb, t)
+                .map(|found| overlap::contact_normal(sa, ra, sb, rb, t, found));
+            let m = match found {
                 // Still overlapping: closing along the new direction?
-                Some((_, m)) if m.dot(v_rel) < -still => m,
+                Some(m) if m.dot(v_rel) < -still => m,
                 Some(_) => break,
                 // Apart: would sliding bring them together again?
                 None => match pair::touch_again(xa, ra, after[0].u, xb, rb, after[1].u, self.c) {

@@ -151,19 +151,10 @@ impl Billiard {
                 pending: false,
             };
         }
-        // The version this change leaves; if the partner has taken its own
-        // kick of this contact and nothing else since, the pair is settled.
+        // The version this change leaves: with the partner's kick of this
+        // contact taken too and nothing else since, the pair is settled.
         let version = self.pucks[i].version.wrapping_add(1);
-        self.pucks[i].kicked_by = Some((kick.contact, version));
-        let j = kick.partner as usize;
-        let partner_done = !self.pucks[j]
-            .pending
-            .iter()
-            .any(|&k| self.kicks[k].is_some_and(|other| other.contact == kick.contact));
-        if partner_done && self.pucks[j].kicked_by == Some((kick.contact, self.pucks[j].version)) {
-            self.pucks[i].settled = Some((j as u32, version, self.pucks[j].version));
-            self.pucks[j].settled = Some((i as u32, self.pucks[j].version, version));
-        }
+        self.pucks[i].kicked_by = Some((kick.contact, version, kick.partner));
         self.bump(i);
     }
 }

@@ -16,6 +16,7 @@
 //!   bounds it schedules are the pure functions of `predict::pair` and
 //!   `predict::bounds`);
 //! * `contact`: resolving cushion and pair contacts;
+//! * `simultaneous`: contacts on one puck at one board time, together;
 //! * `kicks`: velocity changes still ahead, and impulses from outside;
 //! * `zeno`: Zeno sequences (inelastic collapse);
 //! * `history`: the history horizon and a puck's versions;
@@ -43,6 +44,7 @@ mod history;
 mod kicks;
 mod prefetch;
 mod run;
+mod simultaneous;
 mod state;
 mod zeno;
 
@@ -167,6 +169,10 @@ pub struct Stats {
     /// into a cushion: it re-contracted about the rim point the cushion
     /// holds instead (`Billiard::hold_off_cushions`).
     pub cushion_holds: u64,
+    /// Groups of contacts on one puck at one board time resolved together
+    /// (`resolve::simultaneous`); each contact is also counted in
+    /// `pair_contacts`.
+    pub simultaneous_contacts: u64,
 }
 
 impl Stats {
@@ -208,14 +214,15 @@ struct Puck {
     /// Its kicks still ahead (indices into the kick table; rarely more
     /// than two, kept in the record so reading them chases no pointer).
     pending: SmallVec<[usize; 2]>,
-    /// The last kick that landed: (contact count, version it left).
-    kicked_by: Option<(u64, u32)>,
-    /// A pair that has collided and that nothing else has touched since:
-    /// (partner, own version, partner's version). Their motion is the
-    /// collision's outcome, which separates them in the pair frame: they
-    /// are predicted again only on the board, once apart there (their board
-    /// shapes, contracted differently, can slide into each other later).
-    settled: Option<(u32, u32, u32)>,
+    /// The last kick that landed: (contact count, version it left, its
+    /// partner in the contact). Two pucks whose last kicks are of one
+    /// contact, one the other's partner, and unchanged since, have
+    /// collided and nothing has touched either since: a *settled* pair
+    /// (`Billiard::settled`). Their motion is the collision's outcome,
+    /// which separates them in the pair frame: they are predicted again
+    /// only on the board, once apart there (their board shapes, contracted
+    /// differently, can slide into each other later).
+    kicked_by: Option<(u64, u32, u32)>,
     /// Board time of this puck's last contact (pair or cushion) and how
     /// many came in quick succession (Zeno detection, O(1) per puck).
     quick: (f64, u32),

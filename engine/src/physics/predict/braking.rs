@@ -404,13 +404,29 @@ fn simultaneous(
 ) -> Event {
     let beta = frame.beta();
     let phi = |t: f64| c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
-    let t = newton_first_float(phi, |t| c - beta.dot(segment.velocity_at(t)), guess)
+    let floor = simultaneity_floor(segment, contact, beta, c, guess);
+    let t = newton_first_float(phi, |t| c - beta.dot(segment.velocity_at(t)), guess, floor)
         .unwrap_or_else(|| simultaneous_bracketed(segment, contact, &phi, frame, c));
     Event::new(t, segment.position_at(t))
 }
 
+/// How far (s) Newton's steps on `φ(t) = c (t − t_c) − β·(x(t) − x_c)`
+/// can wander from its root by rounding alone: `φ` is formed from terms
+/// of size `c |t|` and `|β| |x|`, each rounded by `ε`, and a step divides
+/// by the slope `c − β·v` (at `guess`); four times that. A step below it
+/// has settled (far from the origin of the table's coordinates the terms
+/// are larger than the step's own time's ulps: a strict `4 ε |t|` is then
+/// never met, found on a mirror image of a scene that settled).
+fn simultaneity_floor(segment: &Segment, contact: Event, beta: DVec3, c: f64, guess: f64) -> f64 {
+    let rate = c - beta.dot(segment.velocity_at(guess));
+    let terms = c * (guess.abs() + contact.t.abs())
+        + beta.length() * (segment.position_at(guess).length() + contact.position.length());
+    4.0 * f64::EPSILON * terms / rate.max(f64::MIN_POSITIVE)
+}
+
 /// [`simultaneous`]'s time to rounding only: Newton's method from `guess`
-/// until a step is down to a few ulps; `None` if it does not settle.
+/// until a step is down to its rounding ([`simultaneity_floor`]); `None`
+/// if it does not settle.
 fn simultaneous_near(
     segment: &Segment,
     contact: Event,
@@ -419,6 +435,7 @@ fn simultaneous_near(
     guess: f64,
 ) -> Option<f64> {
     let beta = frame.beta();
+    let floor = simultaneity_floor(segment, contact, beta, c, guess);
     let mut t = guess;
     for _ in 0..16 {
         let value = c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
@@ -430,7 +447,7 @@ fn simultaneous_near(
         if !next.is_finite() {
             return None;
         }
-        let settled = (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
+        let settled = (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs());
         t = next;
         if settled {
             return Some(t);
@@ -440,12 +457,14 @@ fn simultaneous_near(
 }
 
 /// The first float at which an increasing `f` (slope `slope`, > 0) is ≥ 0,
-/// by Newton's method from `t`, then a walk to the float (at most 64 ulps
-/// each way); `None` if either does not settle.
+/// by Newton's method from `t` until a step is below `floor` (s, what
+/// rounding alone moves it) or a few ulps of `t`, then a walk to the float
+/// (at most 64 ulps each way); `None` if either does not settle.
 fn newton_first_float(
     f: impl Fn(f64) -> f64,
     slope: impl Fn(f64) -> f64,
     mut t: f64,
+    floor: f64,
 ) -> Option<f64> {
     for _ in 0..16 {
         let (value, rate) = (f(t), slope(t));
@@ -456,7 +475,7 @@ fn newton_first_float(
         if !next.is_finite() {
             return None;
         }
-        let settled = (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
+        let settled = (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs());
         t = next;
         if settled {
             if f(t) >= 0.0 {
@@ -600,17 +619,14 @@ fn pair_with_bound(
     } else if s0 <= 0.0 {
         let (ta, tb) = (sa.tangent_at(now), sb.tangent_at(now));
         return Some(PairContact {
-            contact: Event::new(
-                now,
-                sa.position_at(now) + m0 * (ra * ta.contract(m0).length() + 0.5 * s0),
-            ),
+            contact: Event::new(now, overlap::contact_point_at(sa, ra, sb, rb, now, m0)),
             kicks: [
                 Event::new(now, sa.position_at(now)),
                 Event::new(now, sb.position_at(now)),
             ],
             gamma_pair: ta.gamma().max(tb.gamma()),
             on_board: true,
-            normal: m0,
+            normal: overlap::contact_normal(sa, ra, sb, rb, now, (-s0, m0)),
             pair_frame: ProperVelocity::ZERO,
         });
     }
@@ -685,8 +701,8 @@ fn pair_with_bound(
             };
             let scale = 1e-12 * (ra + rb) + 1e-15 * sa.position_at(t).length();
             if closing(t, m) && left(sa).max(left(sb)) > scale {
-                let ta = sa.tangent_at(t);
-                let point = sa.position_at(t) + m * (ra * ta.contract(m).length());
+                let point =
+                    overlap::contact_point(&a.outline, &b.outline, a.position, b.position, m);
                 return Some(in_pair_frame(sa, sb, Event::new(t, point), c));
             }
             // Touching without closing: comes to rest against it. Nothing
@@ -731,9 +747,11 @@ fn in_pair_frame(sa: &Segment, sb: &Segment, contact: Event, c: f64) -> PairCont
     let mut guesses = [contact.t; 2];
     loop {
         for (guess, s) in guesses.iter_mut().zip([sa, sb]) {
-            if let Some(t) = simultaneous_near(s, contact, frame, c, *guess) {
-                *guess = t;
-            }
+            // Where Newton's method alone does not settle, the search
+            // that always does (a guess left where it was would end the
+            // rounds in a frame that is not the pair's).
+            *guess = simultaneous_near(s, contact, frame, c, *guess)
+                .unwrap_or_else(|| simultaneous(s, contact, frame, c, *guess).t);
         }
         let next = pair_frame(sa.u_at(guesses[0]), sb.u_at(guesses[1]));
         rounds += 1;

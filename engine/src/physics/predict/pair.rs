@@ -65,11 +65,8 @@ pub fn contact(
     if sa.is_braking() || sb.is_braking() {
         return braking::pair_before(a, b, c, now, horizon);
     }
-    let on_board = |t: f64, m: DVec3, depth: f64| PairContact {
-        contact: Event::new(
-            t,
-            sa.position_at(t) + m * (ra * sa.contract(m).length() - 0.5 * depth),
-        ),
+    let on_board = |t: f64, m: DVec3| PairContact {
+        contact: Event::new(t, overlap::contact_point_at(sa, ra, sb, rb, t, m)),
         kicks: [
             Event::new(t, sa.position_at(t)),
             Event::new(t, sb.position_at(t)),
@@ -111,7 +108,8 @@ pub fn contact(
             if board_only {
                 return None; // a settled pair's own overlap: it only opens
             }
-            return (m.dot(v_rel) < -still).then(|| on_board(now, m, depth));
+            let m = overlap::contact_normal(sa, ra, sb, rb, now, (depth, m));
+            return (m.dot(v_rel) < -still).then(|| on_board(now, m));
         }
     }
     if !board_only && let Some(hit) = puck_puck::predict(a, b, c, now) {
@@ -131,8 +129,9 @@ pub fn contact(
             && t < first
         {
             let d = sb.position_at(t) - sa.position_at(t);
-            let (_, normal) = overlap::gap(sa, ra, sb, rb, d);
-            return Some(on_board(t.max(now), normal, 0.0));
+            let normal =
+                overlap::contact_normal(sa, ra, sb, rb, t, overlap::gap(sa, ra, sb, rb, d));
+            return Some(on_board(t.max(now), normal));
         }
         return Some(hit);
     }
@@ -148,8 +147,9 @@ pub fn contact(
         return None;
     }
     let t = overlap::first_touch(sa, ra, sb, rb, now, end)?.max(now);
-    let (_, normal) = overlap::gap(sa, ra, sb, rb, d0 + v_rel * (t - now));
-    Some(on_board(t, normal, 0.0))
+    let d = d0 + v_rel * (t - now);
+    let normal = overlap::contact_normal(sa, ra, sb, rb, t, overlap::gap(sa, ra, sb, rb, d));
+    Some(on_board(t, normal))
 }
 
 /// Whether two pucks leaving the board events `xa`, `xb` (m, s) with
@@ -174,5 +174,12 @@ pub fn touch_again(
     let t0 = xa.t;
     let t = overlap::first_touch(sa, ra, sb, rb, t0, t0 + leave)?;
     let d = sb.position_at(t) - sa.position_at(t);
-    Some(overlap::gap(sa, ra, sb, rb, d).1)
+    Some(overlap::contact_normal(
+        sa,
+        ra,
+        sb,
+        rb,
+        t,
+        overlap::gap(sa, ra, sb, rb, d),
+    ))
 }

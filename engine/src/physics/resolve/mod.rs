@@ -20,10 +20,15 @@
 //! reversed (elastic: angle of reflection = angle of incidence, the paper's
 //! §3.3.2.3 claim), and for `e < 1` the puck's kinetic energy is scaled by
 //! `e` (the cushion takes the heat; the puck's mass is unchanged).
+//!
+//! **Several contacts on one puck at one board time** (two strikers
+//! meeting a third at once): [`simultaneous::on_one_puck`].
 
 use glam::DVec3;
 
 use crate::spacetime::{Boost, FourMomentum, FourVector, ProperVelocity};
+
+pub mod simultaneous;
 
 /// A body's rest mass (kg) and proper velocity.
 #[derive(Clone, Copy, Debug, PartialEq)]
