@@ -40,13 +40,48 @@ fn beta(bx: f64, by: f64) -> ProperVelocity {
     ProperVelocity::try_from_beta(DVec3::new(bx, by, 0.0)).unwrap()
 }
 
-/// The pair of a two-puck contact (a Zeno cluster's merge, three or more
-/// pucks, counts for each as a kick from something else).
-fn pair_of(c: &Collision) -> Option<(usize, usize)> {
-    (c.kind == CollisionKind::PuckPuck && c.pucks.len() == 2).then(|| {
-        let (a, b) = (c.pucks[0].puck, c.pucks[1].puck);
-        (a.min(b), a.max(b))
-    })
+/// The pairs in contact in a record: the two pucks of a two-puck contact,
+/// each striker with the puck it meets in contacts resolved together
+/// (`Collision::simultaneous`: that puck first). A Zeno cluster's merge has
+/// none (it counts for each puck as a kick from something else).
+fn pairs_of(c: &Collision) -> Vec<(usize, usize)> {
+    if c.kind != CollisionKind::PuckPuck {
+        return Vec::new();
+    }
+    let pair = |a: usize, b: usize| (a.min(b), a.max(b));
+    if c.simultaneous {
+        let centre = c.pucks[0].puck;
+        c.pucks[1..].iter().map(|p| pair(centre, p.puck)).collect()
+    } else if c.pucks.len() == 2 {
+        vec![pair(c.pucks[0].puck, c.pucks[1].puck)]
+    } else {
+        Vec::new()
+    }
+}
+
+/// Whether pucks `i` < `j` are a pair in contact in a record
+/// ([`pairs_of`], without building the list: the checks ask it of every
+/// pair and record).
+fn in_contact(c: &Collision, i: usize, j: usize) -> bool {
+    if c.kind != CollisionKind::PuckPuck {
+        return false;
+    }
+    let is = |p: usize| p == i || p == j;
+    if c.simultaneous {
+        let centre = c.pucks[0].puck;
+        is(centre) && c.pucks[1..].iter().any(|p| is(p.puck) && p.puck != centre)
+    } else {
+        c.pucks.len() == 2 && is(c.pucks[0].puck) && is(c.pucks[1].puck)
+    }
+}
+
+/// The board times of the kicks of pucks `i` and `j` in a record
+/// (theirs only, in a record of several pucks).
+fn kick_times(c: &Collision, i: usize, j: usize) -> impl Iterator<Item = f64> + Clone + '_ {
+    c.pucks
+        .iter()
+        .filter(move |p| p.puck == i || p.puck == j)
+        .map(|p| p.t)
 }
 
 /// Checks every invariant on a run kept whole (history on), at the given
@@ -72,17 +107,24 @@ fn check_invariants(b: &Billiard, until: f64, samples: usize) -> f64 {
     }
     // No re-collision: between two contacts of one pair, one of the two
     // must have met something else, or the two must have parted on the
-    // board (no overlap at some instant between, 400 samples).
+    // board (no overlap at some instant between, 400 samples). A pair of
+    // contacts resolved together counts as having met something else.
     let mut last: Vec<Option<usize>> = vec![None; n]; // index of last collision
     for (k, c) in b.collisions().iter().enumerate() {
-        if let Some((i, j)) = pair_of(c)
-            && let (Some(li), Some(lj)) = (last[i], last[j])
-            && li == lj
-            && pair_of(&b.collisions()[li]) == Some((i, j))
-        {
+        for (i, j) in pairs_of(c) {
+            let (Some(li), Some(lj)) = (last[i], last[j]) else {
+                continue;
+            };
+            // Contacts resolved together need not separate every pair
+            // (`Collision::simultaneous`: the other strikers change the
+            // puck they meet too), so such a pair may meet again at once.
+            if li != lj || !in_contact(&b.collisions()[li], i, j) || b.collisions()[li].simultaneous
+            {
+                continue;
+            }
             let before = &b.collisions()[li];
-            let from = before.pucks.iter().map(|p| p.t).fold(f64::MIN, f64::max);
-            let to = c.pucks.iter().map(|p| p.t).fold(f64::MAX, f64::min);
+            let from = kick_times(before, i, j).fold(f64::MIN, f64::max);
+            let to = kick_times(c, i, j).fold(f64::MAX, f64::min);
             let parted = (1..400).any(|s| {
                 let t = from + (to - from) * s as f64 / 400.0;
                 let (si, sj) = (b.worldline(i).segment_at(t), b.worldline(j).segment_at(t));
@@ -139,9 +181,9 @@ fn check_cushions(b: &Billiard, i: usize, samples: &[f64]) {
 fn next_contact_bound(b: &Billiard, i: usize, j: usize, t: f64) -> f64 {
     b.collisions()
         .iter()
-        .filter(|c| pair_of(c) == Some((i, j)))
+        .filter(|c| in_contact(c, i, j))
         .map(|c| {
-            let first = c.pucks.iter().map(|p| p.t).fold(f64::INFINITY, f64::min);
+            let first = kick_times(c, i, j).fold(f64::INFINITY, f64::min);
             (first, c.overlap_bound)
         })
         .filter(|&(first, _)| first > t && first < t + 0.1)
@@ -178,7 +220,7 @@ fn check_pair(b: &Billiard, i: usize, j: usize, samples: &[f64]) -> f64 {
     // The kicks of i and j: (time, jump allowance or pair bound, is pair).
     let mut kicks: Vec<(f64, f64, bool)> = Vec::new();
     for c in b.collisions() {
-        let own = pair_of(c) == Some((i, j));
+        let own = in_contact(c, i, j);
         for p in &c.pucks {
             if p.puck == i || p.puck == j {
                 // A kick whose new contraction would have reached into a
@@ -220,9 +262,9 @@ fn check_pair(b: &Billiard, i: usize, j: usize, samples: &[f64]) -> f64 {
     let windows: Vec<(f64, f64)> = b
         .collisions()
         .iter()
-        .filter(|c| pair_of(c) == Some((i, j)))
+        .filter(|c| in_contact(c, i, j))
         .map(|c| {
-            let ts = c.pucks.iter().map(|p| p.t);
+            let ts = kick_times(c, i, j);
             (
                 ts.clone().fold(f64::INFINITY, f64::min),
                 ts.fold(f64::NEG_INFINITY, f64::max),
@@ -499,7 +541,7 @@ fn crowded_inelastic_box_collapses_without_overlap_beyond_the_bound() {
         // Every contact's own bound holds at the contact instant and after:
         // check each kept pair at the current time.
         for c in b.collisions() {
-            if let Some((i, j)) = pair_of(c) {
+            for (i, j) in pairs_of(c) {
                 assert_conserved(c, 1e-12);
                 let (wi, wj) = (b.worldline(i), b.worldline(j));
                 let d = overlap::depth(wi.last(), R, wj.last(), R, t);

@@ -13,9 +13,10 @@ impl Billiard {
     }
 
     /// Whether pucks `a` and `b` have collided and nothing has changed
-    /// either since: their last kicks are of one contact, one is the
-    /// other's partner there (two strikers of one puck, `simultaneous`,
-    /// are not), and neither has changed since (see `Puck::kicked_by`).
+    /// either since: their last kicks are of one pair contact, one is the
+    /// other's partner there (no pair of contacts resolved together,
+    /// `simultaneous`, is: their outcome need not separate each pair), and
+    /// neither has changed since (see `Puck::kicked_by`).
     pub(super) fn settled(&self, a: usize, b: usize) -> bool {
         let (pa, pb) = (&self.pucks[a], &self.pucks[b]);
         match (pa.kicked_by, pb.kicked_by) {

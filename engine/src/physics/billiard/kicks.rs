@@ -154,7 +154,8 @@ impl Billiard {
         // The version this change leaves: with the partner's kick of this
         // contact taken too and nothing else since, the pair is settled.
         let version = self.pucks[i].version.wrapping_add(1);
-        self.pucks[i].kicked_by = Some((kick.contact, version, kick.partner));
+        let partner = if kick.settles { kick.partner } else { u32::MAX };
+        self.pucks[i].kicked_by = Some((kick.contact, version, partner));
         self.bump(i);
     }
 }

@@ -124,13 +124,21 @@ pub struct Collision {
     /// Contact point, m.
     pub contact: DVec3,
     /// One outcome per puck involved: two for puck–puck, one for a cushion;
-    /// more when a Zeno sequence ends (see [`CollisionKind`]).
+    /// more when a Zeno sequence ends (see [`CollisionKind`]) or when
+    /// contacts on one puck at one board time are resolved together (see
+    /// `simultaneous`).
     pub pucks: Vec<PuckOutcome>,
     /// The most the two pucks may overlap in the board frame because of
     /// this contact, m (0 for a cushion and for a Zeno cluster's merge, whose
     /// kicks come from no new approach): what rigid bodies cannot avoid in
-    /// relativity, see [`overlap_bound`](crate::physics::overlap::bound).
+    /// relativity, see [`overlap_bound`](crate::physics::overlap::bound);
+    /// for contacts resolved together, the largest of their pairs'.
     pub overlap_bound: f64,
+    /// Contacts of several pucks with one, at one board time, resolved
+    /// together ([`crate::physics::resolve::simultaneous`]): `pucks[0]` is
+    /// the puck they meet, every other one a puck whose contact is with it
+    /// (their contact point is `contact` for the first of them only).
+    pub simultaneous: bool,
 }
 
 /// Counters of what the event loop did.
@@ -200,6 +208,11 @@ struct Kick {
     slot: usize,
     /// Which contact it belongs to (a running count of pair contacts).
     contact: u64,
+    /// Whether its pair is settled once both have taken their kicks
+    /// (`Puck::kicked_by`): a pair contact's outcome separates the two in
+    /// the pair frame; one of several contacts resolved together need not
+    /// (`simultaneous`), so such a pair is predicted again as any other.
+    settles: bool,
 }
 
 #[derive(Clone, Debug)]

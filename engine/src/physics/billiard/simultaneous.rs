@@ -23,10 +23,11 @@ impl Billiard {
     /// Such a contact need not be any puck's calendar entry (a puck holds
     /// only its earliest event, and a contact waiting for another's kick
     /// was not predicted), so each partner of the centre that could touch
-    /// it by then is predicted again: those whose rest discs can meet
-    /// before the centre's kick plus the most a kick can precede its
-    /// contact (`2 R γ |u| / c`, see [`braking::pair_before`]), in a
-    /// dense gas rarely any. Only pucks with no kick pending count.
+    /// it by then is predicted again: those whose rest discs can meet by
+    /// the centre's kick (at the earlier kick of a contact the rest discs
+    /// touch, and no kick of it is before now: [`bounds::disc_touch`],
+    /// [`bounds::braking_touch`]), in a dense gas rarely any. Only pucks
+    /// with no kick pending count.
     ///
     /// Each is predicted from `predicted_at` (s), when `hit` was (or from
     /// the later start of either segment): what a prediction finds depends
@@ -46,25 +47,26 @@ impl Billiard {
             if !self.pucks[centre].pending.is_empty() {
                 continue;
             }
-            let t = hit.kicks[slot].t;
+            // Kicks fall never before now (a contact found late is
+            // resolved at once).
+            let t = hit.kicks[slot].t.max(now);
             let tolerance = SIMULTANEOUS * (t.abs() + self.table.length() / self.c);
             let mut others = Vec::new();
-            for j in self.neighbours(centre) {
-                if j == a || j == b || !self.pucks[j].pending.is_empty() {
+            let everyone = if self.reference {
+                0..self.pucks.len()
+            } else {
+                0..0
+            };
+            let partners = if self.reference {
+                &[][..]
+            } else {
+                self.broad.partners(centre)
+            };
+            for j in partners.iter().map(|&j| j as usize).chain(everyone) {
+                if j == centre || j == a || j == b || !self.pucks[j].pending.is_empty() {
                     continue;
                 }
                 let (lo, hi) = (centre.min(j), centre.max(j));
-                let lead = 2.0
-                    * (self.pucks[lo].radius + self.pucks[hi].radius)
-                    * [lo, hi]
-                        .iter()
-                        .map(|&k| {
-                            let u = self.pucks[k].worldline.last().u_at(now);
-                            u.gamma() * u.0.length()
-                        })
-                        .fold(0.0, f64::max)
-                    / self.c;
-                let by = t + lead + tolerance;
                 let (hl, hh) = (self.hot[lo], self.hot[hi]);
                 let bound = if hl.braking || hh.braking {
                     let reach =
@@ -75,7 +77,7 @@ impl Billiard {
                         &reach(hi),
                         self.pucks[hi].radius,
                         now,
-                        by,
+                        t + tolerance,
                     )
                 } else {
                     bounds::disc_touch(
@@ -88,7 +90,7 @@ impl Billiard {
                         now,
                     )
                 };
-                if bound.is_none_or(|b| b > by) {
+                if bound.is_none_or(|bound| bound > t + tolerance) {
                     continue;
                 }
                 let settled = self.settled(lo, hi);
@@ -102,11 +104,14 @@ impl Billiard {
                     continue;
                 };
                 let on_centre = if lo == centre { 0 } else { 1 };
-                if (h.kicks[on_centre].t - t).abs() <= tolerance {
+                if (h.kicks[on_centre].t.max(now) - t).abs() <= tolerance {
                     others.push((j, h));
                 }
             }
             if !others.is_empty() {
+                // In index order, whichever list they came from, so that
+                // the reference loop resolves them to the same bits.
+                others.sort_by_key(|&(j, _)| j);
                 return Some((centre, others));
             }
         }
@@ -121,7 +126,8 @@ impl Billiard {
     /// collision record holds the centre, then the strikers. Returns
     /// `false`, with nothing changed, if the rule has no outcome for them
     /// ([`resolve::simultaneous::on_one_puck`]): the contacts are then
-    /// resolved one by one, as any others.
+    /// resolved one by one, as any others. Not asked at restitution 0
+    /// (`pair_contact` says why).
     pub(super) fn joint_contact(
         &mut self,
         ab: [usize; 2],
@@ -155,13 +161,7 @@ impl Billiard {
             .zip(&times)
             .map(|(&(s, _), &t)| body(s, t))
             .collect();
-        let (centre_after, after) = if self.restitution <= 0.0 {
-            let mut all = vec![centre_before];
-            all.extend(&strikers);
-            let mut out = resolve::together_all(&all);
-            let c = out.remove(0);
-            (c, out)
-        } else {
+        let (centre_after, after) = {
             let alone: Vec<[Body; 2]> = contacts
                 .iter()
                 .zip(&strikers)
@@ -246,6 +246,7 @@ impl Billiard {
                 contact: hit.contact.position,
                 pucks,
                 overlap_bound,
+                simultaneous: true,
             });
             self.collision_count() - 1
         });
@@ -264,6 +265,7 @@ impl Billiard {
                 record,
                 slot: 0,
                 contact: contact_id,
+                settles: false,
             },
         )];
         for (k, &(s, _)) in contacts.iter().enumerate() {
@@ -279,6 +281,7 @@ impl Billiard {
                     record,
                     slot: k + 1,
                     contact: contact_id,
+                    settles: false,
                 },
             ));
         }

@@ -91,6 +91,7 @@ impl Billiard {
                 contact,
                 pucks: outcomes,
                 overlap_bound: 0.0,
+                simultaneous: false,
             });
         }
         for i in cluster {

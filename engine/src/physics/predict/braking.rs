@@ -435,14 +435,21 @@ fn simultaneous_near(
     guess: f64,
 ) -> Option<f64> {
     let beta = frame.beta();
-    let floor = simultaneity_floor(segment, contact, beta, c, guess);
     let mut t = guess;
+    let mut floor = None;
     for _ in 0..16 {
-        let value = c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
+        let x = segment.position_at(t);
+        let value = c * (t - contact.t) - beta.dot(x - contact.position);
         let rate = c - beta.dot(segment.velocity_at(t));
         if rate.is_nan() || rate <= 0.0 {
             return None;
         }
+        // [`simultaneity_floor`] from the first step's own values.
+        let floor = *floor.get_or_insert_with(|| {
+            let terms = c * (t.abs() + contact.t.abs())
+                + beta.length() * (x.length() + contact.position.length());
+            4.0 * f64::EPSILON * terms / rate
+        });
         let next = t - value / rate;
         if !next.is_finite() {
             return None;
