@@ -22,6 +22,10 @@ pub struct CollisionLine {
     pub contact: [f64; 2],
     /// Each puck's own velocity-change event.
     pub pucks: Vec<PuckLine>,
+    /// Present and `true` for contacts of several pucks with one at one
+    /// board time, resolved together: `pucks[0]` is the puck they meet.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub simultaneous: bool,
 }
 
 /// One puck's part in a collision.
@@ -128,6 +132,7 @@ impl CollisionLine {
                 .iter()
                 .map(|o| PuckLine::new(billiard, o))
                 .collect(),
+            simultaneous: collision.simultaneous,
         }
     }
 }

@@ -454,6 +454,12 @@ impl GameState {
             .find(|c| c.t <= self.view_time)?;
         let names: Vec<&str> = c.pucks.iter().map(|p| b.name(p.puck)).collect();
         Some(match c.kind {
+            CollisionKind::PuckPuck if c.simultaneous => format!(
+                "t = {:.3} s: {} hit {} at once",
+                c.t,
+                names[1..].join(" and "),
+                names[0]
+            ),
             CollisionKind::PuckPuck => format!("t = {:.3} s: {} hit {}", c.t, names[0], names[1]),
             CollisionKind::Cushion(k) => {
                 format!("t = {:.3} s: {} hit cushion {}", c.t, names[0], k.name())

@@ -147,6 +147,8 @@ class Collision(Record):
     contact: List[float]
     """Contact point, (x, y) m."""
     pucks: List[CollisionPuck]
+    simultaneous: Optional[bool]
+    """Present and True when several pucks met one at the same board time and the contacts were resolved together: `pucks[0]` is the puck they met."""
 
 
 class PuckState(Record):
