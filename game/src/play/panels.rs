@@ -432,3 +432,7 @@ fn short_speed(c: f64) -> String {
         format!("{} m/s", (c * 1000.0).round() / 1000.0)
     }
 }
+
+#[cfg(test)]
+#[path = "panels_tests.rs"]
+mod tests;
