@@ -455,10 +455,10 @@ impl GameState {
         let names: Vec<&str> = c.pucks.iter().map(|p| b.name(p.puck)).collect();
         Some(match c.kind {
             CollisionKind::PuckPuck if c.simultaneous => format!(
-                "t = {:.3} s: {} hit {} at once",
+                "t = {:.3} s: {} met {} at once",
                 c.t,
-                names[1..].join(" and "),
-                names[0]
+                names[0],
+                names[1..].join(" and ")
             ),
             CollisionKind::PuckPuck => format!("t = {:.3} s: {} hit {}", c.t, names[0], names[1]),
             CollisionKind::Cushion(k) => {

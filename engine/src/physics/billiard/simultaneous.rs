@@ -218,15 +218,11 @@ impl Billiard {
                     self.overlap_bound_of(pair, t, b, a, h.gamma_pair)
                 })
                 .fold(0.0, f64::max);
-            let outcome = |i: usize, t: f64, before: Body, after: Body, k: usize| PuckOutcome {
+            let outcome = |i: usize, t: f64, before: Body, after: Body| PuckOutcome {
                 puck: self.pucks[i].external as usize,
                 t,
-                position: contacts[k].1.kicks[if i == centre {
-                    slots(contacts[k].0).0
-                } else {
-                    slots(i).1
-                }]
-                .position,
+                // The centre at its own kick (as scheduled).
+                position: self.pucks[i].worldline.last().position_at(t),
                 u_before: before.u,
                 u_after: after.u,
                 mass_before: before.mass,
@@ -236,9 +232,9 @@ impl Billiard {
                     + rotation_of_velocity_change(before.u, after.u),
                 pending: true,
             };
-            let mut pucks = vec![outcome(centre, centre_t, centre_before, centre_after, 0)];
+            let mut pucks = vec![outcome(centre, centre_t, centre_before, centre_after)];
             for (k, &(s, _)) in contacts.iter().enumerate() {
-                pucks.push(outcome(s, times[k], strikers[k], after[k], k));
+                pucks.push(outcome(s, times[k], strikers[k], after[k]));
             }
             self.collisions.push(Collision {
                 kind: CollisionKind::PuckPuck,

@@ -7,8 +7,10 @@
 //! first has already set moving, so two mirror-image strikers come back at
 //! mirror-different places, centimetres apart (issue 30, item 4).
 //! Resolved each from the state before either and the changes added,
-//! 4-momentum is conserved but the centre leaves its mass shell, below its
-//! rest mass (negative heat) whenever two impulses are not orthogonal.
+//! 4-momentum is conserved but the centre leaves its mass shell: below its
+//! rest mass (negative heat) where the impulses on it overlap in
+//! direction (two strikers from one side), above it (heat where none was
+//! asked) where they oppose.
 //!
 //! The rule here is symmetric in the strikers and keeps every body on its
 //! mass shell. In the group's centre-of-momentum frame (where no energy
@@ -21,8 +23,10 @@
 //! `−λ Σ dₖ`, its energy by `−Σ ΔEₖ(λ)`. `λ` is the
 //! root at which the centre's rest mass is what the contacts alone would
 //! leave it (its own mass plus its share of each contact's heat); of the
-//! two roots, the larger one, on which the strikers rebound (the smaller
-//! leaves them closing).
+//! two roots, the larger one (the smaller leaves every striker closing).
+//! The larger need not open every pair (a weak striker beside a strong
+//! one can still be closing on the centre): the event loop then finds
+//! that pair's contact at once, a second round at the same board time.
 //!
 //! * One striker: `λ = 1`, the pair's own outcome.
 //! * Newton's limit, elastic: `λ = −Σ Jₖ·vₖ / (Σ |Jₖ|²/2mₖ + |Σ Jₖ|²/2M)`
@@ -33,7 +37,10 @@
 //! * Elastic (`e = 1`): no heat, every rest mass unchanged.
 //! * `e < 1`: the heat is the sum of what each contact alone would make,
 //!   so each contact keeps, as if it were alone, the fraction `e` of its
-//!   pair's CM kinetic energy (the guide's definition of restitution).
+//!   pair's CM kinetic energy (the guide's definition of restitution);
+//!   unless the impulses together cannot carry that much (strikers side by
+//!   side share the centre's recoil): then the most they can, shared by
+//!   mass ([`on_one_puck`]).
 //!
 //! Any rule for exactly simultaneous contacts of rigid bodies is a choice:
 //! their outcome is not the limit of nearly simultaneous ones, which
@@ -175,9 +182,9 @@ fn rebound(group: &[Striker], centre: Centre, target: f64) -> Option<f64> {
 /// so less of their motion is along the normals than each alone), the heat
 /// is the most they can carry: the largest heat, shared among all the
 /// bodies in proportion to their rest masses, for which a rebounding root
-/// exists (bisection on the heat; at zero heat there always is one).
-/// `None` if no striker is closing, for the caller to resolve the
-/// contacts one by one.
+/// exists (bisection on the heat; at zero heat there is one wherever a
+/// striker closes, to rounding). `None` if none is found (no striker
+/// closing), for the caller to resolve the contacts one by one.
 ///
 /// # Panics
 /// If `alone` and `strikers` differ in length.
