@@ -313,18 +313,7 @@ impl Billiard {
                 contact: contact_id,
                 settles: true,
             };
-            let id = match self.free_kicks.pop() {
-                Some(id) => {
-                    self.kicks[id] = Some(kick);
-                    id
-                }
-                None => {
-                    self.kicks.push(Some(kick));
-                    self.kicks.len() - 1
-                }
-            };
-            self.pucks[i].pending.push(id);
-            ids[k] = id;
+            ids[k] = self.schedule_kick(i, kick);
         }
         // The kicks that are due land now, earliest first; a later one
         // becomes its puck's pending event if it is the earliest.

@@ -68,6 +68,23 @@ impl Billiard {
         true
     }
 
+    /// Stores `kick` (of puck `i`) in the kick table and among the puck's
+    /// pending kicks; returns its id.
+    pub(super) fn schedule_kick(&mut self, i: usize, kick: Kick) -> usize {
+        let id = match self.free_kicks.pop() {
+            Some(id) => {
+                self.kicks[id] = Some(kick);
+                id
+            }
+            None => {
+                self.kicks.push(Some(kick));
+                self.kicks.len() - 1
+            }
+        };
+        self.pucks[i].pending.push(id);
+        id
+    }
+
     /// A kick of puck `i` at board time `t` has been scheduled and nothing
     /// else about the puck changed: it becomes the puck's pending event if
     /// it comes first.

@@ -283,21 +283,10 @@ impl Billiard {
         }
         // Earliest first: those due now land, the others wait.
         kicks.sort_by(|x, y| x.1.t.total_cmp(&y.1.t).then(x.0.cmp(&y.0)));
-        let mut ids = Vec::with_capacity(kicks.len());
-        for &(i, kick) in &kicks {
-            let id = match self.free_kicks.pop() {
-                Some(id) => {
-                    self.kicks[id] = Some(kick);
-                    id
-                }
-                None => {
-                    self.kicks.push(Some(kick));
-                    self.kicks.len() - 1
-                }
-            };
-            self.pucks[i].pending.push(id);
-            ids.push(id);
-        }
+        let ids: Vec<usize> = kicks
+            .iter()
+            .map(|&(i, kick)| self.schedule_kick(i, kick))
+            .collect();
         for (&(i, kick), id) in kicks.iter().zip(ids) {
             if kick.t <= self.time {
                 self.land_kick(id);

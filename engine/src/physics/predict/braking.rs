@@ -404,23 +404,30 @@ fn simultaneous(
 ) -> Event {
     let beta = frame.beta();
     let phi = |t: f64| c * (t - contact.t) - beta.dot(segment.position_at(t) - contact.position);
-    let floor = simultaneity_floor(segment, contact, beta, c, guess);
+    let floor = simultaneity_floor(
+        guess,
+        segment.position_at(guess),
+        contact,
+        beta,
+        c,
+        c - beta.dot(segment.velocity_at(guess)),
+    );
     let t = newton_first_float(phi, |t| c - beta.dot(segment.velocity_at(t)), guess, floor)
         .unwrap_or_else(|| simultaneous_bracketed(segment, contact, &phi, frame, c));
     Event::new(t, segment.position_at(t))
 }
 
 /// How far (s) Newton's steps on `φ(t) = c (t − t_c) − β·(x(t) − x_c)`
-/// can wander from its root by rounding alone: `φ` is formed from terms
-/// of size `c |t|` and `|β| |x|`, each rounded by `ε`, and a step divides
-/// by the slope `c − β·v` (at `guess`); four times that. A step below it
-/// has settled (far from the origin of the table's coordinates the terms
-/// are larger than the step's own time's ulps: a strict `4 ε |t|` is then
+/// can wander from its root by rounding alone, at a step from board time
+/// `t` with the centre at `x` and `φ`'s slope `rate` (`c − β·v`): `φ` is
+/// formed from terms of size `c |t|` and `|β| |x|`, each rounded by `ε`,
+/// and a step divides by the slope; four times that. A step below it has
+/// settled (far from the origin of the table's coordinates the terms are
+/// larger than the step's own time's ulps: a strict `4 ε |t|` is then
 /// never met, found on a mirror image of a scene that settled).
-fn simultaneity_floor(segment: &Segment, contact: Event, beta: DVec3, c: f64, guess: f64) -> f64 {
-    let rate = c - beta.dot(segment.velocity_at(guess));
-    let terms = c * (guess.abs() + contact.t.abs())
-        + beta.length() * (segment.position_at(guess).length() + contact.position.length());
+fn simultaneity_floor(t: f64, x: DVec3, contact: Event, beta: DVec3, c: f64, rate: f64) -> f64 {
+    let terms =
+        c * (t.abs() + contact.t.abs()) + beta.length() * (x.length() + contact.position.length());
     4.0 * f64::EPSILON * terms / rate.max(f64::MIN_POSITIVE)
 }
 
@@ -444,12 +451,8 @@ fn simultaneous_near(
         if rate.is_nan() || rate <= 0.0 {
             return None;
         }
-        // [`simultaneity_floor`] from the first step's own values.
-        let floor = *floor.get_or_insert_with(|| {
-            let terms = c * (t.abs() + contact.t.abs())
-                + beta.length() * (x.length() + contact.position.length());
-            4.0 * f64::EPSILON * terms / rate
-        });
+        // From the first step's own values.
+        let floor = *floor.get_or_insert_with(|| simultaneity_floor(t, x, contact, beta, c, rate));
         let next = t - value / rate;
         if !next.is_finite() {
             return None;
