@@ -42,15 +42,22 @@
 //! vanish in the Newtonian limit.
 //!
 //! This file measures (the gap function, its scan, the first touch);
-//! `proofs` holds the cheap one-sided tests that let the event loop skip
-//! the measurement ([`apart_throughout`], [`overlap_certain`]).
+//! `outline` holds a puck's contracted shape ([`Outline`]), `contact`
+//! where and along what two touching shapes meet ([`contact_point`],
+//! [`contact_normal`]), and `proofs` the cheap one-sided tests that let
+//! the event loop skip the measurement ([`apart_throughout`],
+//! [`overlap_certain`]).
 
 use glam::DVec3;
 
 use crate::worldline::Segment;
 
+mod contact;
+mod outline;
 mod proofs;
 
+pub use contact::{contact_normal, contact_point, contact_point_at};
+pub use outline::Outline;
 pub use proofs::{apart_throughout, overlap_certain};
 
 /// The most two pucks of rest radii `radii` (m) can overlap on the board
@@ -64,152 +71,6 @@ pub use proofs::{apart_throughout, overlap_certain};
 pub fn bound(radii: [f64; 2], gamma_pair: f64, slide: f64, early: f64) -> f64 {
     let grow = (gamma_pair - 1.0).max(0.0) / gamma_pair.max(1.0);
     early.max(0.0) + (radii[0] + radii[1]) * grow + slide.abs()
-}
-
-/// A puck's board-frame shape as the gap function reads it: its rest disc
-/// (radius `radius`, m) contracted by `1/γ` along the unit direction `n` of
-/// its motion on the board (any unit direction at rest, where `1/γ = 1`).
-/// Pucks move in the board plane, so directions are `(cos, sin)` in it.
-///
-/// It also keeps the board velocity (m/s) it moves with: [`gap_min`] tries
-/// the direction of motion as a candidate axis.
-#[derive(Clone, Copy, Debug)]
-pub struct Outline {
-    nx: f64,
-    ny: f64,
-    inverse_gamma: f64,
-    radius: f64,
-    velocity: DVec3,
-}
-
-impl Outline {
-    /// The shape of a puck of rest radius `radius` (m) on `segment` (a
-    /// uniform or rest one: its one contraction).
-    #[must_use]
-    pub fn of(segment: &Segment, radius: f64) -> Self {
-        let map = segment.lorentz_map();
-        Self::from_map(
-            map.direction(),
-            map.inverse_gamma(),
-            radius,
-            segment.velocity(),
-        )
-    }
-
-    /// The shape of a puck of rest radius `radius` (m) moving with proper
-    /// velocity `u` on a board where light moves at `c` (m/s): the same
-    /// values, to the bit, as [`Self::of`] the uniform segment with that
-    /// proper velocity (what a braking segment's tangent is), without
-    /// building the segment.
-    #[must_use]
-    pub fn moving(u: crate::spacetime::ProperVelocity, radius: f64, c: f64) -> Self {
-        let gamma = u.gamma();
-        let speed = u.0.length();
-        let direction = if speed > 0.0 {
-            u.0 / speed
-        } else {
-            DVec3::ZERO
-        };
-        Self::from_map(direction, 1.0 / gamma, radius, u.0 * (c / gamma))
-    }
-
-    /// The shape of a puck of rest radius `radius` (m) moving along the
-    /// unit direction `n` (zero at rest) with `1/γ = inverse_gamma` and
-    /// board velocity `velocity` (m/s).
-    #[must_use]
-    pub fn along(n: DVec3, inverse_gamma: f64, radius: f64, velocity: DVec3) -> Self {
-        Self::from_map(n, inverse_gamma, radius, velocity)
-    }
-
-    fn from_map(n: DVec3, inverse_gamma: f64, radius: f64, velocity: DVec3) -> Self {
-        let (nx, ny) = if n.x == 0.0 && n.y == 0.0 {
-            (1.0, 0.0)
-        } else {
-            (n.x, n.y)
-        };
-        Self {
-            nx,
-            ny,
-            inverse_gamma,
-            radius,
-            velocity,
-        }
-    }
-
-    /// The rest radius, m.
-    #[must_use]
-    pub fn radius(&self) -> f64 {
-        self.radius
-    }
-
-    /// Support function in the unit direction `(cos, sin)`, m: `R
-    /// |contract(m)| = R √((n⊥·m)² + ((n·m)/γ)²)`, the contracted
-    /// component formed as a product (no `1 − 1/γ²`: exact to rounding at
-    /// any γ).
-    #[inline(always)]
-    fn support(&self, cos: f64, sin: f64) -> f64 {
-        let along = (self.nx * cos + self.ny * sin) * self.inverse_gamma;
-        let across = self.nx * sin - self.ny * cos;
-        self.radius * (across * across + along * along).sqrt()
-    }
-
-    /// The point of the shape farthest along the unit direction `(cos,
-    /// sin)`, as an offset from its centre, m: `R contract(contract(m)) /
-    /// |contract(m)|` (the rest-frame rim point `R contract(m)/|contract(m)|`,
-    /// contracted).
-    #[inline(always)]
-    fn support_point(&self, cos: f64, sin: f64) -> DVec3 {
-        let ig = self.inverse_gamma;
-        let along = self.nx * cos + self.ny * sin;
-        let across = self.nx * sin - self.ny * cos;
-        let scale = self.radius / (across * across + along * ig * (along * ig)).sqrt();
-        let (a, c) = (along * ig * ig * scale, across * scale);
-        DVec3::new(self.nx * a - self.ny * c, self.ny * a + self.nx * c, 0.0)
-    }
-
-    /// The offset `w` (m, from the centre) in units of the shape: `|r|/R`
-    /// for the rest-frame offset `r` it is the contraction of (1 on the
-    /// rim, below 1 inside).
-    #[inline(always)]
-    fn elliptic_norm(&self, w: DVec3) -> f64 {
-        let along = self.nx * w.x + self.ny * w.y;
-        let across = self.nx * w.y - self.ny * w.x;
-        let rest = along / self.inverse_gamma;
-        (across * across + rest * rest).sqrt() / self.radius
-    }
-
-    /// How fast the support in the unit direction `(cos, sin)` grows while
-    /// `1/γ` changes at `rate` (1/s), m/s: `R ((n·m)²/γ) rate / |contract(m)|`.
-    #[must_use]
-    pub fn support_rate(&self, cos: f64, sin: f64, rate: f64) -> f64 {
-        let ig = self.inverse_gamma;
-        let along = self.nx * cos + self.ny * sin;
-        let across = self.nx * sin - self.ny * cos;
-        let contracted = along * ig;
-        self.radius * along * contracted * rate / (across * across + contracted * contracted).sqrt()
-    }
-
-    /// The support's first and second derivatives in the direction's angle
-    /// at `(cos, sin)`, m/rad and m/rad²: with `A = (n⊥·m)² + ((n·m)/γ)²`,
-    /// `A′ = 2 (1 − 1/γ²)(n·m)(n⊥·m)`, `A″ = 2 (1 − 1/γ²)((n·m)² − (n⊥·m)²)`
-    /// and `h = R√A`.
-    #[inline(always)]
-    fn support_slopes(&self, cos: f64, sin: f64) -> (f64, f64) {
-        let ig = self.inverse_gamma;
-        let along = self.nx * cos + self.ny * sin;
-        let across = self.nx * sin - self.ny * cos;
-        let contracted = along * ig;
-        let a = across * across + contracted * contracted;
-        let root = a.sqrt();
-        let k = 2.0 * (1.0 - ig) * (1.0 + ig);
-        let a1 = k * along * across;
-        let a2 = k * (along - across) * (along + across);
-        let first = 0.5 * a1 / root;
-        (
-            self.radius * first,
-            self.radius * (0.5 * a2 - first * first) / root,
-        )
-    }
 }
 
 /// The linear function of the separation `d` (m, b − a) whose minimum over
@@ -290,80 +151,6 @@ fn centre_line_gap_of(oa: &Outline, ob: &Outline, d: DVec3) -> Option<(f64, DVec
         }
     }
     None
-}
-
-/// The contact point of two touching shapes centred at `xa`, `xb` (m,
-/// board) whose contact normal is the unit `m` (from `a` towards `b`): the
-/// midpoint of `a`'s farthest point along `m` and `b`'s farthest along
-/// `−m`, which coincide when they touch exactly. The same bits with `a`
-/// and `b` exchanged (and `m` negated), so the point does not depend on
-/// which of the pair the loop holds first.
-#[must_use]
-pub fn contact_point(oa: &Outline, ob: &Outline, xa: DVec3, xb: DVec3, m: DVec3) -> DVec3 {
-    let on_a = xa + oa.support_point(m.x, m.y);
-    let on_b = xb - ob.support_point(m.x, m.y);
-    (on_a + on_b) * 0.5
-}
-
-/// [`contact_point`] of two pucks on segments `a`, `b` (rest radii m) at
-/// board time `t` (s).
-#[must_use]
-pub fn contact_point_at(
-    a: &Segment,
-    radius_a: f64,
-    b: &Segment,
-    radius_b: f64,
-    t: f64,
-    m: DVec3,
-) -> DVec3 {
-    contact_point(
-        &Outline::of(&a.tangent_at(t), radius_a),
-        &Outline::of(&b.tangent_at(t), radius_b),
-        a.position_at(t),
-        b.position_at(t),
-        m,
-    )
-}
-
-/// The contact normal of two pucks on segments `a`, `b` at board time `t`
-/// (s) whose gap function has its minimum `found` (value, unit direction),
-/// as [`gap`] or [`penetration`] give it: that direction, unless its mirror
-/// image across the line of centres is a minimum of the same value (to
-/// 1e-12 of the radii) but another direction. The two shapes are then
-/// mirror images of each other about the perpendicular bisector of their
-/// centres (two mirror-image pucks meeting), the gap function is
-/// symmetric across the line of centres, and which of the two minima the
-/// search returns is decided by rounding; symmetry gives the line of
-/// centres itself, which is returned (pointing the way `found` does).
-#[must_use]
-pub fn contact_normal(
-    a: &Segment,
-    radius_a: f64,
-    b: &Segment,
-    radius_b: f64,
-    t: f64,
-    found: (f64, DVec3),
-) -> DVec3 {
-    let (g, m) = found;
-    let (a, b) = (a.tangent_at(t), b.tangent_at(t));
-    let d = b.position_at(t) - a.position_at(t);
-    let length = d.length();
-    if length == 0.0 {
-        return m;
-    }
-    let line = d / length;
-    let along = m.dot(line);
-    let twin = line * (2.0 * along) - m;
-    if (twin - m).length() <= 1e-9 {
-        return m; // the minimum is on the line of centres
-    }
-    let (oa, ob) = (Outline::of(&a, radius_a), Outline::of(&b, radius_b));
-    let other = gap_along(&oa, &ob, twin.x, twin.y, d);
-    if (other - g).abs() <= 1e-12 * (radius_a + radius_b) {
-        line * along.signum()
-    } else {
-        m
-    }
 }
 
 /// Whether [`penetration`] of two pucks whose centres are `d` apart (m,
