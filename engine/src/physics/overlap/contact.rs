@@ -43,7 +43,7 @@ pub fn contact_point_at(
 
 /// The contact normal of two pucks on segments `a`, `b` at board time `t`
 /// (s) whose gap function has its minimum `found` (value, unit direction),
-/// as [`gap`] or [`penetration`] give it: that direction, unless its mirror
+/// as [`super::gap`] or [`super::penetration`] give it: that direction, unless its mirror
 /// image across the line of centres is a minimum of the same value (to
 /// 1e-12 of the radii) but another direction. The two shapes are then
 /// mirror images of each other about the perpendicular bisector of their

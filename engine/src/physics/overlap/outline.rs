@@ -11,7 +11,7 @@ use crate::worldline::Segment;
 /// its motion on the board (any unit direction at rest, where `1/γ = 1`).
 /// Pucks move in the board plane, so directions are `(cos, sin)` in it.
 ///
-/// It also keeps the board velocity (m/s) it moves with: [`gap_min`] tries
+/// It also keeps the board velocity (m/s) it moves with: [`super::gap_min`] tries
 /// the direction of motion as a candidate axis.
 #[derive(Clone, Copy, Debug)]
 pub struct Outline {
