@@ -3,10 +3,18 @@
 //!
 //! * [`components`], [`resources`], [`phase`]: the types, importing no
 //!   system;
-//! * [`systems`]: one module per phase (input, physics, kinematics,
-//!   history, optics), over those types;
+//! * [`systems`]: one module per phase (kinematics, history, optics), over
+//!   those types, and the input kinks of observers' worldlines;
 //! * [`schedule`]: the frame schedule on top; [`simulation`]: a world
 //!   built from a scene, and the one way to advance and observe it.
+//!
+//! **Physics runs first, outside the schedule.** Board time advances in one
+//! place, [`crate::physics::Billiard::advance_to`] (the event loop), which
+//! every front end reaches through [`Simulation::advance_to`] or, running
+//! ahead of any picture, the billiard itself; a frame then only reads the
+//! worldlines at its board time, which may be in the past (a replay). Cue
+//! strokes, flight and tracked heads are kinks put on worldlines between
+//! frames, at the live board time, whichever time a frame shows.
 //!
 //! A **view** is an entity: an observer (whose motion is its worldline),
 //! an effect set (one marker component per effect) and a camera. Several

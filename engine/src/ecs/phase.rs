@@ -6,13 +6,12 @@ use bevy_ecs::prelude::*;
 use super::components::View;
 use super::resources::OpticsMethod;
 
-/// The phases of one frame, in the order they run.
+/// The phases of one frame, in the order they run. The physics is not one
+/// of them: it runs first, to the frame's board time, outside the schedule
+/// (`Simulation::advance_to`), and input is kinks put on worldlines
+/// between frames, so a frame only reads worldlines.
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Phase {
-    /// Cue impulses, script commands, tracker samples.
-    Input,
-    /// Advance worldlines to the clock: resolve events, re-predict.
-    Physics,
     /// Proper time and contracted shapes (the design's
     /// *relativistic-transform*).
     Kinematics,

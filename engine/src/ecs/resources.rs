@@ -6,7 +6,7 @@ use bevy_ecs::prelude::*;
 
 use crate::optics::SampledHistory;
 use crate::optics::history::Search;
-use crate::physics::{Billiard, Collision};
+use crate::physics::Billiard;
 use crate::scene::{OpticsSpec, TableSpec};
 
 /// Board (coordinate) time of the frame, s: the time every view observes
@@ -28,10 +28,6 @@ pub struct Table(pub TableSpec);
 /// The event-anticipation physics: owns the pucks' worldlines.
 #[derive(Resource)]
 pub struct Physics(pub Billiard);
-
-/// Collisions resolved during the last frame (for the HUD and lessons).
-#[derive(Resource, Clone, Debug, Default, PartialEq)]
-pub struct FrameCollisions(pub Vec<Collision>);
 
 /// How light delay finds emission events (the scene's `[optics]`).
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]

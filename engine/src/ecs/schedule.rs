@@ -6,22 +6,16 @@ use bevy_ecs::prelude::*;
 
 use super::components::{Aberration, Contraction, Doppler, LightDelay, Searchlight, TimeDilation};
 use super::phase::{Phase, any_view_with, any_view_without, sampled_history};
-use super::systems::{history, kinematics, optics, physics};
+use super::systems::{history, kinematics, optics};
 
-/// The frame schedule: Input → Physics → Kinematics → History → Optics.
+/// The frame schedule: Kinematics → History → Optics. It only reads the
+/// worldlines: the physics has run to the frame's board time before it
+/// (`Simulation::advance_to`), and strokes, flight and tracked heads are
+/// kinks put on worldlines between frames (`Billiard::apply_impulse`,
+/// `Simulation::steer_observer`, `Simulation::follow_observer`).
 pub fn frame_schedule() -> Schedule {
     let mut schedule = Schedule::default();
-    schedule.configure_sets(
-        (
-            Phase::Input,
-            Phase::Physics,
-            Phase::Kinematics,
-            Phase::History,
-            Phase::Optics,
-        )
-            .chain(),
-    );
-    schedule.add_systems(physics::advance.in_set(Phase::Physics));
+    schedule.configure_sets((Phase::Kinematics, Phase::History, Phase::Optics).chain());
     schedule.add_systems(
         (
             kinematics::contraction.run_if(any_view_with::<Contraction>),

@@ -8,9 +8,7 @@ use super::components::{
     Apparent, BodyContraction, BodyName, BodyRef, Fixture, FramingMarks, Lens, Mesh, Observer,
     OwnWorldline, ProperTime, Puck, PuckIndex, Tint, Vantage, View, effects_of, set_effect_marker,
 };
-use super::resources::{
-    Clock, FrameCollisions, History, OpticsMethod, Physics, SpeedOfLight, Table,
-};
+use super::resources::{Clock, History, OpticsMethod, Physics, SpeedOfLight, Table};
 use super::schedule::frame_schedule;
 use super::systems::input;
 use super::systems::optics::eye_at;
@@ -84,7 +82,6 @@ impl Simulation {
             )));
         }
         world.insert_resource(Physics(Billiard::from_scene(scene)));
-        world.insert_resource(FrameCollisions::default());
         for (i, p) in scene.pucks.iter().enumerate() {
             world.spawn((
                 PuckIndex(i),
@@ -153,9 +150,13 @@ impl Simulation {
         sim
     }
 
-    /// Sets the board time and runs one frame of the schedule. A time
-    /// before the physics' (a replay) only re-reads the worldlines.
+    /// Runs the physics to board time `t` (the billiard resolves every
+    /// event up to it: [`Billiard::advance_to`], the one place board time
+    /// advances), then one frame of the schedule at `t`. A time before the
+    /// physics' (a replay) moves nothing: the frame re-reads the
+    /// worldlines, where the past is.
     pub fn advance_to(&mut self, t: f64) {
+        self.physics_mut().advance_to(t);
         self.world.resource_mut::<Clock>().t = t;
         self.schedule.run(&mut self.world);
     }
