@@ -84,11 +84,13 @@ impl SimulationCore {
     /// The world with its views, built at the first call (the physics
     /// moved into it).
     fn world(&mut self) -> &mut Simulation {
-        if let Held::Physics(b) = &mut self.held {
-            let mut sim = Simulation::new(&self.scene);
-            let fresh = Box::new(Billiard::from_scene(&self.scene));
-            sim.replace_physics(*std::mem::replace(b, fresh));
-            self.held = Held::World(Box::new(sim));
+        if matches!(self.held, Held::Physics(_)) {
+            let built = Held::World(Box::new(Simulation::new(&self.scene)));
+            if let Held::Physics(b) = std::mem::replace(&mut self.held, built)
+                && let Held::World(sim) = &mut self.held
+            {
+                sim.replace_physics(*b);
+            }
         }
         match &mut self.held {
             Held::World(sim) => sim,

@@ -118,7 +118,8 @@ pub fn go_to(
         ));
     }
     game.intro = false;
-    crate::lesson::headless::run_to(host, game, t).map_err(|e| format!("{}: {e}", path.display()))
+    let mut lesson = crate::lesson::headless::Isolated { host, game };
+    crate::lesson::headless::run_to(&mut lesson, t).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Says on stderr that the lesson opened from `path` failed, if it did

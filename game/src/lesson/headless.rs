@@ -3,11 +3,84 @@
 //! (the lesson's right answer, else the first choice). This is how the
 //! tests check that every lesson's physics claims hold.
 
+use std::ops::DerefMut;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::LessonHost;
+use super::{LessonHost, LessonState, LocalLesson};
+use crate::model::GameState;
+
+/// A lesson as a run without a student drives it: in this process
+/// ([`LocalLesson`], which owns its game) or in its own ([`Isolated`]:
+/// the window's host and the game it serves, each hook waited for).
+pub trait Driven {
+    /// The lesson's screen, error and finish.
+    fn lesson(&self) -> &LessonState;
+    /// Whether its hooks run.
+    fn running(&self) -> bool;
+    /// The game it runs on.
+    fn game(&mut self) -> impl DerefMut<Target = GameState> + '_;
+    /// Answers the open question with choice `i`, `on_answer` run to its end.
+    fn answer(&mut self, i: usize);
+    /// The hooks of a step from board time `before`, run to their end.
+    fn after_step(&mut self, before: f64);
+    /// Whether the closing message is shown (its light has arrived).
+    fn watch_light(&mut self) -> bool;
+}
+
+impl Driven for LocalLesson {
+    fn lesson(&self) -> &LessonState {
+        self
+    }
+    fn running(&self) -> bool {
+        LocalLesson::running(self)
+    }
+    fn game(&mut self) -> impl DerefMut<Target = GameState> + '_ {
+        LocalLesson::game(self)
+    }
+    fn answer(&mut self, i: usize) {
+        LocalLesson::answer(self, i);
+    }
+    fn after_step(&mut self, before: f64) {
+        LocalLesson::after_step(self, before);
+    }
+    fn watch_light(&mut self) -> bool {
+        LocalLesson::watch_light(self)
+    }
+}
+
+/// The window's host and the game it serves, driven as a headless run
+/// drives a lesson: each hook waited for.
+pub struct Isolated<'a> {
+    /// The host, its lesson in its own process.
+    pub host: &'a mut LessonHost,
+    /// The game (the caller's).
+    pub game: &'a mut GameState,
+}
+
+impl Driven for Isolated<'_> {
+    fn lesson(&self) -> &LessonState {
+        self.host
+    }
+    fn running(&self) -> bool {
+        self.host.running()
+    }
+    fn game(&mut self) -> impl DerefMut<Target = GameState> + '_ {
+        &mut *self.game
+    }
+    fn answer(&mut self, i: usize) {
+        self.host.answer(self.game, i);
+        self.host.settle(self.game);
+    }
+    fn after_step(&mut self, before: f64) {
+        self.host.after_step(self.game, before);
+        self.host.settle(self.game);
+    }
+    fn watch_light(&mut self) -> bool {
+        self.host.watch_light(self.game)
+    }
+}
 
 /// A claim as the run reports it.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -91,7 +164,7 @@ pub enum Progress {
 }
 
 /// Tells `report` of the claims made since the first `seen`.
-fn new_claims(host: &LessonHost, seen: &mut usize, report: &mut dyn FnMut(Progress)) {
+fn new_claims(host: &LessonState, seen: &mut usize, report: &mut dyn FnMut(Progress)) {
     let new: Vec<ClaimLine> = host.with_ui(|ui| {
         ui.claims
             .iter()
@@ -137,8 +210,8 @@ pub fn run_reporting(
         return Err(format!("--fps {fps}: give a positive frame rate"));
     }
     // Headless, a lesson that fails before starting a game needs no table.
-    let (host, game) = LessonHost::load_with_limit(path, hook_limit, super::empty_game)?;
-    Ok(drive(path, host, game, until, fps, report))
+    let mut lesson = LocalLesson::load_with_limit(path, hook_limit, super::empty_game)?;
+    Ok(drive(path, &mut lesson, until, fps, report))
 }
 
 /// [`run`] with the lesson in its own process, as the window runs it
@@ -151,17 +224,20 @@ pub fn run_isolated(
     hook_limit: std::time::Duration,
     isolation: super::isolation::Isolation,
 ) -> Result<Outcome, String> {
-    let (host, game) =
+    let (mut host, mut game) =
         LessonHost::load_isolated_with_limit(path, hook_limit, super::empty_game, isolation)?;
-    Ok(drive(path, host, game, until, fps, &mut |_| {}))
+    let mut lesson = Isolated {
+        host: &mut host,
+        game: &mut game,
+    };
+    Ok(drive(path, &mut lesson, until, fps, &mut |_| {}))
 }
 
-/// Steps `game` and runs `host`'s hooks until the lesson finishes, fails,
+/// Steps the lesson's game and runs its hooks until it finishes, fails,
 /// or board time reaches `until`.
 fn drive(
     path: &Path,
-    mut host: LessonHost,
-    mut game: crate::model::GameState,
+    host: &mut impl Driven,
     until: f64,
     fps: f64,
     report: &mut dyn FnMut(Progress),
@@ -169,7 +245,7 @@ fn drive(
     let mut frames = 0u64;
     let mut answers = Vec::new();
     let mut claims_seen = 0;
-    new_claims(&host, &mut claims_seen, report);
+    new_claims(host.lesson(), &mut claims_seen, report);
     // Enough frames for `until` at any time scale the lesson sets, with a
     // hard cap against a lesson that pauses forever.
     let max_frames = 10_000_000u64;
@@ -177,12 +253,12 @@ fn drive(
     // A closing message that waits for an event's light (`finish(after_light_from=…)`)
     // keeps board time running until that light reaches the eye: the
     // run ends when the student would see it.
-    host.watch_light(&game);
-    while (host.running() || host.awaiting_light())
+    host.watch_light();
+    while (host.running() || host.lesson().awaiting_light())
         && frames < max_frames
         && !crate::interrupt::interrupted()
     {
-        let turned = turn(&mut host, &mut game, fps, until, &mut |t| {
+        let turned = turn(host, fps, until, &mut |t| {
             frames += 1;
             // Before the hooks: should one of them take the process down,
             // the parent knows the frame was reached.
@@ -196,9 +272,11 @@ fn drive(
             }
             Turn::Stepped => {}
         }
-        new_claims(&host, &mut claims_seen, report);
+        new_claims(host.lesson(), &mut claims_seen, report);
     }
-    let (claims, finished) = host.with_ui(|ui| {
+    let t = host.game().live_time;
+    let lesson = host.lesson();
+    let (claims, finished) = lesson.with_ui(|ui| {
         (
             ui.claims
                 .iter()
@@ -213,11 +291,11 @@ fn drive(
     });
     Outcome {
         file: path.display().to_string(),
-        t: game.live_time,
+        t,
         frames,
         finished,
-        error: host.error.clone(),
-        stopped: (host.error.is_some() && host.timed_out).then_some(Stop::Timeout),
+        error: lesson.error.clone(),
+        stopped: (lesson.error.is_some() && lesson.timed_out).then_some(Stop::Timeout),
         claims,
         answers,
     }
@@ -240,14 +318,8 @@ pub enum Turn {
 /// One turn of a lesson with nobody at the window: answers its open
 /// question, or, before board time `until`, presses play and steps one
 /// frame; `stepped(t)` hears the frame's board time before its hooks run.
-pub fn turn(
-    host: &mut LessonHost,
-    game: &mut crate::model::GameState,
-    fps: f64,
-    until: f64,
-    stepped: &mut dyn FnMut(f64),
-) -> Turn {
-    let (finished, question) = host.with_ui(|ui| {
+pub fn turn(host: &mut impl Driven, fps: f64, until: f64, stepped: &mut dyn FnMut(f64)) -> Turn {
+    let (finished, question) = host.lesson().with_ui(|ui| {
         let q = ui.open_question().map(|q| {
             let i = q.lessons_own();
             (q.text.clone(), q.choices[i].clone(), i)
@@ -258,20 +330,22 @@ pub fn turn(
         return Turn::Finished;
     }
     if let Some((text, choice, i)) = question {
-        host.answer(game, i);
-        host.settle(game);
+        host.answer(i);
         return Turn::Answered(text, choice);
     }
-    if game.live_time >= until {
-        return Turn::Reached;
-    }
-    game.paused = false;
-    let before = game.live_time;
-    game.step(1.0 / fps);
-    stepped(game.live_time);
-    host.after_step(game, before);
-    host.settle(game);
-    host.watch_light(game);
+    let (before, now) = {
+        let mut game = host.game();
+        if game.live_time >= until {
+            return Turn::Reached;
+        }
+        game.paused = false;
+        let before = game.live_time;
+        game.step(1.0 / fps);
+        (before, game.live_time)
+    };
+    stepped(now);
+    host.after_step(before);
+    host.watch_light();
     Turn::Stepped
 }
 
@@ -286,24 +360,21 @@ const STILL_FRAMES: u32 = 36_000;
 /// goes on without it. Returns at the first frame at or past `t`, or an
 /// error when board time stands still for `STILL_FRAMES` frames (the
 /// lesson paused it, or set no time scale) or Ctrl-C is pressed.
-pub fn run_to(
-    host: &mut LessonHost,
-    game: &mut crate::model::GameState,
-    t: f64,
-) -> Result<(), String> {
+pub fn run_to(host: &mut impl Driven, t: f64) -> Result<(), String> {
     const FPS: f64 = 60.0;
     let mut still = 0u32;
-    while game.live_time < t {
+    while host.game().live_time < t {
         if crate::interrupt::interrupted() {
             return Err("interrupted".to_owned());
         }
-        let before = game.live_time;
-        let lesson_on = host.running() || host.awaiting_light();
+        let before = host.game().live_time;
+        let lesson_on = host.running() || host.lesson().awaiting_light();
         let turned = if lesson_on {
-            turn(host, game, FPS, t, &mut |_| {})
+            turn(host, FPS, t, &mut |_| {})
         } else {
             Turn::Finished
         };
+        let mut game = host.game();
         if matches!(turned, Turn::Finished) {
             game.paused = false;
             game.step(1.0 / FPS);
@@ -321,6 +392,7 @@ pub fn run_to(
             }
         }
     }
+    let mut game = host.game();
     game.view_time = game.live_time;
     Ok(())
 }

@@ -56,7 +56,6 @@ use crate::lesson_game::empty_game;
 use crate::model::GameState;
 use lightcone_lesson::protocol::{self, Up};
 use lightcone_lesson::{LessonGame, WorldCall};
-use lightcone_python::World;
 
 /// How long a frame waits for the lesson before it draws: a hook that
 /// takes longer goes on over the next frames while board time waits.
@@ -457,24 +456,14 @@ impl Drop for Remote {
 impl LessonHost {
     /// Starts a new process for the lesson and queues its `setup` (the
     /// window's load and reload).
-    pub(super) fn start_remote(&mut self, isolation: &Isolation) {
-        self.loads += 1;
-        self.modified = super::modified(&self.path);
+    pub(super) fn start_remote(&mut self) {
+        self.begin_load();
         self.remote = None; // ends the old process
         self.pending = None;
-        self.error = None;
-        self.timed_out = false;
-        self.finished = false;
-        self.seen_collisions = 0;
-        let fresh = Python::attach(|py| {
-            let dir = self.world.borrow(py).dir.clone();
-            Py::new(py, World::new(dir))
-        });
-        match fresh {
-            Ok(w) => Python::attach(|_| *self.world = w),
-            Err(e) => return self.fail(format!("cannot start the lesson host: {e}")),
+        if let Err(e) = Python::attach(|py| self.fresh_world(py)) {
+            return self.fail(format!("cannot start the lesson host: {e}"));
         }
-        match Remote::spawn(&self.path, self.limit, isolation) {
+        match Remote::spawn(&self.path, self.limit, &self.isolation) {
             Ok(mut r) => {
                 r.queue.push_back(("setup", Value::Array(vec![])));
                 self.remote = Some(r);
@@ -524,7 +513,7 @@ impl LessonHost {
             game
         };
         let (result, generation) = Python::attach(|py| {
-            let mut world = self.world.borrow_mut(py);
+            let mut world = self.state.world.borrow_mut(py);
             let result = f(&mut world.on(Some(target)));
             (result, world.generation)
         });
@@ -566,7 +555,7 @@ impl LessonHost {
                     let Some((hook, args)) = remote.queue.pop_front() else {
                         return;
                     };
-                    if hook != "setup" && (self.error.is_some() || self.finished) {
+                    if hook != "setup" && (self.state.error.is_some() || self.state.finished) {
                         remote.queue.clear();
                         return;
                     }
@@ -682,10 +671,11 @@ impl LessonHost {
                 _ => {
                     game.paused = true;
                     self.remote = None;
-                    self.fail(format!(
+                    let message = format!(
                         "{}: setup(world) did not call world.start(scene)",
                         self.path.display()
-                    ));
+                    );
+                    self.fail(message);
                 }
             }
         }

@@ -5,6 +5,8 @@ use super::*;
 use std::cell::RefCell;
 use std::rc::Rc;
 
+use lightcone_python::World;
+
 #[test]
 fn a_hook_that_prints_megabytes_sends_only_what_the_panel_keeps() {
     let many: Vec<String> = (0..400_000)

@@ -1,6 +1,11 @@
-//! The lesson host's own tests: hooks, limits and the lent game.
+//! The in-process lesson host's own tests: hooks, limits and the game
+//! shared with the world.
+
+use std::time::SystemTime;
 
 use super::*;
+use crate::model::GameState;
+use lightcone_python::LessonUi;
 
 /// The embedded interpreter and its printed-lines tee are one per
 /// process: tests that run lessons take turns, so one test's drain of
@@ -45,33 +50,33 @@ fn an_edited_lesson_reloads_and_a_broken_edit_keeps_the_game() {
     let _one = one_lesson_at_a_time();
     let path = temp("reload.py");
     write(&path, &lesson("v1", ""), 0);
-    let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+    let mut host = LocalLesson::load(&path, fallback).unwrap();
     assert!(host.error.is_none(), "{:?}", host.error);
-    assert_eq!(game.scene.title, "v1");
-    assert!(!host.reload_if_edited(&mut game), "nothing changed yet");
+    assert_eq!(host.game().scene.title, "v1");
+    assert!(!host.reload_if_edited(), "nothing changed yet");
 
     write(&path, &lesson("v2", ""), 10);
-    assert!(host.reload_if_edited(&mut game));
-    assert_eq!(game.scene.title, "v2");
-    game.step(0.5);
+    assert!(host.reload_if_edited());
+    assert_eq!(host.game().scene.title, "v2");
+    host.game().step(0.5);
 
     // A syntax error: the game is kept as it was, the error is shown.
     write(&path, "def setup(world):\n    world.start(\n", 20);
-    assert!(host.reload_if_edited(&mut game));
+    assert!(host.reload_if_edited());
     let error = host.error.clone().expect("an error");
     assert!(error.contains("SyntaxError"), "{error}");
     assert!(error.contains("line 2"), "{error}");
-    assert_eq!(game.scene.title, "v2");
-    assert!((game.live_time - 0.5).abs() < 1e-12);
+    assert_eq!(host.game().scene.title, "v2");
+    assert!((host.game().live_time - 0.5).abs() < 1e-12);
     assert!(!host.running());
 
     // Fixed: it runs again, from the start.
     write(&path, &lesson("v3", ""), 30);
-    assert!(host.reload_if_edited(&mut game));
+    assert!(host.reload_if_edited());
     assert!(host.error.is_none());
     assert!(host.running());
-    assert_eq!(game.scene.title, "v3");
-    assert_eq!(game.live_time, 0.0);
+    assert_eq!(host.game().scene.title, "v3");
+    assert_eq!(host.game().live_time, 0.0);
 }
 
 #[test]
@@ -84,12 +89,12 @@ fn after_finish_no_hook_runs_again() {
                  def on_collision(world, event):\n\
                  \x20   world.check('collision after finish', False)\n";
     write(&path, &lesson("finish", extra), 0);
-    let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+    let mut host = LocalLesson::load(&path, fallback).unwrap();
     assert!(host.running() && !host.finished());
     for _ in 0..40 {
-        let before = game.live_time;
-        game.step(0.1);
-        host.after_step(&mut game, before);
+        let before = host.game().live_time;
+        host.game().step(0.1);
+        host.after_step(before);
     }
     assert!(host.finished());
     assert!(!host.running(), "hooks stop after finish");
@@ -98,9 +103,9 @@ fn after_finish_no_hook_runs_again() {
     assert_eq!(ui.claims.len(), 1, "{:?}", ui.claims);
     assert_eq!(ui.finished.as_deref(), Some("done"));
     // The game itself goes on (the puck reached its cushion).
-    assert!(game.live_time > 3.9);
+    assert!(host.game().live_time > 3.9);
     // A reload starts the lesson again.
-    host.reload(&mut game);
+    host.reload();
     assert!(host.running() && !host.finished());
 }
 
@@ -114,20 +119,20 @@ fn a_hook_call_costs_well_under_a_frame() {
     let extra = "def on_frame(world, t):\n\
                  \x20   world.n = getattr(world, 'n', 0) + (world.t == t)\n";
     write(&path, &lesson("cost", extra), 0);
-    let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+    let mut host = LocalLesson::load(&path, fallback).unwrap();
     let mut times = Vec::new();
     // 0.6 s of board time: the puck stays clear of the cushion, so this
     // measures hooks, not collisions.
     for _ in 0..6000 {
-        let before = game.live_time;
-        game.step(1e-4);
+        let before = host.game().live_time;
+        host.game().step(1e-4);
         let start = std::time::Instant::now();
-        host.after_step(&mut game, before);
+        host.after_step(before);
         times.push(start.elapsed().as_secs_f64() * 1e6);
     }
     assert!(host.error.is_none(), "{:?}", host.error);
     let calls: usize = Python::attach(|py| {
-        let n = host.world.bind(py).getattr("n").unwrap();
+        let n = host.world().bind(py).getattr("n").unwrap();
         n.extract().unwrap()
     });
     assert_eq!(calls, times.len(), "on_frame ran once a frame");
@@ -154,15 +159,15 @@ fn a_question_pauses_until_answered_and_on_answer_runs() {
                  \x20   world.check('answered', choice == 'b')\n\
                  \x20   print('chose', choice)\n";
     write(&path, &lesson("ask", extra), 0);
-    let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+    let mut host = LocalLesson::load(&path, fallback).unwrap();
     assert!(host.error.is_none(), "{:?}", host.error);
-    assert!(game.paused, "the question pauses the game");
-    game.step(1.0);
-    assert_eq!(game.live_time, 0.0);
-    host.answer(&mut game, 5); // not a choice: ignored
-    assert!(game.paused);
-    host.answer(&mut game, 1);
-    assert!(!game.paused, "answering resumes");
+    assert!(host.game().paused, "the question pauses the game");
+    host.game().step(1.0);
+    assert_eq!(host.game().live_time, 0.0);
+    host.answer(5); // not a choice: ignored
+    assert!(host.game().paused);
+    host.answer(1);
+    assert!(!host.game().paused, "answering resumes");
     let ui = host.with_ui(LessonUi::clone);
     assert_eq!(ui.text, "which? b");
     assert_eq!(ui.question.and_then(|q| q.chosen), Some(1));
@@ -175,7 +180,7 @@ fn a_question_pauses_until_answered_and_on_answer_runs() {
         "{:?}",
         ui.printed
     );
-    host.answer(&mut game, 0); // already answered: ignored
+    host.answer(0); // already answered: ignored
     assert_eq!(
         host.with_ui(LessonUi::clone)
             .question
@@ -195,32 +200,40 @@ fn hooks_see_the_lent_game_and_a_world_outside_a_hook_says_so() {
                  def on_collision(world, event):\n\
                  \x20   world.check('cushion', event['kind'] == 'cushion')\n";
     write(&path, &lesson("lend", extra), 0);
-    let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+    let mut host = LocalLesson::load(&path, fallback).unwrap();
     assert!(host.error.is_none(), "{:?}", host.error);
-    let u0 = game.physics().worldline(0).proper_velocity_at(0.0).0.x;
-    let before = game.live_time;
-    game.step(0.1);
-    host.after_step(&mut game, before);
-    assert!(host.error.is_none(), "{:?}", host.error);
-    // The impulse made in on_frame changed the game that is shown.
-    let u1 = game
+    let u0 = host
+        .game()
         .physics()
         .worldline(0)
-        .proper_velocity_at(game.live_time)
+        .proper_velocity_at(0.0)
         .0
         .x;
+    let before = host.game().live_time;
+    host.game().step(0.1);
+    host.after_step(before);
+    assert!(host.error.is_none(), "{:?}", host.error);
+    // The impulse made in on_frame changed the game that is shown.
+    let u1 = {
+        let game = host.game();
+        game.physics()
+            .worldline(0)
+            .proper_velocity_at(game.live_time)
+            .0
+            .x
+    };
     assert!((u1 - u0 - 0.1).abs() < 1e-12, "{u0} → {u1}");
     // Outside a hook the world has no game: a clear error, no crash.
     Python::attach(|py| {
-        let kept = host.world.bind(py).getattr("kept").unwrap();
+        let kept = host.world().bind(py).getattr("kept").unwrap();
         let err = kept.getattr("t").unwrap_err();
         assert!(err.to_string().contains("only inside a hook"), "{err}");
     });
     // Run to the cushion: on_collision sees it.
     for _ in 0..40 {
-        let before = game.live_time;
-        game.step(0.1);
-        host.after_step(&mut game, before);
+        let before = host.game().live_time;
+        host.game().step(0.1);
+        host.after_step(before);
     }
     assert!(host.error.is_none(), "{:?}", host.error);
     assert!(
@@ -286,18 +299,18 @@ fn a_finish_waits_until_the_light_of_its_event_reaches_the_eye() {
             outcome.t
         );
         // In the window's host: hooks stop at the finish, the message waits.
-        let (mut host, mut game) = LessonHost::load(&path, fallback).unwrap();
+        let mut host = LocalLesson::load(&path, fallback).unwrap();
         let mut shown_at = None;
-        while game.live_time < arrival + 1.0 {
-            let before = game.live_time;
-            game.step(1.0 / fps);
-            host.after_step(&mut game, before);
-            if host.watch_light(&game) && shown_at.is_none() {
-                shown_at = Some(game.live_time);
+        while host.game().live_time < arrival + 1.0 {
+            let before = host.game().live_time;
+            host.game().step(1.0 / fps);
+            host.after_step(before);
+            if host.watch_light() && shown_at.is_none() {
+                shown_at = Some(host.game().live_time);
             }
             let closing = host.with_ui(|ui| ui.closing().map(str::to_owned));
             assert_eq!(closing.is_some(), shown_at.is_some(), "{name}");
-            if game.live_time > 0.25 && shown_at.is_none() {
+            if host.game().live_time > 0.25 && shown_at.is_none() {
                 assert!(host.finished() && !host.running() && host.awaiting_light());
             }
         }
