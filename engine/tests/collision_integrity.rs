@@ -501,15 +501,8 @@ fn three_pucks_driven_into_a_corner() {
 /// A box of `n` pucks on a grid with random velocities (a deterministic
 /// generator, so failures repeat).
 fn random_box(n: usize, max_u: f64, restitution: f64, seed: u64) -> Billiard {
-    let mut state = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = lightcone_engine::physics::gas::Rng::new(seed);
+    let mut next = move || rng.next_f64();
     let side = (n as f64).sqrt().ceil() as usize;
     let spacing = 3.0 * R;
     let table = DVec2::splat(side as f64 * spacing + R);

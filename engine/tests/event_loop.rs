@@ -32,7 +32,7 @@ fn a_1e5_contact_gas_gives_the_same_contacts_as_the_reference_loop() {
     // 16 pucks, β < 0.8, 10⁵ contacts (pair and cushion). The reference
     // path costs O(N) exact predictions per change: a small gas keeps the
     // test to seconds.
-    let until = 380.0;
+    let until = 600.0;
     let fast = run(false, until);
     let slow = run(true, until);
     let (a, b) = (fast.collisions(), slow.collisions());
@@ -91,7 +91,7 @@ fn braking_gases_on_other_cloths_give_the_same_contacts_as_the_reference_loop() 
     // slippery and a rough cloth (μg = 0.98 and 9.8 m/s²), to the end of
     // the motion.
     let r = 0.0305;
-    for (seed, mu_g) in [(5, 0.98), (17, 9.80665), (23, 1.96)] {
+    for (seed, mu_g) in [(5, 0.98), (19, 9.80665), (23, 1.96)] {
         let run = |reference: bool| {
             let mut b = dense_box(40, r, 3.0 * r, 0.8, 1.42, seed);
             b.set_sliding_friction(mu_g);

@@ -231,15 +231,8 @@ fn frictionless_tables_are_untouched() {
 
 /// A random scene with friction: `n` pucks from a deterministic generator.
 fn random_friction(seed: u64, n: usize, log_u_max: f64, restitution: f64) -> Billiard {
-    let mut state = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = lightcone_engine::physics::gas::Rng::new(seed);
+    let mut next = move || rng.next_f64();
     let mut list: Vec<PuckInit> = Vec::new();
     while list.len() < n {
         let p = DVec2::new(0.05 + 1.9 * next(), 0.05 + 0.9 * next());

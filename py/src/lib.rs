@@ -108,10 +108,14 @@ fn to_record<'py, T: serde::Serialize>(
 }
 
 /// A serialisable value as plain Python data (dicts, lists, numbers,
-/// strings), through the JSON it serializes to.
+/// strings, `None`): what the command line's JSON of it reads as in
+/// Python. Through `serde_json::Value`, so that it is that JSON's data
+/// exactly (fixed-size arrays as lists, not tuples; a non-finite number as
+/// `None`, as JSON writes it), then `pythonize` (no JSON text is written
+/// or parsed).
 fn to_plain<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
-    let text = serde_json::to_string(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    py.import("json")?.call_method1("loads", (text,))
+    let json = serde_json::to_value(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    pythonize::pythonize(py, &json).map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
 fn effect(key: &str) -> PyResult<Effect> {

@@ -769,13 +769,8 @@ mod tests {
     fn random_bytes_never_crash_and_never_leak_out() {
         let base = Instant::now();
         let mut f = Follower::default();
-        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut rng = crate::motion::Prng::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = move || rng.next_u64();
         for k in 0..20_000u64 {
             let mut s = TrackerSample {
                 timestamp_ns: next(),

@@ -27,15 +27,18 @@
 
 use crate::sample::TrackerSample;
 use glam::{DQuat, DVec3};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::{Rng as _, SeedableRng};
 use std::f64::consts::TAU;
 use std::path::Path as FsPath;
 use thiserror::Error;
 
-/// SplitMix64 pseudo-random generator (Steele, Lea & Flood 2014): tiny,
-/// seedable, good enough for simulated sensor noise, no `rand` dependency.
+/// Seeded pseudo-random numbers for simulated sensor noise: the
+/// workspace's one generator (xoshiro256++, `rand_xoshiro`, seeded by
+/// `SeedableRng::seed_from_u64`), with normal draws by Box-Muller.
 #[derive(Debug, Clone)]
 pub struct Prng {
-    state: u64,
+    rng: Xoshiro256PlusPlus,
     spare_gaussian: Option<f64>,
 }
 
@@ -44,18 +47,14 @@ impl Prng {
     #[must_use]
     pub fn new(seed: u64) -> Self {
         Self {
-            state: seed,
+            rng: Xoshiro256PlusPlus::seed_from_u64(seed),
             spare_gaussian: None,
         }
     }
 
     /// Next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
-        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.rng.next_u64()
     }
 
     /// Uniform in `[0, 1)` with 53 bits of precision.

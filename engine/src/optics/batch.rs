@@ -502,15 +502,12 @@ mod tests {
 
     const C: f64 = 1.42;
 
-    /// A small deterministic generator (xorshift64*), uniform in [0, 1).
-    struct Rng(u64);
+    /// The workspace's seeded generator, with the draws these tests make.
+    struct Rng(crate::physics::gas::Rng);
 
     impl Rng {
         fn next(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+            self.0.next_f64()
         }
         fn range(&mut self, lo: f64, hi: f64) -> f64 {
             lo + (hi - lo) * self.next()
@@ -557,7 +554,7 @@ mod tests {
     /// at rest.
     #[test]
     fn batches_equal_the_per_vertex_solve() {
-        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        let mut rng = Rng(crate::physics::gas::Rng::new(0x9E37_79B9_7F4A_7C15));
         let mut out = Vec::new();
         for case in 0..300 {
             let w = worldline(&mut rng, case % 3 == 0);
@@ -615,7 +612,7 @@ mod tests {
     /// per-vertex search, on uniform and braking (Born-rigid) segments.
     #[test]
     fn inside_the_margin_no_vertex_changes_segment() {
-        let mut rng = Rng(0x0123_4567_89AB_CDEF);
+        let mut rng = Rng(crate::physics::gas::Rng::new(0x0123_4567_89AB_CDEF));
         let mut safe_seen = 0;
         let mut braking_safe = 0;
         for case in 0..800 {

@@ -508,11 +508,9 @@ mod tests {
     fn agrees_with_sorting_under_random_updates() {
         let mut c = Calendar::new(64);
         let mut keys = vec![f64::INFINITY; 64];
-        let mut state = 12345u64;
+        let mut rng = crate::physics::gas::Rng::new(12345);
         for step in 0..5000u64 {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
+            let state = rng.next_u64();
             let i = (state % 64) as u32;
             let t = if state.is_multiple_of(7) {
                 f64::INFINITY
@@ -551,13 +549,8 @@ mod tests {
         let n = 200u32;
         let mut c = Calendar::new(n as usize);
         let mut keys: Vec<Option<Key>> = vec![None; n as usize];
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rand = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = crate::physics::gas::Rng::new(0x9e37_79b9_7f4a_7c15);
+        let mut rand = move || rng.next_u64();
         let key_at = |t: f64, r: u64, i: u32| Key {
             t,
             rank: match r % 3 {
