@@ -91,6 +91,8 @@ fn braking_gases_on_other_cloths_give_the_same_contacts_as_the_reference_loop() 
     // slippery and a rough cloth (μg = 0.98 and 9.8 m/s²), to the end of
     // the motion.
     let r = 0.0305;
+    // (Seed 17 on the rough cloth stopped after 18 contacts, both loops
+    // alike, once the gases came from xoshiro256++: 19 gives more.)
     for (seed, mu_g) in [(5, 0.98), (19, 9.80665), (23, 1.96)] {
         let run = |reference: bool| {
             let mut b = dense_box(40, r, 3.0 * r, 0.8, 1.42, seed);

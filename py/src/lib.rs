@@ -95,8 +95,14 @@ fn array<'py, const N: usize>(
 
 /// Turns a serialisable report into the record class `class` of
 /// `lightcone.records` (`Collision`, `State`, `Observation`), built from the
-/// JSON object the command line prints.
-fn to_record<'py, T: serde::Serialize>(
+/// JSON object the command line prints (through its `serde_json` value, no
+/// JSON text). Also what the
+/// game's in-process lesson host gives `on_collision`.
+///
+/// # Errors
+/// A value that does not serialize (a map with non-string keys), or a
+/// record class that cannot be built from it.
+pub fn to_record<'py, T: serde::Serialize>(
     py: Python<'py>,
     class: &str,
     value: &T,
@@ -112,7 +118,10 @@ fn to_record<'py, T: serde::Serialize>(
 /// Python. Through `serde_json::Value`, so that it is that JSON's data
 /// exactly (fixed-size arrays as lists, not tuples; a non-finite number as
 /// `None`, as JSON writes it), then `pythonize` (no JSON text is written
-/// or parsed).
+/// or parsed). For the records' types (f64, u64, strings) this is exactly
+/// what `json.loads` of the printed text gives; an f32 field would show
+/// its binary value's digits (0.10000000149011612), and a u128 beyond
+/// u64 would not convert.
 fn to_plain<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
     let json = serde_json::to_value(value).map_err(|e| PyValueError::new_err(e.to_string()))?;
     pythonize::pythonize(py, &json).map_err(|e| PyValueError::new_err(e.to_string()))

@@ -76,9 +76,10 @@ impl LocalLesson {
         })
     }
 
-    /// The game, to step or look at. Held across no call on this host
-    /// (the borrow checker sees to it): a hook borrows it too.
-    pub fn game(&self) -> RefMut<'_, GameState> {
+    /// The game, to step or look at. Taking `&mut self`, one borrow at a
+    /// time, and none across a call on this host (a hook borrows it too):
+    /// the borrow checker sees to both.
+    pub fn game(&mut self) -> RefMut<'_, GameState> {
         self.game.borrow_mut()
     }
 
@@ -131,15 +132,8 @@ impl LocalLesson {
             let Some(line) = self.state.next_collision(&self.game.borrow()) else {
                 break;
             };
-            let Ok(text) = serde_json::to_string(&line) else {
-                continue;
-            };
             self.call("on_collision", move |py, world| {
-                let data = py.import("json")?.call_method1("loads", (text,))?;
-                let event = py
-                    .import("lightcone.records")?
-                    .getattr("Collision")?
-                    .call1((data,))?;
+                let event = lightcone_python::to_record(py, "Collision", &line)?;
                 PyTuple::new(py, [world.clone().into_any(), event])
             });
         }

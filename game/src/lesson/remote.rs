@@ -458,6 +458,7 @@ impl LessonHost {
     /// window's load and reload).
     pub(super) fn start_remote(&mut self) {
         self.begin_load();
+        self.finished = false; // a fresh world, below
         self.remote = None; // ends the old process
         self.pending = None;
         if let Err(e) = Python::attach(|py| self.fresh_world(py)) {

@@ -98,13 +98,14 @@ impl LessonState {
     }
 
     /// A (re)load begins: counted, the file's time noted, the last
-    /// failure and finish forgotten, the collisions seen from the start.
+    /// failure forgotten, the collisions seen from the start. (Whether the
+    /// lesson has finished is its world's: a fresh world's once setup ran,
+    /// the old one's when a reload fails before that.)
     pub(super) fn begin_load(&mut self) {
         self.loads += 1;
         self.modified = modified(&self.path);
         self.error = None;
         self.timed_out = false;
-        self.finished = false;
         self.seen_collisions = 0;
     }
 

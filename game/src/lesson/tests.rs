@@ -298,7 +298,8 @@ fn a_finish_waits_until_the_light_of_its_event_reaches_the_eye() {
             "{name}: shown at {} s, the light arrives at {arrival} s",
             outcome.t
         );
-        // In the window's host: hooks stop at the finish, the message waits.
+        // In the host stepped frame by frame: hooks stop at the finish, the
+        // message waits.
         let mut host = LocalLesson::load(&path, fallback).unwrap();
         let mut shown_at = None;
         while host.game().live_time < arrival + 1.0 {

@@ -79,10 +79,31 @@ pub trait Game {
     fn woken(&mut self) {}
 }
 
+/// What wakes the event loop besides the windows' own events.
+#[derive(Debug)]
+pub enum Wake {
+    /// [`wake`] was called: the game answers between frames
+    /// ([`Game::woken`]).
+    Game,
+    /// A screen reader (through AccessKit: AT-SPI on Linux, UI Automation
+    /// on Windows, NSAccessibility on macOS) asks for the panel's tree or
+    /// for an action on one of its controls. Desktop only: a browser's
+    /// canvas has no accessibility tree of its own.
+    #[cfg(not(target_arch = "wasm32"))]
+    AccessKit(egui_winit::accesskit_winit::Event),
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl From<egui_winit::accesskit_winit::Event> for Wake {
+    fn from(event: egui_winit::accesskit_winit::Event) -> Self {
+        Self::AccessKit(event)
+    }
+}
+
 #[cfg(target_arch = "wasm32")]
 thread_local! {
     /// Wakes the page's event loop ([`wake`]), once it runs.
-    static WAKER: std::cell::RefCell<Option<winit::event_loop::EventLoopProxy<()>>> =
+    static WAKER: std::cell::RefCell<Option<winit::event_loop::EventLoopProxy<Wake>>> =
         const { std::cell::RefCell::new(None) };
 }
 
@@ -92,7 +113,7 @@ pub fn wake() {
     #[cfg(target_arch = "wasm32")]
     WAKER.with(|w| {
         if let Some(proxy) = w.borrow().as_ref() {
-            let _ = proxy.send_event(());
+            let _ = proxy.send_event(Wake::Game);
         }
     });
 }
@@ -122,8 +143,12 @@ impl Gfx {
     fn open_window(event_loop: &ActiveEventLoop, game: &impl Game) -> Result<Arc<Window>, String> {
         let title = game.title();
         let attributes = Window::default_attributes().with_title(&title);
+        // Shown once its screen-reader adapter is up (AccessKit's rule:
+        // the adapter is made before the window is first shown).
         #[cfg(not(target_arch = "wasm32"))]
-        let attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        let attributes = attributes
+            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0))
+            .with_visible(false);
         // In a browser: a canvas appended to the page's body, sized by the
         // page's style sheet (winit follows its size).
         #[cfg(target_arch = "wasm32")]
@@ -140,9 +165,15 @@ impl Gfx {
         Ok(window)
     }
 
-    /// Opens the main window, the GPU (Vulkan, else GL), and egui on it.
+    /// Opens the main window, the GPU (Vulkan, else GL), and egui on it,
+    /// with its panel's tree offered to screen readers through `proxy`'s
+    /// event loop; then shows the window.
     #[cfg(not(target_arch = "wasm32"))]
-    fn open(event_loop: &ActiveEventLoop, game: &mut impl Game) -> Result<Self, String> {
+    fn open(
+        event_loop: &ActiveEventLoop,
+        game: &mut impl Game,
+        proxy: winit::event_loop::EventLoopProxy<Wake>,
+    ) -> Result<Self, String> {
         let window = Self::open_window(event_loop, game)?;
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: wgpu::Backends::VULKAN | wgpu::Backends::GL,
@@ -153,7 +184,28 @@ impl Gfx {
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
         game.open_windows(event_loop, &instance)?;
         let gpu = gpu::open(instance, Some(&surface))?;
-        Self::on_gpu(window, game.title(), surface, gpu)
+        let mut gfx = Self::on_gpu(window, game.title(), surface, gpu)?;
+        gfx.egui_state
+            .init_accesskit(event_loop, &gfx.window, proxy);
+        gfx.window.set_visible(true);
+        Ok(gfx)
+    }
+
+    /// A screen reader's request: the panel's whole tree (egui then sends
+    /// it with every frame's changes), an action on a control (a press, a
+    /// focus, a typed value: egui takes it as input at the next frame), or
+    /// that no screen reader listens any more.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn screen_reader(&mut self, event: egui_winit::accesskit_winit::WindowEvent) {
+        use egui_winit::accesskit_winit::WindowEvent as Asked;
+        match event {
+            Asked::InitialTreeRequested => self.egui.enable_accesskit(),
+            Asked::ActionRequested(request) => {
+                self.egui_state.on_accesskit_action_request(request);
+            }
+            Asked::AccessibilityDeactivated => self.egui.disable_accesskit(),
+        }
+        self.window.request_redraw();
     }
 
     /// In a browser: the GPU of the page's canvas `window`, and egui on
@@ -294,8 +346,8 @@ fn set_title(window: &Window, title: &str) {
 }
 
 /// Opens the event loop, or says how to do without a display.
-fn open_event_loop() -> Result<EventLoop<()>, String> {
-    EventLoop::new().map_err(|e| {
+fn open_event_loop() -> Result<EventLoop<Wake>, String> {
+    EventLoop::with_user_event().build().map_err(|e| {
         format!("cannot open a window ({e}); on a machine without a display, use `lightcone render`, or run under Xvfb")
     })
 }
@@ -309,6 +361,7 @@ pub fn run(game: &mut impl Game) -> Result<(), String> {
         game,
         gfx: None,
         result: Ok(()),
+        proxy: event_loop.create_proxy(),
     };
     event_loop
         .run_app(&mut runner)
@@ -340,6 +393,9 @@ struct Runner<'a, G: Game> {
     game: &'a mut G,
     gfx: Option<Gfx>,
     result: Result<(), String>,
+    /// On the desktop: how the screen-reader adapter wakes the loop.
+    #[cfg(not(target_arch = "wasm32"))]
+    proxy: winit::event_loop::EventLoopProxy<Wake>,
     /// In a browser: the GPU being opened (a future on the page's loop),
     /// and, once it is, the window with it.
     #[cfg(target_arch = "wasm32")]
@@ -380,14 +436,14 @@ impl<G: Game> Runner<'_, G> {
     }
 }
 
-impl<G: Game> ApplicationHandler for Runner<'_, G> {
+impl<G: Game> ApplicationHandler<Wake> for Runner<'_, G> {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.gfx.is_some() {
             return;
         }
         #[cfg(not(target_arch = "wasm32"))]
         {
-            let opened = Gfx::open(event_loop, self.game);
+            let opened = Gfx::open(event_loop, self.game, self.proxy.clone());
             self.adopt(event_loop, opened);
         }
         #[cfg(target_arch = "wasm32")]
@@ -451,9 +507,20 @@ impl<G: Game> ApplicationHandler for Runner<'_, G> {
         }
     }
 
-    fn user_event(&mut self, _event_loop: &ActiveEventLoop, (): ()) {
-        if self.gfx.is_some() {
-            self.game.woken();
+    fn user_event(&mut self, _event_loop: &ActiveEventLoop, wake: Wake) {
+        if self.gfx.is_none() {
+            return;
+        }
+        match wake {
+            Wake::Game => self.game.woken(),
+            #[cfg(not(target_arch = "wasm32"))]
+            Wake::AccessKit(event) => {
+                if let Some(gfx) = self.gfx.as_mut()
+                    && event.window_id == gfx.window.id()
+                {
+                    gfx.screen_reader(event.window_event);
+                }
+            }
         }
     }
 

@@ -173,8 +173,8 @@ mod tests {
     use crate::spacetime::{Event, ProperVelocity};
     use crate::worldline::Worldline;
 
-    /// Random pairs of uniformly moving pucks, near each other (xorshift,
-    /// deterministic): proper velocities up to 3 (γ ≈ 3.2), radii 0.02–0.04.
+    /// Random pairs of uniformly moving pucks, near each other (the seeded
+    /// `gas::Rng`, deterministic): proper velocities up to 3 (γ ≈ 3.2), radii 0.02–0.04.
     fn random_pairs(n: usize) -> Vec<(Worldline, f64, Worldline, f64)> {
         let mut rng = crate::physics::gas::Rng::new(0x2545_f491_4f6c_dd1d);
         let mut next = move || rng.next_f64();

@@ -148,13 +148,8 @@ fn pair_contact_on_braking_worldlines_matches_a_bisection_on_the_gap() {
 #[test]
 fn the_relative_speed_bound_finds_the_contacts_the_sum_of_speeds_finds() {
     let sum: SpeedBound = |sa, sb, from, _, _| speed_at(sa, from) + speed_at(sb, from);
-    let mut seed = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = crate::physics::gas::Rng::new(0x2545_f491_4f6c_dd1d);
+    let mut next = move || rng.next_f64();
     let (mut met, mut apart, mut hard, mut tighter) = (0, 0, 0, 0);
     for _ in 0..600 {
         let speed = 3.0 * next();

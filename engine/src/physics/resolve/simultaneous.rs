@@ -418,13 +418,8 @@ mod tests {
     /// or, where the impulses cannot carry it, less, never negative.
     #[test]
     fn masses_and_four_momentum_on_random_groups() {
-        let mut seed = 0x9e3779b97f4a7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::physics::gas::Rng::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = move || rng.next_f64();
         let (mut solved, mut capped) = (0, 0);
         for _ in 0..400 {
             let centre = body(0.1 + next(), (next() - 0.5, next() - 0.5));
