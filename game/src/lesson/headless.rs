@@ -353,7 +353,7 @@ pub fn turn(host: &mut impl Driven, fps: f64, until: f64, stepped: &mut dyn FnMu
 /// time (`render`, `record`): 10 minutes at 60 frames a second.
 const STILL_FRAMES: u32 = 36_000;
 
-/// Runs `game` with its lesson `host` to board time `t` (s), as the
+/// Runs the lesson `host` and its game to board time `t` (s), as the
 /// window would with a student who gives the lesson's own answers, at 60
 /// frames a real second: the hooks run, questions are answered, and once
 /// the lesson has finished (or failed: its error is on `host`) the board
