@@ -161,37 +161,28 @@ impl Billiard {
             .zip(&times)
             .map(|(&(s, _), &t)| body(s, t))
             .collect();
-        let (centre_after, after) = {
-            let alone: Vec<[Body; 2]> = contacts
-                .iter()
-                .zip(&strikers)
-                .map(|(&(s, h), &striker)| {
-                    let pair = if centre < s {
-                        [centre_before, striker]
-                    } else {
-                        [striker, centre_before]
-                    };
-                    let (lo, hi) = (centre.min(s), centre.max(s));
-                    let out = if h.on_board {
-                        self.board_push(lo, hi, pair, h.normal, self.restitution)
-                    } else {
-                        resolve::puck_puck(
-                            pair[0],
-                            pair[1],
-                            h.normal,
-                            h.pair_frame,
-                            self.restitution,
-                        )
-                    };
-                    if centre < s { [out[1], out[0]] } else { out }
-                })
-                .collect();
-            let Some(outcome) =
-                resolve::simultaneous::on_one_puck(centre_before, &strikers, &alone)
-            else {
-                return false;
-            };
-            outcome
+        let alone: Vec<[Body; 2]> = contacts
+            .iter()
+            .zip(&strikers)
+            .map(|(&(s, h), &striker)| {
+                let pair = if centre < s {
+                    [centre_before, striker]
+                } else {
+                    [striker, centre_before]
+                };
+                let (lo, hi) = (centre.min(s), centre.max(s));
+                let out = if h.on_board {
+                    self.board_push(lo, hi, pair, h.normal, self.restitution)
+                } else {
+                    resolve::puck_puck(pair[0], pair[1], h.normal, h.pair_frame, self.restitution)
+                };
+                if centre < s { [out[1], out[0]] } else { out }
+            })
+            .collect();
+        let Some((centre_after, after)) =
+            resolve::simultaneous::on_one_puck(centre_before, &strikers, &alone)
+        else {
+            return false;
         };
         self.stats.pair_contacts += contacts.len() as u64 - 1;
         self.stats.simultaneous_contacts += 1;

@@ -109,8 +109,7 @@ struct Centre {
 /// excess rises from `λ = 0` (0 if no heat is made, negative if some is) to
 /// a peak, then falls: the peak by golden section, then the root beyond it
 /// by bisection to the last bit. `None` if the peak is below zero (the
-/// impulses cannot carry that much heat) or at `λ = 0` (no striker
-/// closing).
+/// impulses cannot carry that much heat).
 fn rebound(group: &[Striker], centre: Centre, target: f64) -> Option<f64> {
     let pushed: DVec3 = group.iter().map(|s| s.d).sum();
     let excess = |lambda: f64| -> f64 {
@@ -148,7 +147,9 @@ fn rebound(group: &[Striker], centre: Centre, target: f64) -> Option<f64> {
     }
     let peak = 0.5 * (lo + hi);
     let top = excess(peak);
-    if top.is_nan() || top < 0.0 || peak <= 0.0 {
+    // (The peak is above 0: the golden section's upper end never comes
+    // within 1e-42 of its lower end at 0.)
+    if top.is_nan() || top < 0.0 {
         return None;
     }
     let (mut lo, mut hi) = (peak, far);
