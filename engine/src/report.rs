@@ -22,10 +22,13 @@ pub struct CollisionLine {
     pub contact: [f64; 2],
     /// Each puck's own velocity-change event.
     pub pucks: Vec<PuckLine>,
-    /// Present and `true` for contacts of several pucks with one at one
-    /// board time, resolved together: `pucks[0]` is the puck they meet.
+    /// Present and `true` for several contacts at one board time,
+    /// resolved together: `pucks` holds every puck of the group.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub simultaneous: bool,
+    /// With `simultaneous`, each pair in contact, as indices into `pucks`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pairs: Vec<[usize; 2]>,
 }
 
 /// One puck's part in a collision.
@@ -133,6 +136,7 @@ impl CollisionLine {
                 .map(|o| PuckLine::new(billiard, o))
                 .collect(),
             simultaneous: collision.simultaneous,
+            pairs: collision.pairs.clone(),
         }
     }
 }

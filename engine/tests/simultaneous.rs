@@ -252,21 +252,27 @@ fn apart(all: &[Spec]) -> bool {
 /// puck on the mid-line, proper speeds 0.03 to 30, either name order,
 /// restitution 1 or 0.7, some braking on the cloth: mirror images through
 /// the first three puck–puck contacts (simultaneous ones included,
-/// cushions without limit), and some of the 300 resolve contacts together
+/// cushions without limit), and some of the 2 000 resolve contacts together
 /// (so the test is not passed by scenes where nothing meets at once).
-/// Limit (docs/guide, collisions): contacts that meet at once as a chain or
-/// a cycle, not a star (twins meeting each other while the third meets
-/// them at their kick; with more pucks a side, four meeting pairwise; at
-/// restitution 0, a stuck pair struck on both sides), are resolved one by
-/// one and can end asymmetric: about one scene in a thousand does (seed
-/// 304's 300 hold one: a γ ≈ 30 puck, its image and a third meeting near
-/// the mid-line). This seed's 300 pass.
+/// Stars, chains and cycles of contacts at one board time are resolved
+/// together (twins meeting each other while the third meets both; twins
+/// whose own contact's kicks are still ahead when the third meets them;
+/// the mirror image of a kick or cushion bounce an ulp later). Seeds 1–400,
+/// 1000 and 12345 (`LIGHTCONE_MIRROR_SEED`) were tried: all pass but 376,
+/// whose one failing scene presses both twins and the third into a
+/// cushion at one board time (a cushion contact in the group, not
+/// covered; docs/guide, collisions).
 #[test]
 fn random_mirror_scenes_end_mirror_images() {
     use proptest::test_runner::{RngSeed, TestRunner};
     let config = ProptestConfig {
-        cases: 300,
-        rng_seed: RngSeed::Fixed(307),
+        cases: 2000,
+        rng_seed: RngSeed::Fixed(
+            std::env::var("LIGHTCONE_MIRROR_SEED")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(307),
+        ),
         ..ProptestConfig::default()
     };
     let scenes = (
@@ -305,4 +311,82 @@ fn random_mirror_scenes_end_mirror_images() {
         })
         .unwrap();
     assert!(together.get() > 0, "no scene met at once");
+}
+
+/// A cycle: two mirror-image twins meet each other on the mid-line at the
+/// board time a third puck, running up the mid-line, meets both (found by
+/// seed 295 of the random test). The three contacts are one group (its
+/// record names the three pairs), resolved by one rule: 4-momentum kept
+/// to 1e-12, every rest mass kept (elastic), mirror images to 1e-9 m
+/// after it and through the cushion bounces that follow.
+#[test]
+fn twins_meeting_each_other_and_a_third_at_once_are_one_group() {
+    let left = Spec {
+        x: 0.653534384531996,
+        y: 0.7729247224465209,
+        u: (-9.565366356342754, 6.544567250812004),
+        radius: 0.02,
+        mass: 0.1,
+    };
+    let axis = Spec {
+        x: W / 2.0,
+        y: 0.1,
+        u: (0.0, 10f64.powf(1.351781518029404)),
+        radius: 0.02244666733036812,
+        mass: 0.3,
+    };
+    for names in [false, true] {
+        let (dx, du, joint) = mirror_asymmetry(
+            std::slice::from_ref(&left),
+            std::slice::from_ref(&axis),
+            &[names],
+            1.0,
+            0.0,
+            3.0,
+            usize::MAX,
+        );
+        assert_eq!(joint, 1, "names {names}");
+        assert!(dx <= 1e-9 && du <= 1e-9, "names {names}: {dx:e} m, {du:e}");
+    }
+    let pucks = vec![
+        init("b0".into(), &left),
+        init("a0".into(), &mirrored(&left)),
+        init("m0".into(), &axis),
+    ];
+    let mut b = Billiard::new(1.0, DVec2::new(W, H), 1.0, 1.0, pucks);
+    b.set_recording(true);
+    b.advance_to(2.0);
+    let group = b
+        .collisions()
+        .iter()
+        .find(|c| c.simultaneous)
+        .expect("one group");
+    let mut pairs: Vec<[usize; 2]> = group
+        .pairs
+        .iter()
+        .map(|&[x, y]| {
+            let (p, q) = (group.pucks[x].puck, group.pucks[y].puck);
+            [p.min(q), p.max(q)]
+        })
+        .collect();
+    pairs.sort_unstable();
+    assert_eq!(pairs, vec![[0, 1], [0, 2], [1, 2]]);
+    let (mut e0, mut e1, mut p0, mut p1) = (0.0, 0.0, DVec3::ZERO, DVec3::ZERO);
+    for p in &group.pucks {
+        assert_eq!(p.mass_before, p.mass_after);
+        let four = |u: ProperVelocity| {
+            (
+                p.mass_before * (1.0 + u.0.length_squared()).sqrt(),
+                u.0 * p.mass_before,
+            )
+        };
+        let (e, m) = four(p.u_before);
+        e0 += e;
+        p0 += m;
+        let (e, m) = four(p.u_after);
+        e1 += e;
+        p1 += m;
+    }
+    assert!((e0 - e1).abs() <= 1e-12 * e0, "{e0} {e1}");
+    assert!((p0 - p1).length() <= 1e-12 * e0, "{p0} {p1}");
 }

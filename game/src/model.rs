@@ -454,12 +454,14 @@ impl GameState {
             .find(|c| c.t <= self.view_time)?;
         let names: Vec<&str> = c.pucks.iter().map(|p| b.name(p.puck)).collect();
         Some(match c.kind {
-            CollisionKind::PuckPuck if c.simultaneous => format!(
-                "t = {:.3} s: {} met {} at once",
-                c.t,
-                names[0],
-                names[1..].join(" and ")
-            ),
+            CollisionKind::PuckPuck if c.simultaneous => {
+                let (last, first) = names.split_last()?;
+                format!(
+                    "t = {:.3} s: {} and {last} met at once",
+                    c.t,
+                    first.join(", ")
+                )
+            }
             CollisionKind::PuckPuck => format!("t = {:.3} s: {} hit {}", c.t, names[0], names[1]),
             CollisionKind::Cushion(k) => {
                 format!("t = {:.3} s: {} hit cushion {}", c.t, names[0], k.name())

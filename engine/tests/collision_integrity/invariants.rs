@@ -19,8 +19,10 @@ pub fn pairs_of(c: &Collision) -> Vec<(usize, usize)> {
     }
     let pair = |a: usize, b: usize| (a.min(b), a.max(b));
     if c.simultaneous {
-        let centre = c.pucks[0].puck;
-        c.pucks[1..].iter().map(|p| pair(centre, p.puck)).collect()
+        c.pairs
+            .iter()
+            .map(|&[x, y]| pair(c.pucks[x].puck, c.pucks[y].puck))
+            .collect()
     } else if c.pucks.len() == 2 {
         vec![pair(c.pucks[0].puck, c.pucks[1].puck)]
     } else {
@@ -37,8 +39,10 @@ pub fn in_contact(c: &Collision, i: usize, j: usize) -> bool {
     }
     let is = |p: usize| p == i || p == j;
     if c.simultaneous {
-        let centre = c.pucks[0].puck;
-        is(centre) && c.pucks[1..].iter().any(|p| is(p.puck) && p.puck != centre)
+        c.pairs.iter().any(|&[x, y]| {
+            let (p, q) = (c.pucks[x].puck, c.pucks[y].puck);
+            p != q && is(p) && is(q)
+        })
     } else {
         c.pucks.len() == 2 && is(c.pucks[0].puck) && is(c.pucks[1].puck)
     }

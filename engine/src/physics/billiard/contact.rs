@@ -87,6 +87,7 @@ impl Billiard {
                 pucks: outcomes,
                 overlap_bound: 0.0,
                 simultaneous: false,
+                pairs: Vec::new(),
             });
         }
         for k in cluster {
@@ -245,8 +246,8 @@ impl Billiard {
         // one, the Zeno merge ends such a sequence after 64.
         if !zeno
             && self.restitution > 0.0
-            && let Some((centre, others)) = self.simultaneous_with(a, b, &hit, predicted_at)
-            && self.joint_contact([a, b], hit, centre, others, contact_id)
+            && let Some(group) = self.simultaneous_group(a, b, &hit, predicted_at)
+            && self.group_contact(group, contact_id)
         {
             return;
         }
@@ -296,6 +297,7 @@ impl Billiard {
                 pucks,
                 overlap_bound,
                 simultaneous: false,
+                pairs: Vec::new(),
             });
             self.collision_count() - 1
         });
@@ -320,7 +322,7 @@ impl Billiard {
         let order = if times[0] <= times[1] { [0, 1] } else { [1, 0] };
         for k in order {
             let id = ids[k];
-            if times[k] <= self.time {
+            if self.due_now(times[k]) {
                 self.land_kick(id);
             } else {
                 self.offer_kick([a, b][k], id, times[k]);

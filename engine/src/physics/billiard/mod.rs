@@ -134,11 +134,15 @@ pub struct Collision {
     /// relativity, see [`overlap_bound`](crate::physics::overlap::bound);
     /// for contacts resolved together, the largest of their pairs'.
     pub overlap_bound: f64,
-    /// Contacts of several pucks with one, at one board time, resolved
-    /// together ([`crate::physics::resolve::simultaneous`]): `pucks[0]` is
-    /// the puck they meet, every other one a puck whose contact is with it
-    /// (their contact point is `contact` for the first of them only).
+    /// Several contacts at one board time resolved together
+    /// ([`crate::physics::resolve::simultaneous`]): `pucks` holds every
+    /// puck of the group, `pairs` the contacts among them (`contact` is
+    /// the point of the first).
     pub simultaneous: bool,
+    /// For contacts resolved together, each pair in contact, as indices
+    /// into `pucks`; empty otherwise (a pair contact is `pucks[0]` with
+    /// `pucks[1]`).
+    pub pairs: Vec<[usize; 2]>,
 }
 
 /// Counters of what the event loop did.
@@ -177,7 +181,7 @@ pub struct Stats {
     /// into a cushion: it re-contracted about the rim point the cushion
     /// holds instead (`Billiard::hold_off_cushions`).
     pub cushion_holds: u64,
-    /// Groups of contacts on one puck at one board time resolved together
+    /// Groups of contacts at one board time resolved together
     /// (`resolve::simultaneous`); each contact is also counted in
     /// `pair_contacts`.
     pub simultaneous_contacts: u64,

@@ -69,8 +69,18 @@ impl Billiard {
                 if self.pucks[j].version != partner_version || self.pending_with(a, b) {
                     self.stats.stale += 1;
                 } else {
+                    self.changes_due_now(a, b);
                     let flushed_a = self.flush_pending(a);
                     let flushed_b = self.flush_pending(b);
+                    if flushed_a || flushed_b {
+                        // Others due to meet one of them now land theirs
+                        // too, so that contacts at one board time start
+                        // from states that do not depend on which of them
+                        // the loop took first.
+                        for j in self.due_with(a, b, t) {
+                            self.flush_pending(j);
+                        }
+                    }
                     // Else re-predicted with the news they carried.
                     if !(flushed_a || flushed_b) {
                         self.pair_contact(a, b, self.hits[i], next.predicted_at);

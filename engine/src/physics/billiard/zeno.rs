@@ -92,6 +92,7 @@ impl Billiard {
                 pucks: outcomes,
                 overlap_bound: 0.0,
                 simultaneous: false,
+                pairs: Vec::new(),
             });
         }
         for i in cluster {

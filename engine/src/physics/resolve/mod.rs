@@ -21,8 +21,9 @@
 //! §3.3.2.3 claim), and for `e < 1` the puck's kinetic energy is scaled by
 //! `e` (the cushion takes the heat; the puck's mass is unchanged).
 //!
-//! **Several contacts on one puck at one board time** (two strikers
-//! meeting a third at once): [`simultaneous::on_one_puck`].
+//! **Several contacts at one board time** (two strikers meeting a third
+//! at once, twins meeting each other and a third): [`simultaneous::on_graph`]
+//! ([`simultaneous::on_one_puck`] for a star).
 
 use glam::DVec3;
 

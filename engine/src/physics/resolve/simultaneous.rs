@@ -1,6 +1,8 @@
-//! Several contacts on one puck at one board time: two or more strikers
-//! meeting one puck (the *centre*) at once, each contact's velocity change
-//! of the centre due at the same board time.
+//! Several contacts at one board time: two or more strikers meeting one
+//! puck (the *centre*) at once, each contact's velocity change of the
+//! centre due at the same board time, or any graph of such contacts (a
+//! chain, a cycle: twins meeting each other while a third meets both),
+//! each puck's velocity changes from all its contacts due at one time.
 //!
 //! Resolved one after the other, such contacts give an outcome that
 //! depends on which is taken first: the second striker meets a centre the
@@ -12,35 +14,34 @@
 //! direction (two strikers from one side), above it (heat where none was
 //! asked) where they oppose.
 //!
-//! The rule here is symmetric in the strikers and keeps every body on its
+//! The rule here is symmetric in the contacts and keeps every body on its
 //! mass shell. In the group's centre-of-momentum frame (where no energy
 //! exceeds the group's invariant mass, so the mass shells are evaluated
-//! without cancellation at any γ), striker `k`'s momentum would change by
-//! `dₖ` were its contact alone (the pair-frame outcome of
-//! [`super::puck_puck`], heat included). Together, each changes by `λ dₖ`,
-//! with one factor `λ` for all (its energy follows from its mass shell),
-//! and the centre takes what the strikers give up: its momentum changes by
-//! `−λ Σ dₖ`, its energy by `−Σ ΔEₖ(λ)`. `λ` is the
-//! root at which the centre's rest mass is what the contacts alone would
-//! leave it (its own mass plus its share of each contact's heat); of the
-//! two roots, the larger one (the smaller leaves every striker closing).
-//! The larger need not open every pair (a weak striker beside a strong
-//! one can still be closing on the centre): the event loop then finds
-//! that pair's contact at once, a second round at the same board time.
+//! without cancellation at any γ), contact `k` would move momentum `dₖ`
+//! from one of its bodies to the other were it alone (the pair-frame
+//! outcome of [`super::puck_puck`], heat included). Together, each moves
+//! `λ dₖ`, one factor `λ` for all; each body's energy follows from its
+//! mass shell (its rest mass grown by its share of each of its contacts'
+//! heat), and `λ` is the root at which the group's energy is conserved;
+//! of the two roots, the larger one (the smaller leaves every pair
+//! closing). The larger need not open every pair (a weak striker beside a
+//! strong one can still be closing on the centre): the event loop then
+//! finds that pair's contact at once, a second round at the same board
+//! time.
 //!
-//! * One striker: `λ = 1`, the pair's own outcome.
-//! * Newton's limit, elastic: `λ = −Σ Jₖ·vₖ / (Σ |Jₖ|²/2mₖ + |Σ Jₖ|²/2M)`
-//!   for the impulses `Jₖ` the contacts would give alone (`M` the centre's
-//!   mass): `λ = 1` for orthogonal impulses (the contacts do not
-//!   interact), `λ = 2` for two equal strikers head-on from opposite sides
-//!   (both rebound, the centre stays at rest, at any γ).
+//! * One contact: `λ = 1`, the pair's own outcome.
+//! * Newton's limit, elastic, a star: `λ = −Σ Jₖ·vₖ / (Σ |Jₖ|²/2mₖ + |Σ
+//!   Jₖ|²/2M)` for the impulses `Jₖ` the contacts would give alone (`M`
+//!   the centre's mass): `λ = 1` for orthogonal impulses (the contacts do
+//!   not interact), `λ = 2` for two equal strikers head-on from opposite
+//!   sides (both rebound, the centre stays at rest, at any γ).
 //! * Elastic (`e = 1`): no heat, every rest mass unchanged.
 //! * `e < 1`: the heat is the sum of what each contact alone would make,
 //!   so each contact keeps, as if it were alone, the fraction `e` of its
 //!   pair's CM kinetic energy (the guide's definition of restitution);
 //!   unless the impulses together cannot carry that much (strikers side by
 //!   side share the centre's recoil): then the most they can, shared by
-//!   mass ([`on_one_puck`]).
+//!   mass ([`on_graph`]).
 //!
 //! Any rule for exactly simultaneous contacts of rigid bodies is a choice:
 //! their outcome is not the limit of nearly simultaneous ones, which
@@ -56,23 +57,23 @@ use glam::DVec3;
 use super::Body;
 use crate::spacetime::{Boost, ProperVelocity};
 
-/// One striker as the rule sees it, in the group's centre-of-momentum
-/// frame before the contacts (mass units, kg).
+/// One body of a group as the rule sees it, in the group's
+/// centre-of-momentum frame before the contacts (mass units, kg).
 #[derive(Clone, Copy)]
-struct Striker {
+struct Member {
     /// Momentum before, `m u`.
     p: DVec3,
-    /// Its change were the contact alone.
+    /// Its change were each of its contacts alone, summed.
     d: DVec3,
     /// Energy before, `m γ`.
     energy: f64,
     /// Rest mass before.
     mass: f64,
-    /// Rest mass after (grown by its share of the heat).
+    /// Rest mass after (grown by its share of each contact's heat).
     mass_after: f64,
 }
 
-impl Striker {
+impl Member {
     /// Its energy change `ΔE(λ) = E(λ) − E` for the momentum change `λ d`,
     /// formed as `(m′² − m² + λ d·(2p + λ d)) / (E(λ) + E)`, which keeps its
     /// digits when the change is small against the energy.
@@ -84,48 +85,24 @@ impl Striker {
     }
 }
 
-/// The centre of a group, in the frame the rule works in (mass units,
-/// kg).
-#[derive(Clone, Copy)]
-struct Centre {
-    /// Rest mass before.
-    mass: f64,
-    /// Energy before, `m γ`.
-    energy: f64,
-    /// Kinetic energy before, `m (γ − 1)` (formed without cancellation).
-    kinetic: f64,
-    /// Momentum before, `m u`.
-    p: DVec3,
-}
-
-/// The rebounding `λ` for strikers `group` (with their masses after) and
-/// a `centre` of mass `target` after (kg): the larger root of the
-/// centre's mass² after less `target²`, `(E − S)² − |P − λ D|² − M′²` (`S
-/// = Σ ΔEₖ(λ)`, `D = Σ dₖ`), formed as `(m − M′ + K)(E + M′) − 2 E S + S²
-/// − |P − λD|²` (`K = E − m` the kinetic energy), in which nothing of size
-/// `m²` cancels for slow bodies, and, in the group's centre-of-momentum
-/// frame where no energy exceeds the group's invariant mass, nothing
-/// larger than that mass² for fast ones. That
-/// excess rises from `λ = 0` (0 if no heat is made, negative if some is) to
-/// a peak, then falls: the peak by golden section, then the root beyond it
-/// by bisection to the last bit. `None` if the peak is below zero (the
-/// impulses cannot carry that much heat).
-fn rebound(group: &[Striker], centre: Centre, target: f64) -> Option<f64> {
-    let pushed: DVec3 = group.iter().map(|s| s.d).sum();
-    let excess = |lambda: f64| -> f64 {
-        let spent: f64 = group.iter().map(|s| s.energy_change(lambda)).sum();
-        if centre.energy - spent <= 0.0 {
-            return f64::NEG_INFINITY;
-        }
-        (centre.mass - target + centre.kinetic) * (centre.energy + target)
-            - 2.0 * centre.energy * spent
-            + spent * spent
-            - (centre.p - pushed * lambda).length_squared()
-    };
-    // Far enough that the strikers would have to gain energy: the excess
-    // is negative there.
+/// The rebounding `λ` for `group` (with their masses after): the larger
+/// root of the group's energy change `f(λ) = Σ ΔEᵢ(λ)` (each term formed
+/// without cancellation, [`Member::energy_change`]; in the group's
+/// centre-of-momentum frame no energy exceeds the group's invariant mass,
+/// so nothing larger than that cancels at any γ). Momentum is conserved
+/// for every `λ` (each contact's changes cancel); `f` is convex, `f(0) ≥
+/// 0` (0 if no heat is made), rising without end: its minimum by golden
+/// section, then the root beyond it by bisection to the last bit. `None`
+/// if the minimum is above zero (the impulses cannot carry that much
+/// heat).
+fn rebound(group: &[Member]) -> Option<f64> {
+    let f = |lambda: f64| -> f64 { group.iter().map(|s| s.energy_change(lambda)).sum() };
+    // Far enough that the energy change is positive and above its value
+    // at 0: the minimum lies before it (convexity).
+    let start = f(0.0);
     let mut far = 1.0f64;
-    while excess(far) >= 0.0 {
+    // (NaN counts as not yet: the doubling then ends in `None`.)
+    while f(far).partial_cmp(&start.max(0.0)) != Some(std::cmp::Ordering::Greater) {
         far *= 2.0;
         if far > 1e12 {
             return None;
@@ -139,53 +116,146 @@ fn rebound(group: &[Striker], centre: Centre, target: f64) -> Option<f64> {
         if x1 <= lo || x2 >= hi || x1 >= x2 {
             break;
         }
-        if excess(x1) < excess(x2) {
+        if f(x1) > f(x2) {
             lo = x1;
         } else {
             hi = x2;
         }
     }
-    let peak = 0.5 * (lo + hi);
-    let top = excess(peak);
-    // (The peak is above 0: the golden section's upper end never comes
-    // within 1e-42 of its lower end at 0.)
-    if top.is_nan() || top < 0.0 {
+    let low = 0.5 * (lo + hi);
+    let bottom = f(low);
+    if bottom.is_nan() || bottom > 0.0 {
         return None;
     }
-    let (mut lo, mut hi) = (peak, far);
+    let (mut lo, mut hi) = (low, far);
     for _ in 0..2000 {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
         }
-        if excess(mid) >= 0.0 {
+        if f(mid) <= 0.0 {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    Some(if excess(lo).abs() <= excess(hi).abs() {
-        lo
-    } else {
-        hi
-    })
+    Some(if f(lo).abs() <= f(hi).abs() { lo } else { hi })
+}
+
+/// One contact of a group: bodies `pair` (indices into the group's
+/// bodies) and the outcome the contact would have alone from the same
+/// states ([`super::puck_puck`] or the board push), `alone[k]` the body
+/// `pair[k]` after.
+#[derive(Clone, Copy, Debug)]
+pub struct GroupContact {
+    /// The two bodies, as indices into the group.
+    pub pair: [usize; 2],
+    /// Each after the contact alone.
+    pub alone: [Body; 2],
+}
+
+/// The outcome of `contacts` among `bodies` at one board time (each
+/// body's velocity changes once, from all its contacts together), by the
+/// rule of the module doc generalised from one centre to any contact
+/// graph (a star, a chain, a cycle): in the group's centre-of-momentum
+/// frame contact `k` would move momentum `dₖ` from one body to the other
+/// were it alone; together each moves `λ dₖ`, one `λ` for all, each body's
+/// energy on its mass shell (its rest mass grown by its share of each of
+/// its contacts' heat), and `λ` the larger root at which the group's
+/// energy is conserved. Returns every body after, in order. 4-momentum is
+/// conserved to the root's rounding.
+///
+/// Where the impulses together cannot carry the heat the contacts would
+/// make alone (strikers meeting a body side by side share its recoil), the
+/// heat is the most they can carry: the largest heat, shared among all
+/// the bodies in proportion to their rest masses, for which a rebounding
+/// root exists (bisection on the heat; at zero heat there is one wherever
+/// a pair closes, to rounding). `None` if none is found (nothing closing),
+/// for the caller to resolve the contacts one by one.
+///
+/// # Panics
+/// If a contact names a body not in `bodies`, or a body itself.
+#[must_use]
+pub fn on_graph(bodies: &[Body], contacts: &[GroupContact]) -> Option<Vec<Body>> {
+    let to_rest = Boost::into_frame(super::together_all(bodies)[0].u);
+    let mut group: Vec<Member> = bodies
+        .iter()
+        .map(|b| {
+            let w = to_rest.apply_velocity(b.u);
+            Member {
+                p: w.0 * b.mass,
+                d: DVec3::ZERO,
+                energy: b.mass * w.gamma(),
+                mass: b.mass,
+                mass_after: b.mass,
+            }
+        })
+        .collect();
+    let mut heat = 0.0;
+    for c in contacts {
+        let [i, j] = c.pair;
+        assert!(i != j, "a contact of two bodies");
+        // The change of the pair's first body; the second takes its
+        // opposite, so that momentum is conserved for every λ.
+        let after = c.alone[0];
+        let moved = to_rest.apply_velocity(after.u).0 * after.mass - group[i].p;
+        group[i].d += moved;
+        group[j].d -= moved;
+        for (k, &body) in c.pair.iter().enumerate() {
+            let grown = c.alone[k].mass - bodies[body].mass;
+            group[body].mass_after += grown;
+            heat += grown;
+        }
+    }
+    let lambda = match rebound(&group) {
+        Some(lambda) => lambda,
+        None if heat > 0.0 => {
+            // The most heat the impulses can carry, shared by mass.
+            let total_mass: f64 = bodies.iter().map(|b| b.mass).sum();
+            let share = |group: &mut [Member], h: f64| {
+                for s in group.iter_mut() {
+                    s.mass_after = s.mass + h * s.mass / total_mass;
+                }
+            };
+            let (mut lo, mut hi) = (0.0f64, heat);
+            share(&mut group, 0.0);
+            let mut found = rebound(&group)?;
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                share(&mut group, mid);
+                if let Some(lambda) = rebound(&group) {
+                    lo = mid;
+                    found = lambda;
+                } else {
+                    hi = mid;
+                }
+            }
+            share(&mut group, lo);
+            found
+        }
+        None => return None,
+    };
+    let from_rest = to_rest.inverse();
+    Some(
+        group
+            .iter()
+            .map(|s| Body {
+                mass: s.mass_after,
+                u: from_rest.apply_velocity(ProperVelocity((s.p + s.d * lambda) / s.mass_after)),
+            })
+            .collect(),
+    )
 }
 
 /// The outcome of `strikers.len()` contacts on `centre` at one board time
-/// (see the module doc for the rule). `alone[k]` is contact `k` resolved
-/// alone from the same states ([`super::puck_puck`]): striker `k` after,
-/// then the centre after (of which only its mass is read: its share of
-/// that contact's heat). Returns the centre after and each striker after,
-/// in order. 4-momentum is conserved to the root's rounding.
-///
-/// Where the impulses together cannot carry the heat the contacts would
-/// make alone (strikers meeting the centre side by side share its recoil,
-/// so less of their motion is along the normals than each alone), the heat
-/// is the most they can carry: the largest heat, shared among all the
-/// bodies in proportion to their rest masses, for which a rebounding root
-/// exists (bisection on the heat; at zero heat there is one wherever a
-/// striker closes, to rounding). `None` if none is found (no striker
-/// closing), for the caller to resolve the contacts one by one.
+/// (a star, [`on_graph`]). `alone[k]` is contact `k` resolved alone from
+/// the same states ([`super::puck_puck`]): striker `k` after, then the
+/// centre after (of which only its mass is read: its share of that
+/// contact's heat). Returns the centre after and each striker after, in
+/// order; `None` as [`on_graph`].
 ///
 /// # Panics
 /// If `alone` and `strikers` differ in length.
@@ -196,83 +266,19 @@ pub fn on_one_puck(
     alone: &[[Body; 2]],
 ) -> Option<(Body, Vec<Body>)> {
     assert_eq!(strikers.len(), alone.len(), "one outcome alone per striker");
-    // The group's centre-of-momentum frame.
-    let mut all = vec![centre];
-    all.extend(strikers);
-    let to_rest = Boost::into_frame(super::together_all(&all)[0].u);
-    let mut heat = 0.0;
-    let mut group: Vec<Striker> = strikers
+    let mut bodies = vec![centre];
+    bodies.extend(strikers);
+    let contacts: Vec<GroupContact> = alone
         .iter()
-        .zip(alone)
-        .map(|(s, [after, centre_after])| {
-            heat += (after.mass - s.mass) + (centre_after.mass - centre.mass);
-            let w = to_rest.apply_velocity(s.u);
-            let p = w.0 * s.mass;
-            Striker {
-                p,
-                d: to_rest.apply_velocity(after.u).0 * after.mass - p,
-                energy: s.mass * w.gamma(),
-                mass: s.mass,
-                mass_after: after.mass,
-            }
+        .enumerate()
+        .map(|(k, &alone)| GroupContact {
+            pair: [k + 1, 0],
+            alone,
         })
         .collect();
-    let m = centre.mass;
-    let w = to_rest.apply_velocity(centre.u);
-    let centre_now = Centre {
-        mass: m,
-        energy: m * w.gamma(),
-        kinetic: m * w.gamma_minus_one(),
-        p: w.0 * m,
-    };
-    // The centre's mass after, with each contact's heat as alone.
-    let mut target = m + alone.iter().map(|a| a[1].mass - m).sum::<f64>();
-    let lambda = match rebound(&group, centre_now, target) {
-        Some(lambda) => lambda,
-        None if heat > 0.0 => {
-            // The most heat the impulses can carry, shared by mass.
-            let total_mass = m + strikers.iter().map(|s| s.mass).sum::<f64>();
-            let share = |group: &mut [Striker], h: f64| {
-                for s in group.iter_mut() {
-                    s.mass_after = s.mass + h * s.mass / total_mass;
-                }
-                m + h * m / total_mass
-            };
-            let (mut lo, mut hi) = (0.0f64, heat);
-            let elastic = share(&mut group, 0.0);
-            let mut found = rebound(&group, centre_now, elastic)?;
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    break;
-                }
-                let target = share(&mut group, mid);
-                if let Some(lambda) = rebound(&group, centre_now, target) {
-                    lo = mid;
-                    found = lambda;
-                } else {
-                    hi = mid;
-                }
-            }
-            target = share(&mut group, lo);
-            found
-        }
-        None => return None,
-    };
-    let from_rest = to_rest.inverse();
-    let pushed: DVec3 = group.iter().map(|s| s.d).sum();
-    let after = group
-        .iter()
-        .map(|s| Body {
-            mass: s.mass_after,
-            u: from_rest.apply_velocity(ProperVelocity((s.p + s.d * lambda) / s.mass_after)),
-        })
-        .collect();
-    let centre_after = Body {
-        mass: target,
-        u: from_rest.apply_velocity(ProperVelocity((centre_now.p - pushed * lambda) / target)),
-    };
-    Some((centre_after, after))
+    let mut after = on_graph(&bodies, &contacts)?;
+    let centre = after.remove(0);
+    Some((centre, after))
 }
 
 #[cfg(test)]
