@@ -23,9 +23,13 @@ use crate::args::{Arg, Bound, Vector, type_error};
 use crate::error::{ErrorKind, WorldError, WorldResult};
 use crate::world::{NO_GAME, WorldCall};
 
-/// Longest a single hook may run (a lesson's process is stopped, a
-/// browser's worker ended, past it).
+/// Longest a single hook may run: past it the hook gets a `TimeoutError`
+/// at its line (a lesson's process and a browser's worker alike).
 pub const HOOK_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// How long after its limit a hook that did not stop (a long call into C,
+/// which never returns to Python) has its process or worker ended.
+pub const HOOK_GRACE: std::time::Duration = std::time::Duration::from_millis(800);
 
 /// Longest line either side accepts from the other, bytes.
 pub const MAX_LINE: usize = 16 << 20;

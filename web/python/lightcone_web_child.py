@@ -10,14 +10,23 @@ lesson's `World` (`lightcone_remote.World`) sends its requests through
 `request`, which the worker makes synchronous for Python (JSPI: it
 blocks on the game's answer with `pyodide.ffi.run_sync`).
 
-Time limits are the game's: it ends the worker when a hook runs too long
-(`timed_out` is always false here: nothing in the worker interrupts a
-hook).
+A hook over its time limit gets a `TimeoutError` at its line, as on the
+desktop (`game/src/lesson/watchdog.rs`), from `sys.monitoring` (there is
+no second thread or signal in a worker): the time is looked at on each
+function entry and each backward jump (every loop turns through one),
+and once the hook is over its limit `TimeoutError` is raised there and
+again at every line of the lesson's code until the hook returns, so an
+`except Exception:` in the lesson cannot swallow it (the next is raised
+on the handler's own first line). The Done line then says `timed_out`.
+What this cannot stop (a long call into C, such as
+`sum(range(10**12))`, which never returns to Python) the game stops
+`protocol::HOOK_GRACE` later by ending the worker.
 """
 
 import json
 import os
 import sys
+import time
 import traceback
 import types
 
@@ -36,6 +45,9 @@ LONGEST = 4096
 # the engine's stand-in is native code on the desktop (no frame), and
 # this file is Rust there.
 _HIDDEN = {os.path.abspath(__file__), os.path.abspath(sys.modules["lightcone._lightcone"].__file__)}
+# The code the time limit never interrupts: this file (the game's side of
+# the protocol, Rust on the desktop), by the names its code objects carry.
+_HIDDEN_CODE = frozenset({__file__, os.path.abspath(__file__)})
 
 _loaded = 0
 
@@ -119,24 +131,97 @@ def drain_printed():
     return [_text(line[:LONGEST] + "…" if len(line) > LONGEST else line) for line in lines]
 
 
+# The `sys.monitoring` tool id the time limit uses (one of those free for
+# tools other than debuggers, coverage and profilers).
+_LIMIT_TOOL = 4
+
+
+class _Limit:
+    """A hook's time limit: `TimeoutError` in the lesson's code once
+    `seconds` have passed since `start` (module doc)."""
+
+    def __init__(self, seconds, hook):
+        self.seconds = seconds
+        self.hook = hook
+        self.deadline = None
+        self.over = False
+
+    def _raise(self):
+        raise TimeoutError(
+            f"the hook {self.hook} ran longer than its limit of {self.seconds:g} s"
+        )
+
+    def _watch(self, code, *_):
+        """PY_START and JUMP: the clock, looked at in the lesson's code."""
+        if code.co_filename in _HIDDEN_CODE:
+            return sys.monitoring.DISABLE
+        if self.over or time.monotonic() > self.deadline:
+            self._over()
+            self._raise()
+        return None
+
+    def _line(self, code, _line):
+        """LINE, once over: raised again at every line of the lesson's code."""
+        if code.co_filename in _HIDDEN_CODE:
+            return sys.monitoring.DISABLE
+        self._raise()
+
+    def _over(self):
+        if not self.over:
+            self.over = True
+            sys.monitoring.set_events(_LIMIT_TOOL, self._events() | sys.monitoring.events.LINE)
+
+    @staticmethod
+    def _events():
+        e = sys.monitoring.events
+        return e.PY_START | e.JUMP
+
+    def __enter__(self):
+        mon = getattr(sys, "monitoring", None)
+        if mon is None or not (self.seconds > 0):
+            return self
+        try:
+            mon.use_tool_id(_LIMIT_TOOL, "lightcone hook limit")
+        except ValueError:
+            mon.free_tool_id(_LIMIT_TOOL)
+            mon.use_tool_id(_LIMIT_TOOL, "lightcone hook limit")
+        self.deadline = time.monotonic() + self.seconds
+        mon.register_callback(_LIMIT_TOOL, mon.events.PY_START, self._watch)
+        mon.register_callback(_LIMIT_TOOL, mon.events.JUMP, self._watch)
+        mon.register_callback(_LIMIT_TOOL, mon.events.LINE, self._line)
+        mon.set_events(_LIMIT_TOOL, self._events())
+        return self
+
+    def __exit__(self, *exc):
+        mon = getattr(sys, "monitoring", None)
+        if mon is not None and self.deadline is not None:
+            mon.set_events(_LIMIT_TOOL, 0)
+            for event in (mon.events.PY_START, mon.events.JUMP, mon.events.LINE):
+                mon.register_callback(_LIMIT_TOOL, event, None)
+            mon.free_tool_id(_LIMIT_TOOL)
+        return False
+
+
 class Child:
     """One lesson in the worker: its source, its `World` stand-in and,
     after `setup`, its module."""
 
-    def __init__(self, name, source, request):
+    def __init__(self, name, source, request, limit=0.0):
         """`request(line)` sends a request line to the game and returns its
-        answer line (the worker's, blocking)."""
+        answer line (the worker's, blocking); `limit` is the longest a hook
+        may run, s (0: no limit here)."""
         self.name = name
         self.source = source
+        self.limit = float(limit)
         self.world = lightcone_remote.World(request, lesson_dir(name))
         self.lesson = None
 
-    def _done(self, error, hooks):
+    def _done(self, error, hooks, timed_out=False):
         return json.dumps(
             {
                 "done": {
                     "error": None if error is None else _text(error),
-                    "timed_out": False,
+                    "timed_out": timed_out,
                     "printed": drain_printed(),
                     "hooks": hooks,
                 }
@@ -155,14 +240,16 @@ class Child:
         if hook not in HOOKS:
             return self._done(f"no such hook {json.dumps(hook, ensure_ascii=False)}", [])
         error = None
+        limit = _Limit(self.limit, hook)
         try:
-            if hook == "setup":
-                self.lesson = load_module(self.name, self.source)
-                self.lesson.setup(*args)
-            else:
-                f = getattr(self.lesson, hook, None) if self.lesson is not None else None
-                if f is not None:
-                    f(*args)
+            with limit:
+                if hook == "setup":
+                    self.lesson = load_module(self.name, self.source)
+                    self.lesson.setup(*args)
+                else:
+                    f = getattr(self.lesson, hook, None) if self.lesson is not None else None
+                    if f is not None:
+                        f(*args)
         except BaseException as e:  # as the desktop: SystemExit, KeyboardInterrupt too
             error = format_error(e)
             if hook != "setup":
@@ -170,15 +257,15 @@ class Child:
         hooks = []
         if hook == "setup" and self.lesson is not None:
             hooks = [h for h in HOOKS[1:] if hasattr(self.lesson, h)]
-        return self._done(error, hooks)
+        return self._done(error, hooks, limit.over)
 
 
-def start(name, source, request):
+def start(name, source, request, limit=0.0):
     """The worker's entry: tees `sys.stdout` (what the lesson prints goes
     to the browser's console and into the Done message), keeps the lesson
     from ending the interpreter with os._exit / os.abort (as the desktop's
     `lightcone_bootstrap.guard`: a SystemExit saying so), and returns the
-    lesson's `Child`."""
+    lesson's `Child`, whose hooks stop at `limit` s (module doc)."""
     import posix
 
     if not isinstance(sys.stdout, lightcone_bootstrap._Printed):
@@ -186,4 +273,4 @@ def start(name, source, request):
     for module in (os, posix):
         module._exit = lightcone_bootstrap._no_exit
         module.abort = lightcone_bootstrap._no_exit
-    return Child(name, source, request)
+    return Child(name, source, request, limit)

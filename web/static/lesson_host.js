@@ -29,7 +29,8 @@
 // messages (of any kind) waiting to be taken, ends the worker with the
 // reason; a message of no known kind is dropped without waking the game;
 // a reason the worker gives is cut to 64 Ki characters.
-// Nothing here times hooks: the game does, and calls stop().
+// Nothing here times hooks: the worker raises TimeoutError in a hook past
+// its limit, and the game calls stop() on one that still runs after.
 (function () {
   "use strict";
 

@@ -119,14 +119,16 @@ def _lightcone_request(line, up=_lightcone_up, next_line=_lightcone_next):
 del _lightcone_up, _lightcone_next
 lightcone_web_child.start
 `);
-    const child = start(name, source, pyodide.globals.get("_lightcone_request"));
+    // A hook over `limit` s gets a TimeoutError at its line (sys.monitoring,
+    // lightcone_web_child.py); the game ends this worker if one still runs
+    // a moment later (a long call into C).
+    const child = start(name, source, pyodide.globals.get("_lightcone_request"), limit);
     start.destroy();
     runCall = child.run_call;
   } catch (err) {
     post({ kind: "failed", error: `the lesson's Python could not start: ${describe(err)}` });
     return;
   }
-  void limit; // the game times hooks and ends this worker (lesson_host.js's stop)
   post({ kind: "ready" });
   for (;;) {
     const line = await nextLine();

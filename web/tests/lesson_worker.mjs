@@ -13,7 +13,9 @@
 // and started, an error answer raised as its class), the Done messages
 // (printed lines, hooks, tracebacks "in HOOK:" at the lesson's line), the
 // engine's Scene and Simulation against the extension's answers, a lesson
-// without setup or that does not compile, a hanging hook stopped, a
+// without setup or that does not compile, a hook past its limit stopped
+// with TimeoutError at its line (even one that catches it), a hanging hook
+// stopped by the page, a
 // browser without JSPI told so, nothing fetched from another host.
 // Prints JSON lines (ms from open to "ready", a request's round trip, the
 // Pyodide files fetched), then "N passed, N failed"; exits 1 on any
@@ -131,7 +133,7 @@ await page.evaluate(() => {
 });
 const next = (ms = 20_000) => page.evaluate((ms) => window.__next(ms), ms);
 const lesson = {
-  open: (name, source) => page.evaluate(([n, s]) => window.lightconeLesson.open(n, s, 10), [name, source]),
+  open: (name, source, limit = 10) => page.evaluate(([n, s, l]) => window.lightconeLesson.open(n, s, l), [name, source, limit]),
   send: (line) => page.evaluate((l) => window.lightconeLesson.send(l), line),
   state: () => page.evaluate(() => window.lightconeLesson.state()),
   stop: () => page.evaluate(() => window.lightconeLesson.stop()),
@@ -153,7 +155,7 @@ async function request(op, what) {
 }
 
 // The next message must be a Done line: returns its fields.
-async function done(what) {
+async function done(what, timedOut = false) {
   const m = await up(what);
   if (!m) return null;
   if (!check(m.done, `${what}: expected done, got ${JSON.stringify(m)}`)) return null;
@@ -161,14 +163,14 @@ async function done(what) {
     JSON.stringify(Object.keys(m.done)) === JSON.stringify(["error", "timed_out", "printed", "hooks"]),
     `${what}: Done's fields ${JSON.stringify(Object.keys(m.done))}`,
   );
-  check(m.done.timed_out === false, `${what}: timed_out ${m.done.timed_out}`);
+  check(m.done.timed_out === timedOut, `${what}: timed_out ${m.done.timed_out}`);
   return m.done;
 }
 
 // Opens a lesson and waits for "ready"; ms from open to ready.
-async function openReady(name, source) {
+async function openReady(name, source, limit = 10) {
   const t0 = await page.evaluate(() => window.__now());
-  await lesson.open(name, source);
+  await lesson.open(name, source, limit);
   check((await lesson.state()) === "loading", `${name}: state after open`);
   const m = await next(120_000);
   if (!check(m && m.kind === "ready", `${name}: expected ready, got ${JSON.stringify(m)}`)) return null;
@@ -447,6 +449,36 @@ if ((await openReady("broken.py", "def setup(world):\n    return (\n")) !== null
   await lesson.send(call("setup", "[]", NONE));
   const d = await done("syntax error");
   check(d && /^ {2}File "broken\.py", line 2\n[\s\S]*SyntaxError: /.test(d.error), `syntax error: ${JSON.stringify(d && d.error)}`);
+}
+
+// A hook past its limit (1 s here): TimeoutError at the lesson's line, as
+// on the desktop, even where the lesson catches every exception (the next
+// is raised on its handler's line); the worker lives on for the next call.
+for (const [name, source, line] of [
+  ["hang.py", "def setup(world):\n    while True:\n        pass\n", 3],
+  [
+    "swallow.py",
+    "def setup(world):\n    while True:\n        try:\n            while True:\n                pass\n        except BaseException:\n            pass\n",
+    0,
+  ],
+  ["calls.py", "def tick():\n    return 1\n\n\ndef setup(world):\n    n = 0\n    while True:\n        n += tick()\n", 0],
+]) {
+  if ((await openReady(name, source, 1)) === null) continue;
+  const t0 = await page.evaluate(() => window.__now());
+  await lesson.send(call("setup", "[]", NONE));
+  const d = await done(`${name} past its limit`, true);
+  const ms = (await page.evaluate(() => window.__now())) - t0;
+  const at = `File "${name}", line ${line || ""}`;
+  check(
+    d && d.error.includes(at) && d.error.endsWith("TimeoutError: the hook setup ran longer than its limit of 1 s"),
+    `${name}: ${JSON.stringify(d && d.error)}`,
+  );
+  check(ms > 900 && ms < 3000, `${name}: stopped after ${ms} ms`);
+  console.log(JSON.stringify({ lesson: name, stopped_after_ms: Math.round(ms) }));
+  await lesson.send(call("on_frame", "[0.0]"));
+  const after = await done(`${name}: a call after the timeout`);
+  check(after && after.error === null, `${name}: the call after ${JSON.stringify(after)}`);
+  await lesson.stop();
 }
 
 if ((await openReady("hang.py", "def setup(world):\n    while True:\n        pass\n")) !== null) {

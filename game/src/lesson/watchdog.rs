@@ -35,8 +35,9 @@ use pyo3::prelude::*;
 
 pub use lightcone_lesson::protocol::HOOK_LIMIT;
 
-/// How long after its limit a hook that did not stop ends the process.
-pub const GRACE: Duration = Duration::from_millis(800);
+/// How long after its limit a hook that did not stop ends the process
+/// (the protocol's, as for a browser's worker).
+pub const GRACE: Duration = lightcone_lesson::protocol::HOOK_GRACE;
 
 /// Exit status of a process whose hook could not be stopped.
 pub const HARD_STOP_STATUS: i32 = 3;

@@ -10,8 +10,9 @@
 //! The page never waits for the worker: each frame takes what has
 //! arrived (a request is answered at once, a hook's end taken), sends the
 //! next queued call, and while a hook is out board time waits. A hook
-//! past its limit ends the worker (a worker cannot be interrupted at a
-//! line, as the desktop's process can: the page ends it instead); the
+//! past its limit gets a `TimeoutError` at its line in the worker, as on
+//! the desktop (`web/python/lightcone_web_child.py`); one that still runs
+//! `protocol::HOOK_GRACE` later (a long call into C) ends the worker: the
 //! game keeps its state, paused, and says why; *reload* starts a new
 //! worker. Nothing the worker sends is trusted: a line over
 //! `protocol::MAX_LINE`, a message that is not an `Up`, a request the game
@@ -22,7 +23,7 @@ use std::collections::VecDeque;
 use std::time::Duration;
 
 use lightcone_engine::report::CollisionLine;
-use lightcone_lesson::protocol::{self, HOOK_LIMIT, MAX_LINE, PRINTED_LINES, Up};
+use lightcone_lesson::protocol::{self, HOOK_GRACE, HOOK_LIMIT, MAX_LINE, PRINTED_LINES, Up};
 use lightcone_lesson::{LessonGame, LessonUi, MAX_TEXT_BYTES, WorldCall, WorldCore};
 use serde_json::Value;
 use wasm_bindgen::prelude::*;
@@ -293,10 +294,11 @@ impl WebLesson {
             }
         }
         if let Some((hook, since)) = self.out {
-            if since.elapsed() > self.limit {
+            if since.elapsed() > self.limit + HOOK_GRACE {
                 let why = format!(
-                    "in {hook}: the hook ran longer than its limit of {} s; its worker was stopped \
-                     (a hook in the browser cannot be interrupted at a line). Reload to start the lesson again.",
+                    "in {hook}: the hook ran longer than its limit of {} s and did not stop at its \
+                     TimeoutError (a long call into C?); its worker was stopped. Reload to start the \
+                     lesson again.",
                     self.limit.as_secs_f64()
                 );
                 self.end(game, why);

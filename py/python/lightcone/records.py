@@ -148,7 +148,9 @@ class Collision(Record):
     """Contact point, (x, y) m."""
     pucks: List[CollisionPuck]
     simultaneous: Optional[bool]
-    """Present and True when several pucks met one at the same board time and the contacts were resolved together: `pucks[0]` is the puck they met."""
+    """Present and True when several contacts fell at one board time and were resolved together: `pucks` holds every puck of the group."""
+    pairs: Optional[List[List[int]]]
+    """With `simultaneous`: each pair in contact, as two indices into `pucks`."""
 
 
 class PuckState(Record):

@@ -32,15 +32,18 @@ impl Billiard {
 
     /// Whether a kick of a contact between pucks `a` and `b` is still
     /// ahead of one of them: a kick whose partner is the other, or (a
-    /// contact of several pucks on one, `simultaneous`) the struck puck's
-    /// kick (slot 0) of the contact whose kick the other has taken last.
-    /// Two strikers of one puck never met: nothing waits between them.
+    /// group of contacts resolved together, `simultaneous`) a kick of the
+    /// group whose kick the other has taken last. Any two pucks of a group
+    /// wait for its kicks, whether or not they were a pair in it (two
+    /// strikers of one puck never met: they are predicted against each
+    /// other once the later of their kicks has landed, and a contact of
+    /// theirs before that is found then, at once).
     pub(super) fn pending_with(&self, a: usize, b: usize) -> bool {
         let waits = |x: usize, y: usize| {
             let taken = self.pucks[y].kicked_by.map(|(contact, _, _)| contact);
             self.pucks[x].pending.iter().any(|&k| {
                 self.kicks[k].is_some_and(|kick| {
-                    kick.partner as usize == y || (kick.slot == 0 && Some(kick.contact) == taken)
+                    kick.partner as usize == y || (!kick.settles && Some(kick.contact) == taken)
                 })
             })
         };

@@ -53,6 +53,7 @@ impl Billiard {
             pucks,
             internal,
             time: 0.0,
+            until: f64::INFINITY,
             calendar: Calendar::new(n),
             next: vec![
                 Next {

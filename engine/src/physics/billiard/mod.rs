@@ -356,6 +356,9 @@ pub struct Billiard {
     pucks: Vec<Puck>,
     internal: Vec<u32>,
     time: f64,
+    /// The board time the running `step_until` goes to (s; events due
+    /// together with one being handled are taken only up to it).
+    until: f64,
     /// One entry per puck: its earliest event.
     calendar: Calendar,
     /// What each puck's entry is about.

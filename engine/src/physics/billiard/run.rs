@@ -26,6 +26,7 @@ impl Billiard {
             return true;
         }
         let mut done = 0usize;
+        self.until = t;
         while let Some((key, i)) = self.calendar.peek() {
             if key.t > t {
                 break;
@@ -68,8 +69,11 @@ impl Billiard {
                 let j = if a == i { b } else { a };
                 if self.pucks[j].version != partner_version || self.pending_with(a, b) {
                     self.stats.stale += 1;
+                } else if !self.changes_due_now(a, b) {
+                    // A cushion bounce due now moved one of them (a Zeno
+                    // cluster's merge): their contact is predicted again.
+                    self.stats.stale += 1;
                 } else {
-                    self.changes_due_now(a, b);
                     let flushed_a = self.flush_pending(a);
                     let flushed_b = self.flush_pending(b);
                     if flushed_a || flushed_b {

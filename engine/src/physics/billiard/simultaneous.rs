@@ -31,27 +31,32 @@ impl Billiard {
     /// Handles, before the contact of `a` and `b` due now is resolved, the
     /// other pucks' velocity changes due now too (within [`SIMULTANEOUS`]:
     /// kicks and cushion contacts, the calendar's next entries, at most
-    /// [`MAX_GROUP`] of them): the mirror image of the kick or cushion
-    /// bounce that led to this contact, an ulp later or merely taken
-    /// second, would otherwise still be ahead when the contact looks for
-    /// others at its board time, and those other contacts, predicted
-    /// after it, would start from a changed state. (`a` and `b` take their
-    /// own pending kicks next.)
-    pub(super) fn changes_due_now(&mut self, a: usize, b: usize) {
+    /// [`MAX_GROUP`] of them, none past the board time the loop runs to):
+    /// the mirror image of the kick or cushion bounce that led to this
+    /// contact, an ulp later or merely taken second, would otherwise still
+    /// be ahead when the contact looks for others at its board time, and
+    /// those other contacts, predicted after it, would start from a
+    /// changed state. (`a` and `b` take their own pending kicks next.)
+    /// Returns `false` if that changed `a` or `b` (a cushion contact's Zeno
+    /// merge moves a pressed cluster): their contact is then stale.
+    pub(super) fn changes_due_now(&mut self, a: usize, b: usize) -> bool {
+        let versions = [self.pucks[a].version, self.pucks[b].version];
         for _ in 0..MAX_GROUP {
             let Some((key, j)) = self.calendar.peek() else {
-                return;
+                break;
             };
             let j = j as usize;
             if !self.due_now(key.t)
+                || key.t > self.until
                 || j == a
                 || j == b
                 || !matches!(self.next[j].what, What::Kick(_) | What::Cushion(_))
             {
-                return;
+                break;
             }
             self.handle(j, key.t);
         }
+        versions == [self.pucks[a].version, self.pucks[b].version]
     }
 
     /// The pucks other than `a` and `b`, with a kick pending, that meet
