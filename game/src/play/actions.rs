@@ -3,7 +3,6 @@
 //! each is carried out, so no action is written twice.
 
 use lightcone_engine::scene::Effect;
-use winit::keyboard::KeyCode;
 
 use super::scene_menu::Opened;
 use crate::model::{Framing, GameState, ViewMode};
@@ -99,51 +98,53 @@ pub enum UiAction {
 const FIVE_DEGREES: f64 = std::f64::consts::PI / 36.0;
 
 /// The keys, each with its action (the scene menu's own keys, while it is
-/// open, come first: `play::scene_menu::key`).
-pub const KEYS: &[(KeyCode, UiAction)] = &[
-    (KeyCode::KeyP, UiAction::Pause),
-    (KeyCode::Space, UiAction::Pause),
-    (KeyCode::KeyL, UiAction::GoLive),
-    (KeyCode::KeyX, UiAction::Halt),
-    (KeyCode::Home, UiAction::ResetView),
-    (KeyCode::Digit7, UiAction::Toggle(Overlay::Trails)),
-    (KeyCode::Digit8, UiAction::Toggle(Overlay::Ghost)),
-    (KeyCode::Digit9, UiAction::Toggle(Overlay::Arrows)),
-    (KeyCode::Digit0, UiAction::Toggle(Overlay::Magnifier)),
-    (KeyCode::KeyY, UiAction::Toggle(Overlay::Diagram)),
-    (KeyCode::KeyV, UiAction::TopView),
-    (KeyCode::KeyG, UiAction::CycleFollow),
-    (KeyCode::ArrowLeft, UiAction::Orbit(-0.1, 0.0)),
-    (KeyCode::ArrowRight, UiAction::Orbit(0.1, 0.0)),
-    (KeyCode::ArrowUp, UiAction::Orbit(0.0, 0.08)),
-    (KeyCode::ArrowDown, UiAction::Orbit(0.0, -0.08)),
-    (KeyCode::Equal, UiAction::Zoom(1.25)),
-    (KeyCode::NumpadAdd, UiAction::Zoom(1.25)),
-    (KeyCode::Minus, UiAction::Zoom(0.8)),
-    (KeyCode::NumpadSubtract, UiAction::Zoom(0.8)),
-    (KeyCode::KeyE, UiAction::CycleCaveEye),
-    (KeyCode::F5, UiAction::ReloadLesson),
-    (KeyCode::KeyT, UiAction::CycleView),
-    (KeyCode::KeyM, UiAction::SceneMenu),
-    (KeyCode::KeyK, UiAction::Share),
-    (KeyCode::KeyC, UiAction::CueNext),
-    (KeyCode::BracketLeft, UiAction::CueTurn(FIVE_DEGREES)),
-    (KeyCode::BracketRight, UiAction::CueTurn(-FIVE_DEGREES)),
-    (KeyCode::Comma, UiAction::CueScale(0.8)),
-    (KeyCode::Period, UiAction::CueScale(1.25)),
-    (KeyCode::Enter, UiAction::Strike),
-    (KeyCode::NumpadEnter, UiAction::Strike),
-    (KeyCode::Digit1, UiAction::ToggleEffect(Effect::ALL[0])),
-    (KeyCode::Digit2, UiAction::ToggleEffect(Effect::ALL[1])),
-    (KeyCode::Digit3, UiAction::ToggleEffect(Effect::ALL[2])),
-    (KeyCode::Digit4, UiAction::ToggleEffect(Effect::ALL[3])),
-    (KeyCode::Digit5, UiAction::ToggleEffect(Effect::ALL[4])),
-    (KeyCode::Digit6, UiAction::ToggleEffect(Effect::ALL[5])),
+/// open, come first: `play::scene_menu::key`). Keys are egui's, as the
+/// window, the page and `egui_kittest` all hand them to the game
+/// (`play::input::Input::keys`): by their place on the keyboard where the
+/// platform says it (W, A, S, D fly on any layout), else by their label;
+/// the keypad's + and − and Enter are these ones.
+pub const KEYS: &[(egui::Key, UiAction)] = &[
+    (egui::Key::P, UiAction::Pause),
+    (egui::Key::Space, UiAction::Pause),
+    (egui::Key::L, UiAction::GoLive),
+    (egui::Key::X, UiAction::Halt),
+    (egui::Key::Home, UiAction::ResetView),
+    (egui::Key::Num7, UiAction::Toggle(Overlay::Trails)),
+    (egui::Key::Num8, UiAction::Toggle(Overlay::Ghost)),
+    (egui::Key::Num9, UiAction::Toggle(Overlay::Arrows)),
+    (egui::Key::Num0, UiAction::Toggle(Overlay::Magnifier)),
+    (egui::Key::Y, UiAction::Toggle(Overlay::Diagram)),
+    (egui::Key::V, UiAction::TopView),
+    (egui::Key::G, UiAction::CycleFollow),
+    (egui::Key::ArrowLeft, UiAction::Orbit(-0.1, 0.0)),
+    (egui::Key::ArrowRight, UiAction::Orbit(0.1, 0.0)),
+    (egui::Key::ArrowUp, UiAction::Orbit(0.0, 0.08)),
+    (egui::Key::ArrowDown, UiAction::Orbit(0.0, -0.08)),
+    (egui::Key::Equals, UiAction::Zoom(1.25)),
+    (egui::Key::Plus, UiAction::Zoom(1.25)),
+    (egui::Key::Minus, UiAction::Zoom(0.8)),
+    (egui::Key::E, UiAction::CycleCaveEye),
+    (egui::Key::F5, UiAction::ReloadLesson),
+    (egui::Key::T, UiAction::CycleView),
+    (egui::Key::M, UiAction::SceneMenu),
+    (egui::Key::K, UiAction::Share),
+    (egui::Key::C, UiAction::CueNext),
+    (egui::Key::OpenBracket, UiAction::CueTurn(FIVE_DEGREES)),
+    (egui::Key::CloseBracket, UiAction::CueTurn(-FIVE_DEGREES)),
+    (egui::Key::Comma, UiAction::CueScale(0.8)),
+    (egui::Key::Period, UiAction::CueScale(1.25)),
+    (egui::Key::Enter, UiAction::Strike),
+    (egui::Key::Num1, UiAction::ToggleEffect(Effect::ALL[0])),
+    (egui::Key::Num2, UiAction::ToggleEffect(Effect::ALL[1])),
+    (egui::Key::Num3, UiAction::ToggleEffect(Effect::ALL[2])),
+    (egui::Key::Num4, UiAction::ToggleEffect(Effect::ALL[3])),
+    (egui::Key::Num5, UiAction::ToggleEffect(Effect::ALL[4])),
+    (egui::Key::Num6, UiAction::ToggleEffect(Effect::ALL[5])),
 ];
 
-/// The action of key `code`, if it has one.
-pub fn for_key(code: KeyCode) -> Option<UiAction> {
-    KEYS.iter().find(|(k, _)| *k == code).map(|&(_, a)| a)
+/// The action of `key`, if it has one.
+pub fn for_key(key: egui::Key) -> Option<UiAction> {
+    KEYS.iter().find(|(k, _)| *k == key).map(|&(_, a)| a)
 }
 
 impl UiAction {
@@ -257,13 +258,13 @@ mod tests {
         let mut g = game();
         let (show, effects) = (g.show, g.effects);
         for code in [
-            KeyCode::Digit1,
-            KeyCode::Digit4,
-            KeyCode::Digit7,
-            KeyCode::Digit8,
-            KeyCode::Digit9,
-            KeyCode::Digit0,
-            KeyCode::KeyY,
+            egui::Key::Num1,
+            egui::Key::Num4,
+            egui::Key::Num7,
+            egui::Key::Num8,
+            egui::Key::Num9,
+            egui::Key::Num0,
+            egui::Key::Y,
         ] {
             let a = for_key(code).unwrap();
             assert_eq!(a.apply(&mut g), None);
@@ -273,7 +274,7 @@ mod tests {
         }
         // The window's own actions come back to it.
         assert_eq!(
-            for_key(KeyCode::KeyE).unwrap().apply(&mut g),
+            for_key(egui::Key::E).unwrap().apply(&mut g),
             Some(UiAction::CycleCaveEye)
         );
     }
@@ -288,15 +289,15 @@ mod tests {
         let key = |g: &mut GameState, code| {
             assert_eq!(for_key(code).unwrap().apply(g), None, "{code:?}");
         };
-        key(&mut g, KeyCode::KeyC);
+        key(&mut g, egui::Key::C);
         let cue = g.cue.unwrap();
         assert_eq!(cue.puck, 0);
         let here = g.physics().worldline(0).position_at(g.live_time);
         let middle = (g.scene.table.size / 2.0).extend(0.0);
         let towards = (middle - here).with_z(0.0).normalize();
         assert!((cue.du - towards * (1.0 / g.scene.c)).length() < 1e-12);
-        key(&mut g, KeyCode::BracketRight);
-        key(&mut g, KeyCode::Period);
+        key(&mut g, egui::Key::CloseBracket);
+        key(&mut g, egui::Key::Period);
         let a = -std::f64::consts::PI / 36.0;
         let want = DVec3::new(
             towards.x * a.cos() - towards.y * a.sin(),
@@ -305,15 +306,15 @@ mod tests {
         ) * (1.25 / g.scene.c);
         assert!((g.cue.unwrap().du - want).length() < 1e-12);
         let before = g.physics().worldline(0).proper_velocity_at(g.live_time).0;
-        key(&mut g, KeyCode::Enter);
+        key(&mut g, egui::Key::Enter);
         assert!(g.cue.is_none(), "struck");
         let after = g.physics().worldline(0).proper_velocity_at(g.live_time).0;
         assert!(
             (after - before - want).length() < 1e-12,
             "{after} vs {before} + {want}"
         );
-        key(&mut g, KeyCode::KeyC);
-        key(&mut g, KeyCode::KeyC);
+        key(&mut g, egui::Key::C);
+        key(&mut g, egui::Key::C);
         assert_eq!(g.cue.unwrap().puck, 1 % g.physics().len());
     }
 

@@ -410,12 +410,6 @@ impl window::Game for App {
                 }
             }
             WindowEvent::CloseRequested => return Some(Ok(Flow::Exit)),
-            WindowEvent::KeyboardInput { event, .. } if self.node.is_none() => {
-                let mut actions = Vec::new();
-                let stage = &mut self.stage;
-                stage.input.keyboard(event, &mut stage.state, &mut actions);
-                stage.act(&mut self.desk, actions);
-            }
             _ => {}
         }
         Some(Ok(Flow::Continue))

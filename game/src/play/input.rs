@@ -6,23 +6,32 @@
 use std::collections::HashSet;
 
 use glam::{DVec2, DVec3};
-use winit::event::{
-    ElementState, KeyEvent, MouseButton, MouseScrollDelta, Touch, TouchPhase, WindowEvent,
-};
-use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, Touch, TouchPhase, WindowEvent};
 
 use super::actions::{self, UiAction};
 use super::scene_menu::MenuKey;
 use super::shown::project;
 use crate::model::{GameState, Pane};
 
+/// The keys a focused control takes from the game ([`Input::keys`]).
+const FOCUS_KEYS: [egui::Key; 8] = [
+    egui::Key::Space,
+    egui::Key::Enter,
+    egui::Key::Tab,
+    egui::Key::Escape,
+    egui::Key::ArrowLeft,
+    egui::Key::ArrowRight,
+    egui::Key::ArrowUp,
+    egui::Key::ArrowDown,
+];
+
 /// What the keyboard and mouse hold between events.
 #[derive(Default)]
 pub struct Input {
     /// The window can start lessons (the scene menu lists them).
     lessons: bool,
-    /// Keys held down.
-    keys: HashSet<KeyCode>,
+    /// Keys held down (egui's, by their place on the keyboard where known).
+    keys: HashSet<egui::Key>,
     /// The cursor, physical px.
     cursor: DVec2,
     /// Right-drag turns the free eye.
@@ -46,8 +55,9 @@ impl Input {
     }
 
     /// An event of the main window, whose pictures are at `rects`;
-    /// `consumed` when egui took it. Keys and mouse moves that are actions
-    /// go to `actions`; the cue is aimed and struck on `state`.
+    /// `consumed` when egui took it. Mouse moves that are actions go to
+    /// `actions`; the cue is aimed and struck on `state`. (Keys reach the
+    /// game through egui: [`Self::keys`].)
     pub fn event(
         &mut self,
         event: &WindowEvent,
@@ -57,9 +67,6 @@ impl Input {
         actions: &mut Vec<UiAction>,
     ) {
         match event {
-            WindowEvent::KeyboardInput { event, .. } if !consumed => {
-                self.keyboard(event, state, actions);
-            }
             WindowEvent::CursorMoved { position, .. } => {
                 let p = DVec2::new(position.x, position.y);
                 let d = p - self.cursor;
@@ -93,31 +100,61 @@ impl Input {
         }
     }
 
-    /// A key pressed or released in any of the game's windows: the open
-    /// scene menu's keys first, then the action table.
-    pub fn keyboard(
+    /// The keys pressed and released since the last frame, as egui has
+    /// them from any of the game's windows (the window, the page's canvas,
+    /// the CAVE's output windows, or `egui_kittest`): a press is the open
+    /// scene menu's key first, then the action table's
+    /// ([`actions::KEYS`]), unless egui wants the keyboard (a number being
+    /// typed into the c field); held keys fly the eye ([`Self::flight`]).
+    /// A key is known by its place on the keyboard where the platform
+    /// gives it (W, A, S, D on any layout), else by its label.
+    pub fn keys(
         &mut self,
-        event: &KeyEvent,
+        ctx: &egui::Context,
         state: &mut GameState,
         actions: &mut Vec<UiAction>,
     ) {
-        let PhysicalKey::Code(code) = event.physical_key else {
-            return;
-        };
-        match event.state {
-            ElementState::Pressed => {
-                if !event.repeat {
-                    match super::scene_menu::key(state, code, self.lessons) {
-                        MenuKey::NotMine => actions.extend(actions::for_key(code)),
-                        MenuKey::Taken => {}
-                        MenuKey::Open(choice) => actions.push(UiAction::Open(choice)),
-                    }
+        let typing = ctx.egui_wants_keyboard_input();
+        // A control reached by Tab takes the keys that press or leave it
+        // (Space and Enter press it, Tab and the arrows move on, Escape
+        // hands the keys back to the game); the rest still play.
+        let focused = ctx.memory(|m| m.focused());
+        let events = ctx.input(|i| i.events.clone());
+        for event in events {
+            let egui::Event::Key {
+                key,
+                physical_key,
+                pressed,
+                repeat,
+                ..
+            } = event
+            else {
+                continue;
+            };
+            let key = physical_key.unwrap_or(key);
+            if !pressed {
+                self.keys.remove(&key);
+                continue;
+            }
+            if typing {
+                continue;
+            }
+            if let Some(id) = focused
+                && FOCUS_KEYS.contains(&key)
+            {
+                if key == egui::Key::Escape {
+                    ctx.memory_mut(|m| m.surrender_focus(id));
                 }
-                self.keys.insert(code);
+                continue;
             }
-            ElementState::Released => {
-                self.keys.remove(&code);
+            if !repeat {
+                match super::scene_menu::key(state, key, self.lessons) {
+                    MenuKey::NotMine => actions.extend(actions::for_key(key)),
+                    MenuKey::Taken => {}
+                    MenuKey::Open(choice) => actions.push(UiAction::Open(choice)),
+                }
             }
+            self.keys.insert(key);
         }
     }
 
@@ -129,12 +166,12 @@ impl Input {
         let side = flat.cross(DVec3::Z);
         let mut dir = DVec3::ZERO;
         for (key, d) in [
-            (KeyCode::KeyW, flat),
-            (KeyCode::KeyS, -flat),
-            (KeyCode::KeyD, side),
-            (KeyCode::KeyA, -side),
-            (KeyCode::KeyR, DVec3::Z),
-            (KeyCode::KeyF, -DVec3::Z),
+            (egui::Key::W, flat),
+            (egui::Key::S, -flat),
+            (egui::Key::D, side),
+            (egui::Key::A, -side),
+            (egui::Key::R, DVec3::Z),
+            (egui::Key::F, -DVec3::Z),
         ] {
             if self.keys.contains(&key) {
                 dir += d;

@@ -17,6 +17,7 @@ use crate::play::actions::UiAction;
 /// does).
 struct Panel {
     game: GameState,
+    input: crate::play::input::Input,
     hud: Hud,
     asked: Vec<UiAction>,
 }
@@ -36,6 +37,9 @@ fn harness() -> Harness<'static, Panel> {
         .build_ui_state(
             |ui, p: &mut Panel| {
                 let mut actions = Vec::new();
+                // The keys first, as the window's frame takes them
+                // (`Stage::panels`).
+                p.input.keys(ui.ctx(), &mut p.game, &mut actions);
                 panels(ui, &mut p.game, &p.hud, None, (1280, 1000), &mut actions);
                 for action in actions {
                     p.asked.push(action);
@@ -44,6 +48,7 @@ fn harness() -> Harness<'static, Panel> {
             },
             Panel {
                 game,
+                input: crate::play::input::Input::new(true),
                 hud,
                 asked: Vec::new(),
             },
@@ -233,4 +238,109 @@ fn tab_reaches_every_control_in_order_and_space_presses_it() {
     h.key_press(egui::Key::Space);
     h.run();
     assert_eq!(h.state().game.paused, !paused);
+}
+
+/// Play by keys alone, through egui as the window and the page hand keys
+/// to the game: C cues the first puck, `]` turns the cue 5° clockwise, `.`
+/// makes it 1.25× as strong, Enter strikes (the puck's proper velocity
+/// changes by the stroke); while the c field is being typed into, the
+/// keys are the field's; a control reached by Tab keeps Enter and Space
+/// (pressing it), Escape gives them back.
+#[test]
+fn the_cue_aims_and_strikes_by_keys_through_egui() {
+    let mut h = harness();
+    h.run();
+    h.key_press(egui::Key::C);
+    h.run();
+    let cue = h.state().game.cue.expect("C cues a puck");
+    assert_eq!(cue.puck, 0);
+    h.key_press(egui::Key::CloseBracket);
+    h.key_press(egui::Key::Period);
+    h.run();
+    let a = -std::f64::consts::PI / 36.0;
+    let du = cue.du;
+    let want = glam::DVec3::new(
+        du.x * a.cos() - du.y * a.sin(),
+        du.x * a.sin() + du.y * a.cos(),
+        0.0,
+    ) * 1.25;
+    let turned = h.state().game.cue.expect("still cued").du;
+    assert!((turned - want).length() < 1e-12, "{turned} against {want}");
+    let t = h.state().game.live_time;
+    let before = h
+        .state()
+        .game
+        .physics()
+        .worldline(0)
+        .proper_velocity_at(t)
+        .0;
+    h.key_press(egui::Key::Enter);
+    h.run();
+    assert!(h.state().game.cue.is_none(), "Enter strikes");
+    let t = h.state().game.live_time;
+    let after = h
+        .state()
+        .game
+        .physics()
+        .worldline(0)
+        .proper_velocity_at(t)
+        .0;
+    assert!(
+        (after - before - want).length() < 1e-12,
+        "{after} vs {before} + {want}"
+    );
+    assert_eq!(
+        h.state().asked,
+        vec![
+            UiAction::CueNext,
+            UiAction::CueTurn(-std::f64::consts::PI / 36.0),
+            UiAction::CueScale(1.25),
+            UiAction::Strike
+        ]
+    );
+
+    // Typing into the c field: its keys are the field's.
+    let mut h = harness();
+    h.run();
+    h.get(
+        by().label("c (m/s)")
+            .role(egui::accesskit::Role::SpinButton),
+    )
+    .focus();
+    h.run();
+    h.key_press(egui::Key::C);
+    h.key_press(egui::Key::P);
+    h.run();
+    assert!(
+        h.state().game.cue.is_none(),
+        "C typed into the c field cued"
+    );
+    assert!(
+        !h.state().asked.contains(&UiAction::Pause),
+        "{:?}",
+        h.state().asked
+    );
+
+    // A control reached by Tab takes Enter; Escape gives it back.
+    let mut h = harness();
+    h.run();
+    h.key_press(egui::Key::C);
+    h.run();
+    h.get_by_label("live (L)").focus();
+    h.run();
+    h.key_press(egui::Key::Enter);
+    h.run();
+    assert!(
+        h.state().game.cue.is_some(),
+        "Enter on a focused control struck"
+    );
+    assert_eq!(h.state().asked.last(), Some(&UiAction::GoLive));
+    h.key_press(egui::Key::Escape);
+    h.run();
+    h.key_press(egui::Key::Enter);
+    h.run();
+    assert!(
+        h.state().game.cue.is_none(),
+        "Enter after Escape did not strike"
+    );
 }

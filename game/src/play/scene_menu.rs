@@ -12,7 +12,6 @@
 use std::path::Path;
 
 use lightcone_engine::scene::{self, Scene};
-use winit::keyboard::KeyCode;
 
 use crate::assets::{LESSONS, SCENES};
 use crate::links::SceneSource;
@@ -169,7 +168,7 @@ fn entries(lessons: bool) -> impl Iterator<Item = Choice> {
 /// is open ↑/↓/Enter/Esc act on it (M, which opens and closes it, is in
 /// the window's action table, `play::actions`); `lessons` when the
 /// window can start lessons (they are listed then).
-pub fn key(state: &mut GameState, code: KeyCode, lessons: bool) -> MenuKey {
+pub fn key(state: &mut GameState, code: egui::Key, lessons: bool) -> MenuKey {
     let menu = &mut state.scene_menu;
     if !menu.open {
         return MenuKey::NotMine;
@@ -177,10 +176,10 @@ pub fn key(state: &mut GameState, code: KeyCode, lessons: bool) -> MenuKey {
     let n = entries(lessons).count();
     menu.selected %= n;
     match code {
-        KeyCode::ArrowUp => menu.selected = (menu.selected + n - 1) % n,
-        KeyCode::ArrowDown => menu.selected = (menu.selected + 1) % n,
-        KeyCode::Escape => menu.open = false,
-        KeyCode::Enter | KeyCode::NumpadEnter => {
+        egui::Key::ArrowUp => menu.selected = (menu.selected + n - 1) % n,
+        egui::Key::ArrowDown => menu.selected = (menu.selected + 1) % n,
+        egui::Key::Escape => menu.open = false,
+        egui::Key::Enter => {
             if let Some(choice) = entries(lessons).nth(menu.selected) {
                 return MenuKey::Open(choice);
             }
@@ -292,7 +291,7 @@ mod tests {
 
     /// Presses `code` as the window does: the menu's key first, an entry
     /// it opens carried out through the action table.
-    fn press(state: &mut GameState, code: KeyCode, lessons: bool) -> Option<UiAction> {
+    fn press(state: &mut GameState, code: egui::Key, lessons: bool) -> Option<UiAction> {
         match key(state, code, lessons) {
             MenuKey::NotMine => panic!("{code:?} is the menu's while it is open"),
             MenuKey::Taken => None,
@@ -312,17 +311,20 @@ mod tests {
             .position(|(n, _)| *n == "parallel_tracks.toml")
             .unwrap();
         while state.scene_menu.selected != target {
-            assert_eq!(press(&mut state, KeyCode::ArrowDown, false), None);
+            assert_eq!(press(&mut state, egui::Key::ArrowDown, false), None);
         }
         // The window is told, so that a lesson that ran ends.
-        let told = press(&mut state, KeyCode::Enter, false);
+        let told = press(&mut state, egui::Key::Enter, false);
         assert_eq!(told, Some(UiAction::SceneOpened));
         assert_eq!(state.scene.pucks.len(), 5, "parallel_tracks has five pucks");
         assert_eq!(state.live_time, 0.0);
         assert!(state.paused && state.intro && !state.scene_menu.open);
         assert_eq!(state.view, crate::model::ViewMode::Split);
         // Closed, the arrows are the camera's again.
-        assert_eq!(key(&mut state, KeyCode::ArrowDown, false), MenuKey::NotMine);
+        assert_eq!(
+            key(&mut state, egui::Key::ArrowDown, false),
+            MenuKey::NotMine
+        );
     }
 
     #[test]
@@ -332,8 +334,8 @@ mod tests {
         UiAction::SceneMenu.apply(&mut state);
         // Up from the first entry wraps to the last: the last lesson.
         let last = Choice::Lesson(LESSONS.len() - 1);
-        assert_eq!(press(&mut state, KeyCode::ArrowUp, true), None);
-        assert_eq!(key(&mut state, KeyCode::Enter, true), MenuKey::Open(last));
+        assert_eq!(press(&mut state, egui::Key::ArrowUp, true), None);
+        assert_eq!(key(&mut state, egui::Key::Enter, true), MenuKey::Open(last));
         // Carried out, it is the window's to start; the scene is untouched.
         let told = UiAction::Open(last).apply(&mut state);
         assert_eq!(told, Some(UiAction::Open(last)));
@@ -350,7 +352,7 @@ mod tests {
             );
         }
         state.scene_menu.selected = 0;
-        press(&mut state, KeyCode::ArrowUp, false);
+        press(&mut state, egui::Key::ArrowUp, false);
         assert_eq!(state.scene_menu.selected, SCENES.len() - 1);
     }
 

@@ -187,8 +187,9 @@ impl Stage {
         let size = gfx.size();
         let mut area = self.area;
         let mut actions = Vec::new();
-        let state = &mut self.state;
+        let (state, input) = (&mut self.state, &mut self.input);
         let ui = gfx.run_ui(|ui| {
+            input.keys(ui.ctx(), state, &mut actions);
             area = host.panels(ui, state, size, &mut actions);
         });
         (ui, area, actions)

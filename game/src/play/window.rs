@@ -479,6 +479,12 @@ impl<G: Game> ApplicationHandler<Wake> for Runner<'_, G> {
         }
         let Some(gfx) = self.gfx.as_mut() else { return };
         if id != gfx.window.id() {
+            // Keys pressed in another of the game's windows (a CAVE
+            // output) reach the game as the main window's do: through
+            // its egui input, read with the next frame.
+            if matches!(event, WindowEvent::KeyboardInput { .. }) && self.game.takes_input() {
+                let _ = gfx.egui_state.on_window_event(&gfx.window, &event);
+            }
             if let Some(flow) = self.game.other_window(gfx, id, &event) {
                 self.obey(event_loop, flow);
             }
