@@ -114,23 +114,33 @@ impl Billiard {
     /// Whether pucks `lo` and `hi` can have a contact whose earlier kick
     /// is at or before board time `by` (s), from now: their rest discs
     /// can touch by then ([`bounds::disc_touch`], which bounds the earlier
-    /// kick of a contact of uniform motions). On the cloth, discs of twice
-    /// the rest radii ([`bounds::braking_touch`]): there a kick can come
-    /// before the rest discs touch (the worldlines curve between the kick
-    /// and the pair-frame contact; 1.8·10⁻⁴ s before, in a mirror scene at
-    /// c = 1 m/s and μg = 4.9 m/s²), by less than a puck's rest radius
-    /// moves at its speed (the scene rules keep `R < c²/(μg)`).
+    /// kick of a contact of uniform motions). On the cloth the rest discs
+    /// are grown ([`bounds::braking_touch`]): there a kick can come before
+    /// the rest discs touch (1.8·10⁻⁴ s before, in a mirror scene at c =
+    /// 1 m/s and μg = 4.9 m/s²), because the worldlines curve between the
+    /// kick and the pair-frame contact. A kick precedes its contact by at
+    /// most `2 β R / (c (1 − β²))` (`β` the faster speed's, at its
+    /// segment's start, `R` the larger radius: the lead of
+    /// `braking::pair_before`), in which each centre leaves its tangent
+    /// line by at most `a t²/2`; the discs are grown by twice that.
     #[inline]
     fn may_touch_by(&self, lo: usize, hi: usize, by: f64) -> bool {
         let now = self.time;
         let (hl, hh) = (self.hot[lo], self.hot[hi]);
         let bound = if hl.braking || hh.braking {
-            let reach = |k: usize| bounds::BrakingReach::of(self.pucks[k].worldline.last(), now);
+            let (sl, sh) = (
+                self.pucks[lo].worldline.last(),
+                self.pucks[hi].worldline.last(),
+            );
+            let (rl, rh) = (self.pucks[lo].radius, self.pucks[hi].radius);
+            let beta = (hl.v.length().max(hh.v.length()) / self.c).min(1.0 - 1e-9);
+            let lead = 2.0 * beta * rl.max(rh) / (self.c * (1.0 - beta) * (1.0 + beta));
+            let grown = 0.5 * (sl.deceleration() + sh.deceleration()) * lead * lead;
             bounds::braking_touch(
-                &reach(lo),
-                2.0 * self.pucks[lo].radius,
-                &reach(hi),
-                2.0 * self.pucks[hi].radius,
+                &bounds::BrakingReach::of(sl, now),
+                rl + grown,
+                &bounds::BrakingReach::of(sh, now),
+                rh + grown,
                 now,
                 by,
             )
