@@ -121,16 +121,25 @@ impl BrakingReach {
     #[must_use]
     pub fn of(segment: &Segment, now: f64) -> Self {
         let position = segment.position_at(now).truncate();
-        let left = if segment.is_rest() {
-            0.0
-        } else {
-            segment.stop_time().map_or(f64::INFINITY, |stop| {
-                (segment.position_at(stop.max(now)).truncate() - position).length()
-            })
-        };
+        if !segment.is_braking() {
+            return Self {
+                position,
+                velocity: segment.velocity_at(now).truncate(),
+                left: if segment.is_rest() { 0.0 } else { f64::INFINITY },
+                deceleration: 0.0,
+            };
+        }
+        // Along its straight path: the stopping distance less the distance
+        // already run, from one braking law (the bound's gap is shrunk by
+        // far more than this form's rounding).
+        let law = segment.braking_law();
+        let run = (now - segment.start.t).max(0.0);
+        let left = (law.stopping_distance() - law.distance_at(run)).max(0.0);
+        let u = law.proper_speed_at(run);
+        let speed = segment.speed_of_light() * u / (1.0 + u * u).sqrt();
         Self {
             position,
-            velocity: segment.velocity_at(now).truncate(),
+            velocity: (segment.direction() * speed).truncate(),
             left,
             deceleration: segment.deceleration(),
         }
