@@ -408,8 +408,91 @@ async function webgpu() {
   }
 }
 
+// The effects seen in the page as in the window (issue 32): the
+// contraction scene at board time 1 s (?at=1 publishes the frame's layout,
+// `window.lightconeLayout`, the sidecar `play --screenshot` writes) within
+// 10 s of the first frame: the magnifier's moving body at least 60 px
+// across, its measured length / width on the page's own pixels within 5 %
+// of 1/γ (as tests/view.rs measures the window's), and the clocks: the
+// moving puck's proper time 1/γ of the resting one's. Then the flyby (an
+// eye passing the table at β = 0.85) screenshotted. Pictures beside SHOT.
+async function effects() {
+  const { page, errors } = await openPage();
+  await page.goto(base + "?scene=contraction&at=1");
+  await firstFrame(page);
+  const t0 = Date.now();
+  const handle = await page
+    .waitForFunction(
+      () => {
+        const l = window.lightconeLayout && JSON.parse(window.lightconeLayout);
+        return l && l.magnifier ? window.lightconeLayout : null;
+      },
+      null,
+      { timeout: 10_000 },
+    )
+    .catch(() => null);
+  if (!handle) {
+    fail(`?scene=contraction: no magnifier within 10 s of the first frame (${JSON.stringify(errors)})`);
+    await page.close();
+    return;
+  }
+  const seenMs = Date.now() - t0;
+  const layout = JSON.parse(await handle.jsonValue());
+  await page.waitForTimeout(500);
+  const box = await page.evaluate(() => {
+    const r = document.querySelector("canvas").getBoundingClientRect();
+    return { x: r.x, y: r.y, w: r.width, h: r.height, dpr: window.devicePixelRatio };
+  });
+  const png = await page.screenshot({ path: shot.replace(/\.png$/, "_contraction.png") });
+  await addDecoder(page);
+  const m = layout.magnifier;
+  const measured = await page.evaluate(
+    async ([data, m, box]) => {
+      const { w, px } = await window.lightconeTestPixels(data);
+      // The layout is in the canvas's physical pixels; the screenshot in
+      // the page's (the same at a device pixel ratio of 1).
+      const [bx, by, bw, bh] = m.body.map((v) => v / box.dpr);
+      let [x0, x1, y0, y1] = [Infinity, -1, Infinity, -1];
+      for (let y = Math.floor(box.y + by); y < box.y + by + bh; y++) {
+        for (let x = Math.floor(box.x + bx); x < box.x + bx + bw; x++) {
+          const i = 4 * (y * w + x);
+          if ([0, 1, 2].every((k) => Math.abs(px[i + k] - m.colour[k]) <= 24)) {
+            x0 = Math.min(x0, x);
+            x1 = Math.max(x1, x);
+            y0 = Math.min(y0, y);
+            y1 = Math.max(y1, y);
+          }
+        }
+      }
+      return { length: x1 - x0 + 1, width: y1 - y0 + 1 };
+    },
+    [png.toString("base64"), m, box],
+  );
+  const clock = (name) => (layout.pucks.find((p) => p.name === name) || {}).clock_s;
+  const [moving, resting] = [clock("moving"), clock("resting")];
+  const aspect = measured.length / measured.width;
+  console.log(JSON.stringify({ contraction: { seenMs, gamma: m.gamma, measured, aspect, clocks: { moving, resting }, box } }));
+  if (m.puck !== "moving") fail(`contraction: the magnifier shows ${m.puck}`);
+  if (!(Math.max(measured.length, measured.width) >= 60)) fail(`contraction: the body is ${JSON.stringify(measured)} px`);
+  if (!(Math.abs(aspect * m.gamma - 1) < 0.05)) fail(`contraction: length / width ${aspect} against 1/γ ${1 / m.gamma}`);
+  if (!(Math.abs(moving - resting / m.gamma) < 1e-3 * resting))
+    fail(`contraction: clocks moving ${moving} s, resting ${resting} s, γ ${m.gamma}`);
+  if (errors.length) fail(`contraction: console errors: ${JSON.stringify(errors)}`);
+  await page.close();
+
+  const flyby = await openPage();
+  await flyby.page.goto(base + "?scene=flyby&at=1.5");
+  await firstFrame(flyby.page);
+  await flyby.page.waitForFunction(() => window.lightconeLayout !== undefined, null, { timeout: 10_000 });
+  await flyby.page.waitForTimeout(500);
+  await flyby.page.screenshot({ path: shot.replace(/\.png$/, "_flyby.png") });
+  if (flyby.errors.length) fail(`flyby: console errors: ${JSON.stringify(flyby.errors)}`);
+  await flyby.page.close();
+}
+
 await check("", shot);
 await check("?scene=ten_pucks", shot.replace(/\.png$/, "_ten_pucks.png"));
+await effects();
 await links();
 await shareWithoutClipboard();
 await cue();

@@ -30,6 +30,7 @@ pub mod scene_menu;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod screenshot;
 pub mod shown;
+pub mod sidecar;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod slide;
 pub mod stage;

@@ -426,9 +426,11 @@ struct WebApp {
     page: Page,
     /// Frames drawn so far (the page's test waits for the first).
     frames: u64,
-    /// Publish what the first picture shows (`window.lightconeSeen`) each
-    /// frame: the page was opened at a board time (`?at=`), for the
-    /// browser test's comparison with `lightcone observe`.
+    /// Publish what the first picture shows (`window.lightconeSeen`) and
+    /// where the frame's views, pucks and magnifier are
+    /// (`window.lightconeLayout`) each frame: the page was opened at a
+    /// board time (`?at=`), for the browser test's comparisons with
+    /// `lightcone observe` and the window's screenshots.
     publish_seen: bool,
     /// The game (its generation) and scene the address bar names.
     addressed: (u64, Option<SceneSource>),
@@ -599,6 +601,7 @@ impl window::Game for WebApp {
         }
         if self.publish_seen {
             publish_seen(&self.stage.state);
+            publish_layout(&self.stage, gfx);
         }
         self.frame_took(page_ms() - start);
         Ok(Flow::Continue)
@@ -689,6 +692,25 @@ fn publish_seen(state: &GameState) {
     if let Some(page) = web_sys::window() {
         let text = serde_json::Value::Array(seen).to_string();
         let _ = web_sys::js_sys::Reflect::set(&page, &"lightconeSeen".into(), &text.into());
+    }
+}
+
+/// Puts on the page, as `window.lightconeLayout`, where this frame's
+/// views, pucks, labels and magnifier are: the JSON of `play
+/// --screenshot`'s sidecar ([`super::sidecar::layout`]; no diagram), in
+/// the canvas's pixels, so that the browser test measures the page's
+/// picture as `tests/view.rs` measures the window's.
+fn publish_layout(stage: &Stage, gfx: &Gfx) {
+    let (w, h) = gfx.size();
+    let drawn = super::overlay::drawn(gfx.egui_context());
+    let layout =
+        super::sidecar::layout(&stage.state, stage.area, None, (w as f32, h as f32), &drawn);
+    if let Some(page) = web_sys::window() {
+        let _ = web_sys::js_sys::Reflect::set(
+            &page,
+            &"lightconeLayout".into(),
+            &layout.to_string().into(),
+        );
     }
 }
 

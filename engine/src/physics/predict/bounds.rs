@@ -125,7 +125,11 @@ impl BrakingReach {
             return Self {
                 position,
                 velocity: segment.velocity_at(now).truncate(),
-                left: if segment.is_rest() { 0.0 } else { f64::INFINITY },
+                left: if segment.is_rest() {
+                    0.0
+                } else {
+                    f64::INFINITY
+                },
                 deceleration: 0.0,
             };
         }
