@@ -87,17 +87,30 @@ pub fn showing(billiard: &Billiard, t: f64, delay: impl Fn(DVec3) -> f64) -> Opt
     None
 }
 
-/// Draws the arc (if one is showing) in one view: the outgoing directions
-/// from the contact point (a board point, where this view shows it), the
-/// arc between them and the angle in degrees.
+/// Where an arc is drawn: its view's rectangle `[x, y, w, h]` (physical
+/// px), the view's kind, and the rectangles (points) its angle must not be
+/// written over (the magnifier).
+pub struct Place<'a> {
+    /// The view's rectangle, physical px.
+    pub rect: [f32; 4],
+    /// Seen or truth.
+    pub kind: ViewKind,
+    /// What the angle's text keeps clear of, points.
+    pub blocked: &'a [egui::Rect],
+}
+
+/// Draws the arc (if one is showing) in one view (`place`): the outgoing
+/// directions from the contact point (a board point, where this view shows
+/// it), the arc between them and the angle in degrees, written clear of
+/// the magnifier where a spot beside the arc is.
 pub fn draw(
     state: &GameState,
     painter: &egui::Painter,
-    rect: [f32; 4],
-    kind: ViewKind,
+    place: &Place<'_>,
     shown: &Shown,
     ppp: f32,
 ) {
+    let (rect, kind) = (place.rect, place.kind);
     let (eye, camera, effects) = (shown.eye, shown.camera, shown.effects);
     let c = state.scene.c;
     let seen_view = kind == ViewKind::Seen && effects.light_delay;
@@ -157,14 +170,24 @@ pub fn draw(
         let (sin, cos) = phi.sin_cos();
         DVec3::new(a.x * cos - a.y * sin, a.x * sin + a.y * cos, 0.0)
     };
-    if let Some(at) = board(arc.contact + mid * radius * 2.0) {
-        painter.text(
-            at,
-            egui::Align2::CENTER_CENTER,
-            format!("{:.1}°", arc.degrees),
-            egui::FontId::proportional(16.0),
-            arc_colour,
-        );
+    // The angle beyond the arc's middle; where the magnifier covers that,
+    // inside the arc, then across the contact from it.
+    let text = painter.layout_no_wrap(
+        format!("{:.1}°", arc.degrees),
+        egui::FontId::proportional(16.0),
+        arc_colour,
+    );
+    let clear = |at: egui::Pos2| {
+        let r = egui::Align2::CENTER_CENTER.anchor_size(at, text.size());
+        place.blocked.iter().all(|b| !b.intersects(r))
+    };
+    let spots: Vec<egui::Pos2> = [2.0, 0.6, -1.4]
+        .iter()
+        .filter_map(|&k| board(arc.contact + mid * radius * k))
+        .collect();
+    if let Some(&at) = spots.iter().find(|&&at| clear(at)).or(spots.first()) {
+        let r = egui::Align2::CENTER_CENTER.anchor_size(at, text.size());
+        painter.galley(r.min, text, arc_colour);
     }
 }
 

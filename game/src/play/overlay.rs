@@ -170,14 +170,29 @@ pub fn layer(ctx: &egui::Context, state: &GameState, left: f32, right: f32, h: f
 pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], Pane)], ppp: f32) {
     let pt = |p: DVec2| egui::pos2(p.x as f32 / ppp, p.y as f32 / ppp);
     let label = egui::Color32::from_gray(235);
+    let magnified = super::magnifier::layout(state, rects, ppp);
+    // Where the magnifier will be drawn (points): nothing written under it.
+    let blocked: Vec<egui::Rect> = magnified
+        .iter()
+        .map(|m| {
+            egui::Rect::from_min_size(
+                egui::pos2(m.rect[0] / ppp, m.rect[1] / ppp),
+                egui::vec2(m.rect[2] / ppp, m.rect[3] / ppp),
+            )
+        })
+        .collect();
     for &(rect, pane) in rects {
         if let Some(shown) = shown(state, pane) {
             physics_marks(state, painter, rect, pane.kind, &shown, ppp);
-            super::collision_arcs::draw(state, painter, rect, pane.kind, &shown, ppp);
+            let arc = super::collision_arcs::Place {
+                rect,
+                kind: pane.kind,
+                blocked: &blocked,
+            };
+            super::collision_arcs::draw(state, painter, &arc, &shown, ppp);
         }
     }
     let markers = markers(state, rects);
-    let magnified = super::magnifier::layout(state, rects, ppp);
     // Each clock says which time it reads: proper time (τ) with time
     // dilation, board time (t) without.
     let dilated: Vec<bool> = rects
@@ -208,15 +223,6 @@ pub fn overlays(state: &GameState, painter: &egui::Painter, rects: &[([f32; 4], 
         .map(|m| super::labels::Anchor {
             centre: pt(m.centre),
             ring: m.ring / ppp,
-        })
-        .collect();
-    let blocked: Vec<egui::Rect> = magnified
-        .iter()
-        .map(|m| {
-            egui::Rect::from_min_size(
-                egui::pos2(m.rect[0] / ppp, m.rect[1] / ppp),
-                egui::vec2(m.rect[2] / ppp, m.rect[3] / ppp),
-            )
         })
         .collect();
     let dial = |g: &std::sync::Arc<egui::Galley>| g.size().y + 3.0;
