@@ -140,9 +140,12 @@ class _Limit:
     """A hook's time limit: `TimeoutError` in the lesson's code once
     `seconds` have passed since `start` (module doc)."""
 
-    def __init__(self, seconds, hook):
+    def __init__(self, seconds, hook, started):
+        """`started`: when the call came in (`time.monotonic()`), from
+        which the game times the hook too."""
         self.seconds = seconds
         self.hook = hook
+        self.started = started
         self.deadline = None
         self.over = False
 
@@ -185,7 +188,7 @@ class _Limit:
         except ValueError:
             mon.free_tool_id(_LIMIT_TOOL)
             mon.use_tool_id(_LIMIT_TOOL, "lightcone hook limit")
-        self.deadline = time.monotonic() + self.seconds
+        self.deadline = self.started + self.seconds
         mon.register_callback(_LIMIT_TOOL, mon.events.PY_START, self._watch)
         mon.register_callback(_LIMIT_TOOL, mon.events.JUMP, self._watch)
         mon.register_callback(_LIMIT_TOOL, mon.events.LINE, self._line)
@@ -195,10 +198,13 @@ class _Limit:
     def __exit__(self, *exc):
         mon = getattr(sys, "monitoring", None)
         if mon is not None and self.deadline is not None:
-            mon.set_events(_LIMIT_TOOL, 0)
-            for event in (mon.events.PY_START, mon.events.JUMP, mon.events.LINE):
-                mon.register_callback(_LIMIT_TOOL, event, None)
-            mon.free_tool_id(_LIMIT_TOOL)
+            try:
+                mon.set_events(_LIMIT_TOOL, 0)
+                for event in (mon.events.PY_START, mon.events.JUMP, mon.events.LINE):
+                    mon.register_callback(_LIMIT_TOOL, event, None)
+                mon.free_tool_id(_LIMIT_TOOL)
+            except ValueError:
+                pass  # the lesson freed the tool itself: nothing left to undo
         return False
 
 
@@ -231,6 +237,7 @@ class Child:
 
     def run_call(self, line):
         """Runs the call in `line` on the lesson; the Done line."""
+        started = time.monotonic()
         try:
             hook, args = lightcone_remote.begin(self.world, line)
             if not isinstance(hook, str):
@@ -240,7 +247,7 @@ class Child:
         if hook not in HOOKS:
             return self._done(f"no such hook {json.dumps(hook, ensure_ascii=False)}", [])
         error = None
-        limit = _Limit(self.limit, hook)
+        limit = _Limit(self.limit, hook, started)
         try:
             with limit:
                 if hook == "setup":

@@ -449,12 +449,13 @@ async function effects() {
   const measured = await page.evaluate(
     async ([data, m, box]) => {
       const { w, px } = await window.lightconeTestPixels(data);
-      // The layout is in the canvas's physical pixels; the screenshot in
-      // the page's (the same at a device pixel ratio of 1).
-      const [bx, by, bw, bh] = m.body.map((v) => v / box.dpr);
+      // The layout is in the canvas's physical pixels, the screenshot in
+      // the device's: the canvas's place (CSS px) times the pixel ratio.
+      const [bx, by, bw, bh] = m.body;
+      const [ox, oy] = [box.x * box.dpr, box.y * box.dpr];
       let [x0, x1, y0, y1] = [Infinity, -1, Infinity, -1];
-      for (let y = Math.floor(box.y + by); y < box.y + by + bh; y++) {
-        for (let x = Math.floor(box.x + bx); x < box.x + bx + bw; x++) {
+      for (let y = Math.floor(oy + by); y < oy + by + bh; y++) {
+        for (let x = Math.floor(ox + bx); x < ox + bx + bw; x++) {
           const i = 4 * (y * w + x);
           if ([0, 1, 2].every((k) => Math.abs(px[i + k] - m.colour[k]) <= 24)) {
             x0 = Math.min(x0, x);

@@ -14,11 +14,10 @@ use super::shown::project;
 use crate::model::{GameState, Pane};
 
 /// The keys a focused control takes from the game ([`Input::keys`]).
-const FOCUS_KEYS: [egui::Key; 8] = [
+const FOCUS_KEYS: [egui::Key; 7] = [
     egui::Key::Space,
     egui::Key::Enter,
     egui::Key::Tab,
-    egui::Key::Escape,
     egui::Key::ArrowLeft,
     egui::Key::ArrowRight,
     egui::Key::ArrowUp,
@@ -104,8 +103,10 @@ impl Input {
     /// them from any of the game's windows (the window, the page's canvas,
     /// the CAVE's output windows, or `egui_kittest`): a press is the open
     /// scene menu's key first, then the action table's
-    /// ([`actions::KEYS`]), unless egui wants the keyboard (a number being
-    /// typed into the c field); held keys fly the eye ([`Self::flight`]).
+    /// ([`actions::KEYS`]), unless a field is being typed into (the c
+    /// field) or a control reached by Tab takes the key (Space, Enter,
+    /// Tab, the arrows); held keys fly the eye ([`Self::flight`]), until
+    /// released or the window loses the keyboard.
     /// A key is known by its place on the keyboard where the platform
     /// gives it (W, A, S, D on any layout), else by its label.
     pub fn keys(
@@ -114,13 +115,21 @@ impl Input {
         state: &mut GameState,
         actions: &mut Vec<UiAction>,
     ) {
-        let typing = ctx.egui_wants_keyboard_input();
-        // A control reached by Tab takes the keys that press or leave it
-        // (Space and Enter press it, Tab and the arrows move on, Escape
-        // hands the keys back to the game); the rest still play.
-        let focused = ctx.memory(|m| m.focused());
+        // Typing into a field (the c field, the scene menu's path): its
+        // keys are the field's.
+        let typing = ctx.text_edit_focused();
+        // A control reached by Tab takes the keys that press it or move
+        // on (Space, Enter, Tab, the arrows); the rest still play (egui
+        // itself hands the focus back on Escape).
+        let focused = ctx.memory(|m| m.focused()).is_some();
         let events = ctx.input(|i| i.events.clone());
         for event in events {
+            if matches!(event, egui::Event::WindowFocused(false)) {
+                // No release comes for what was held when the window lost
+                // the keyboard: nothing flies on.
+                self.keys.clear();
+                continue;
+            }
             let egui::Event::Key {
                 key,
                 physical_key,
@@ -136,15 +145,7 @@ impl Input {
                 self.keys.remove(&key);
                 continue;
             }
-            if typing {
-                continue;
-            }
-            if let Some(id) = focused
-                && FOCUS_KEYS.contains(&key)
-            {
-                if key == egui::Key::Escape {
-                    ctx.memory_mut(|m| m.surrender_focus(id));
-                }
+            if typing || (focused && FOCUS_KEYS.contains(&key)) {
                 continue;
             }
             if !repeat {

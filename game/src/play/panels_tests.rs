@@ -245,7 +245,7 @@ fn tab_reaches_every_control_in_order_and_space_presses_it() {
 /// makes it 1.25× as strong, Enter strikes (the puck's proper velocity
 /// changes by the stroke); while the c field is being typed into, the
 /// keys are the field's; a control reached by Tab keeps Enter and Space
-/// (pressing it), Escape gives them back.
+/// (pressing it) while the other keys play, and Escape gives them back.
 #[test]
 fn the_cue_aims_and_strikes_by_keys_through_egui() {
     let mut h = harness();
@@ -335,6 +335,11 @@ fn the_cue_aims_and_strikes_by_keys_through_egui() {
         "Enter on a focused control struck"
     );
     assert_eq!(h.state().asked.last(), Some(&UiAction::GoLive));
+    // The other keys still play.
+    let paused = h.state().game.paused;
+    h.key_press(egui::Key::P);
+    h.run();
+    assert_eq!(h.state().game.paused, !paused, "P with a control focused");
     h.key_press(egui::Key::Escape);
     h.run();
     h.key_press(egui::Key::Enter);

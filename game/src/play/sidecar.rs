@@ -1,7 +1,7 @@
 //! Where a frame's views, pucks, labels, magnifier and diagram are, as
 //! JSON: the sidecar `play --screenshot` and `render` write beside their
-//! PNG, and what the page publishes as `window.lightconeLayout` (with
-//! `?layout=1`), so that the window's and the page's pictures are measured
+//! PNG, and what the page publishes as `window.lightconeLayout` (opened
+//! at a board time, `?at=`), so that the window's and the page's pictures are measured
 //! by the same numbers.
 
 use lightcone_render::frame::ViewKind;
