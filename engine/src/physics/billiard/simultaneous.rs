@@ -20,12 +20,34 @@ const SIMULTANEOUS: f64 = 1e-12;
 const MAX_GROUP: usize = 32;
 
 impl Billiard {
+    /// How near two board times around `t` (s) count as one: [`SIMULTANEOUS`]
+    /// of the time light takes to cross the table plus of `t`.
+    fn tolerance_at(&self, t: f64) -> f64 {
+        SIMULTANEOUS * (t.abs() + self.table.length() / self.c)
+    }
+
+    /// Puck `c`'s candidate partners: its broad-phase partners, or on the
+    /// reference path every puck (`c` itself included: callers skip it).
+    fn candidates(&self, c: usize) -> impl Iterator<Item = usize> + '_ {
+        let everyone = if self.reference {
+            0..self.pucks.len()
+        } else {
+            0..0
+        };
+        let partners = if self.reference {
+            &[][..]
+        } else {
+            self.broad.partners(c)
+        };
+        partners.iter().map(|&j| j as usize).chain(everyone)
+    }
+
     /// Whether a kick at board time `t` (s) is due now: at or before now,
     /// or within [`SIMULTANEOUS`] after (a contact's kick an ulp after its
     /// partner's, which lands now, would leave it pending while contacts
     /// at that same time are predicted for the one and not the other).
     pub(super) fn due_now(&self, t: f64) -> bool {
-        t <= self.time + SIMULTANEOUS * (self.time.abs() + self.table.length() / self.c)
+        t <= self.time + self.tolerance_at(self.time)
     }
 
     /// Handles, before the contact of `a` and `b` due now is resolved, the
@@ -73,20 +95,10 @@ impl Billiard {
     /// partner whose rest disc can reach by then, on this rare path only.
     pub(super) fn due_with(&self, a: usize, b: usize, t: f64) -> Vec<usize> {
         let now = self.time;
-        let tolerance = SIMULTANEOUS * (t.abs() + self.table.length() / self.c);
+        let tolerance = self.tolerance_at(t);
         let mut due = Vec::new();
         for c in [a, b] {
-            let everyone = if self.reference {
-                0..self.pucks.len()
-            } else {
-                0..0
-            };
-            let partners = if self.reference {
-                &[][..]
-            } else {
-                self.broad.partners(c)
-            };
-            for j in partners.iter().map(|&j| j as usize).chain(everyone) {
+            for j in self.candidates(c) {
                 if j == a || j == b || self.pucks[j].pending.is_empty() || due.contains(&j) {
                     continue;
                 }
@@ -207,19 +219,9 @@ impl Billiard {
             if !self.pucks[m].pending.is_empty() {
                 continue;
             }
-            let tolerance = SIMULTANEOUS * (t.abs() + self.table.length() / self.c);
+            let tolerance = self.tolerance_at(t);
             let mut found = Vec::new();
-            let everyone = if self.reference {
-                0..self.pucks.len()
-            } else {
-                0..0
-            };
-            let partners = if self.reference {
-                &[][..]
-            } else {
-                self.broad.partners(m)
-            };
-            for j in partners.iter().map(|&j| j as usize).chain(everyone) {
+            for j in self.candidates(m) {
                 let (lo, hi) = (m.min(j), m.max(j));
                 if j == m
                     || !self.pucks[j].pending.is_empty()
@@ -248,8 +250,7 @@ impl Billiard {
                 let t_j = h.kicks[on_j].t.max(now);
                 if let Some(&(_, t_member)) = group.members.iter().find(|&&(i, _)| i == j) {
                     // A cycle: the contact must fall at j's time too.
-                    let tolerance_j =
-                        SIMULTANEOUS * (t_member.abs() + self.table.length() / self.c);
+                    let tolerance_j = self.tolerance_at(t_member);
                     if (t_j - t_member).abs() > tolerance_j {
                         continue;
                     }
