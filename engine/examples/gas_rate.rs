@@ -1,10 +1,11 @@
 //! Contacts per second of the event loop in a dense gas, one thread:
-//! `cargo run --release -p lightcone-engine --example gas_rate -- N [CONTACTS] [MU_G]`
+//! `cargo run --release -p lightcone-engine --example gas_rate -- N [CONTACTS] [MU_G] [UNTIL]`
 //! (β < 0.8, pucks 3R apart, elastic, c = 1.42: the gas of BENCHMARKS.md).
 //! With `MU_G` (m/s², sliding friction μg; 1.96 is a cloth's μ = 0.2) every
-//! worldline brakes, and the run stops at board time 0.2 s if it has not
-//! made `CONTACTS` by then (the gas of `lightcone bench physics`'s friction
-//! table: at μg = 1.96 a puck at 0.8 c stops in about 1 s).
+//! worldline brakes, and the run stops at board time `UNTIL` (0.2 s unless
+//! given) if it has not made `CONTACTS` by then (the gas of `lightcone
+//! bench physics`'s friction table: at μg = 1.96 a puck at 0.8 c stops in
+//! about 1 s).
 
 use std::time::Instant;
 
@@ -18,6 +19,7 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(1_000_000);
     let mu_g: f64 = args.next().and_then(|s| s.parse().ok()).unwrap_or(0.0);
+    let until: f64 = args.next().and_then(|s| s.parse().ok()).unwrap_or(0.2);
     let r = 0.0305;
     let build = Instant::now();
     let mut b = dense_box(n, r, 3.0 * r, 0.8, 1.42, 7);
@@ -30,7 +32,7 @@ fn main() {
     let start = Instant::now();
     let cpu0 = cpu_seconds();
     let mut t = 0.0;
-    while b.stats().contacts() < target && (mu_g <= 0.0 || t < 0.2) {
+    while b.stats().contacts() < target && (mu_g <= 0.0 || t < until) {
         t += 0.01;
         b.advance_to(t);
     }
@@ -76,18 +78,13 @@ fn fingerprint(b: &lightcone_engine::physics::Billiard) -> u64 {
     h
 }
 
-/// This process's user + system CPU time, s (Linux; 0 elsewhere): on a
-/// shared machine it is steadier than the wall clock.
+/// This process's CPU time, s (Linux; 0 elsewhere): on a shared machine
+/// it is steadier than the wall clock. From the scheduler's count in
+/// nanoseconds (`/proc/self/schedstat`: the loop is one thread), where
+/// `/proc/self/stat`'s ticks are 10 ms, a twentieth of a short run.
 fn cpu_seconds() -> f64 {
-    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
-        return 0.0;
-    };
-    // Fields after the command name (which is in parentheses).
-    let Some(rest) = stat.rsplit(')').next() else {
-        return 0.0;
-    };
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let ticks = |k: usize| f.get(k).and_then(|s| s.parse::<f64>().ok()).unwrap_or(0.0);
-    // utime and stime are fields 14 and 15 of the file, 12 and 13 here.
-    (ticks(11) + ticks(12)) / 100.0
+    std::fs::read_to_string("/proc/self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(0.0, |ns| ns * 1e-9)
 }

@@ -194,6 +194,16 @@ impl Billiard {
             let other = &self.hot[j];
             let limit = best.t.min(other.exit);
             let bound = if own.braking || other.braking {
+                if bounds::braking_apart_until(
+                    &own.start(),
+                    &other.start(),
+                    self.deceleration,
+                    now,
+                    limit,
+                ) {
+                    pruned += 1;
+                    continue;
+                }
                 let own_reach = *own_reach.get_or_insert_with(|| {
                     bounds::BrakingReach::of(self.pucks[i].worldline.last(), now)
                 });

@@ -69,6 +69,7 @@ impl Billiard {
             broad: BroadPhase::new(&[], &[]),
             shells: vec![DVec2::ZERO; n],
             hot: vec![Hot::default(); n],
+            deceleration: 0.0,
             bounded: Vec::new(),
             margin: SHELL_MARGIN * mean_radius,
             reference: false,
@@ -89,6 +90,11 @@ impl Billiard {
     /// Every shell about its puck's centre and every puck predicted, at the
     /// current time.
     pub(super) fn start(&mut self) {
+        self.deceleration = self
+            .pucks
+            .iter()
+            .map(|p| p.worldline.deceleration())
+            .fold(0.0, f64::max);
         for i in 0..self.pucks.len() {
             self.shells[i] = self.pucks[i]
                 .worldline

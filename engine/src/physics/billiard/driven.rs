@@ -58,6 +58,12 @@ impl Billiard {
 
     /// Puck `k` (internal index) was written from outside.
     pub(super) fn written(&mut self, k: usize) {
+        // A worldline from elsewhere may brake harder than any here.
+        let worldline = &self.pucks[k].worldline;
+        self.deceleration = self
+            .deceleration
+            .max(worldline.deceleration())
+            .max(worldline.last().deceleration());
         if self.driven {
             let puck = &mut self.pucks[k];
             puck.version = puck.version.wrapping_add(1);

@@ -335,6 +335,18 @@ impl Hot {
     fn position_at(&self, t: f64) -> DVec2 {
         self.x0 + self.v * (t - self.t0)
     }
+
+    /// What [`bounds::braking_apart_until`] reads of it.
+    #[inline]
+    fn start(&self) -> bounds::SegmentStart {
+        bounds::SegmentStart {
+            t0: self.t0,
+            x0: self.x0,
+            v: self.v,
+            radius: self.radius,
+            braking: self.braking,
+        }
+    }
 }
 
 /// Width of a broad-phase shell's margin, in mean rest radii: a puck's AABB
@@ -376,6 +388,10 @@ pub struct Billiard {
     margin: f64,
     /// Each puck's current motion, for the cheap bound.
     hot: Vec<Hot>,
+    /// The largest proper deceleration of any puck's braking segments,
+    /// m/s² (0 without friction): the braking pairs' first bound
+    /// ([`bounds::braking_apart_until`]) uses it.
+    deceleration: f64,
     /// Scratch of `predict`: the candidates whose bound (board time, s) can
     /// beat the earliest event, with their index.
     bounded: Vec<(f64, u32)>,

@@ -98,12 +98,14 @@ impl Billiard {
         let tolerance = self.tolerance_at(t);
         let mut due = Vec::new();
         for c in [a, b] {
+            let own = std::cell::OnceCell::new();
             for j in self.candidates(c) {
                 if j == a || j == b || self.pucks[j].pending.is_empty() || due.contains(&j) {
                     continue;
                 }
                 let (lo, hi) = (c.min(j), c.max(j));
-                if self.pending_with(lo, hi) || !self.may_touch_by(lo, hi, t + tolerance) {
+                if self.pending_with(lo, hi) || !self.may_touch_by(lo, hi, t + tolerance, (c, &own))
+                {
                     continue;
                 }
                 let settled = self.settled(lo, hi);
@@ -135,8 +137,17 @@ impl Billiard {
     /// segment's start, `R` the larger radius: the lead of
     /// `braking::pair_before`), in which each centre leaves its tangent
     /// line by at most `a t²/2`; the discs are grown by twice that.
+    ///
+    /// One of the two is `own.0`, whose [`bounds::BrakingReach`] `own.1`
+    /// holds once worked out (a puck's candidates share it).
     #[inline]
-    fn may_touch_by(&self, lo: usize, hi: usize, by: f64) -> bool {
+    fn may_touch_by(
+        &self,
+        lo: usize,
+        hi: usize,
+        by: f64,
+        own: (usize, &std::cell::OnceCell<bounds::BrakingReach>),
+    ) -> bool {
         let now = self.time;
         let (hl, hh) = (self.hot[lo], self.hot[hi]);
         let bound = if hl.braking || hh.braking {
@@ -148,10 +159,17 @@ impl Billiard {
             let beta = (hl.v.length().max(hh.v.length()) / self.c).min(1.0 - 1e-9);
             let lead = 2.0 * beta * rl.max(rh) / (self.c * (1.0 - beta) * (1.0 + beta));
             let grown = 0.5 * (sl.deceleration() + sh.deceleration()) * lead * lead;
+            let reach = |i: usize, s: &crate::worldline::Segment| {
+                if i == own.0 {
+                    *own.1.get_or_init(|| bounds::BrakingReach::of(s, now))
+                } else {
+                    bounds::BrakingReach::of(s, now)
+                }
+            };
             bounds::braking_touch(
-                &bounds::BrakingReach::of(sl, now),
+                &reach(lo, sl),
                 rl + grown,
-                &bounds::BrakingReach::of(sh, now),
+                &reach(hi, sh),
                 rh + grown,
                 now,
                 by,
@@ -221,6 +239,7 @@ impl Billiard {
             }
             let tolerance = self.tolerance_at(t);
             let mut found = Vec::new();
+            let own = std::cell::OnceCell::new();
             for j in self.candidates(m) {
                 let (lo, hi) = (m.min(j), m.max(j));
                 if j == m
@@ -230,7 +249,7 @@ impl Billiard {
                 {
                     continue;
                 }
-                if !self.may_touch_by(lo, hi, t + tolerance) {
+                if !self.may_touch_by(lo, hi, t + tolerance, (m, &own)) {
                     continue;
                 }
                 let settled = self.settled(lo, hi);

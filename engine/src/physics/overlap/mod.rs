@@ -168,6 +168,10 @@ pub fn penetration_needs_scan(
     d.length() < radius_a + radius_b && centre_line_gap(a, radius_a, b, radius_b, d).is_none()
 }
 
+/// [`refine_warm_within`] keeps an axis once Newton's next step would
+/// lower the value by less than this fraction of it.
+const ACCEPT: f64 = 1e-9;
+
 /// Number of directions [`gap_min`] scans (uniform in angle).
 const SAMPLES: usize = 90;
 
@@ -358,17 +362,26 @@ pub fn refine_warm_within(
     let mut s = 0.0f64;
     for _ in 0..8 {
         let m = turned(m0, across, s);
-        let (a1, a2) = oa.support_slopes(m.x, m.y);
-        let (b1, b2) = ob.support_slopes(m.x, m.y);
+        let (ha, a1, a2) = oa.support_with_slopes(m.x, m.y);
+        let (hb, b1, b2) = ob.support_with_slopes(m.x, m.y);
         let first = a1 + b1 - (m.x * d.y - m.y * d.x);
         let second = a2 + b2 + (m.x * d.x + m.y * d.y);
+        // In `s` (`dφ/ds = 2/w`, `d²φ/ds² = −4s/w²`, `w = 1 + s²`) the
+        // slopes are `f₁ = 2 first/w` and `f₂ = 4 (second − s first)/w²`,
+        // so Newton's step `f₁/f₂` is `w first / (2 (second − s first))`.
         let w = 1.0 + s * s;
-        let (ds, dds) = (2.0 / w, -4.0 * s / (w * w));
-        let (f1, f2) = (first * ds, second * ds * ds + first * dds);
-        if f2.is_nan() || f2 <= 0.0 {
+        let curvature = second - s * first;
+        if curvature.is_nan() || curvature <= 0.0 {
             return None;
         }
-        let step = f1 / f2;
+        let step = w * first / (2.0 * curvature);
+        // What the step would still take off the value (Newton's
+        // quadratic model's fall, `f₁ step/2 = first step/w`) is below
+        // 1e-9 of it: this axis's value (the bits of `gap_along`) is kept.
+        let value = (ha + hb) - (m.x * d.x + m.y * d.y);
+        if first * step <= ACCEPT * value.abs() * w {
+            return Some((value, m));
+        }
         s -= step;
         if s.is_nan() || s.abs() > half {
             return None;

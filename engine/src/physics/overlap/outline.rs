@@ -150,4 +150,29 @@ impl Outline {
             self.radius * (0.5 * a2 - first * first) / root,
         )
     }
+
+    /// The support in the unit direction `(cos, sin)` (m, the bits of
+    /// [`Self::support`]) with its first and second derivatives in the
+    /// direction's angle ([`Self::support_slopes`]'s to rounding), from one
+    /// square root and one division (the braking search's axis refinement).
+    #[inline(always)]
+    pub(super) fn support_with_slopes(&self, cos: f64, sin: f64) -> (f64, f64, f64) {
+        let ig = self.inverse_gamma;
+        let along = self.nx * cos + self.ny * sin;
+        let across = self.nx * sin - self.ny * cos;
+        let contracted = along * ig;
+        let a = across * across + contracted * contracted;
+        let root = a.sqrt();
+        let k = 2.0 * (1.0 - ig) * (1.0 + ig);
+        let a1 = k * along * across;
+        let a2 = k * (along - across) * (along + across);
+        // One division: the slopes are over `root` and `root²`.
+        let per_root = root.recip();
+        let first = 0.5 * a1 * per_root;
+        (
+            self.radius * root,
+            self.radius * first,
+            self.radius * (0.5 * a2 - first * first) * per_root,
+        )
+    }
 }

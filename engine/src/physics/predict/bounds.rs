@@ -104,6 +104,67 @@ pub fn braking_touch(
     }
 }
 
+/// What [`braking_apart_until`] reads of one puck: its current segment's
+/// start (board time s, centre m), its board velocity there (m/s), its rest
+/// radius (m) and whether it brakes.
+#[derive(Clone, Copy, Debug)]
+pub struct SegmentStart {
+    /// Board time the segment starts, s.
+    pub t0: f64,
+    /// Centre at `t0`, m (board plane).
+    pub x0: DVec2,
+    /// Board velocity at `t0`, m/s (its largest on the segment).
+    pub v: DVec2,
+    /// Rest radius, m.
+    pub radius: f64,
+    /// Whether the segment brakes.
+    pub braking: bool,
+}
+
+/// A first test for two pucks of which at least one brakes, before
+/// [`BrakingReach`] and [`braking_touch`]: `true` if their rest discs stay
+/// apart from board time `now` to `limit` (s), shown without the braking
+/// law (no root, no division). A braking centre's board speed only falls,
+/// so it moves at most its segment's start speed `|v|` per second; and it
+/// falls behind its uniform extrapolation from the start, `x0 + v (t −
+/// t0)`, by at most `a (t − t0)²/2`, `a` ≥ its proper deceleration (the
+/// board deceleration `a/γ³` is smaller until it stops; after the stop the
+/// lag grows at `|v|`, and `a (t − t0) ≥ a t_stop = c u₀ ≥ |v|`). So the
+/// centres are at least their extrapolations' distance less both lags
+/// apart now, and close by at most `(|v_a| + |v_b|) (limit − now)`. A pair
+/// shown apart here is one [`braking_touch`] would also put past `limit`
+/// (its rest discs do not touch by then); `false` says nothing. The reach
+/// is grown by 1e-9 relative and 1e-12 m against rounding.
+#[must_use]
+pub fn braking_apart_until(
+    a: &SegmentStart,
+    b: &SegmentStart,
+    deceleration: f64,
+    now: f64,
+    limit: f64,
+) -> bool {
+    if !(limit.is_finite() && deceleration.is_finite()) {
+        return false;
+    }
+    let lag = |s: &SegmentStart| {
+        if s.braking {
+            let run = (now - s.t0).max(0.0);
+            0.5 * deceleration * run * run
+        } else {
+            0.0
+        }
+    };
+    let (xa, xb) = (a.x0 + a.v * (now - a.t0), b.x0 + b.v * (now - b.t0));
+    let reach = (a.radius
+        + b.radius
+        + lag(a)
+        + lag(b)
+        + (a.v.length() + b.v.length()) * (limit - now).max(0.0))
+        * (1.0 + 1e-9)
+        + 1e-12;
+    (xb - xa).length_squared() > reach * reach
+}
+
 /// What [`braking_touch`] needs of one puck at a board time: where its
 /// centre is (m, board plane), its board velocity (m/s), how far it still
 /// moves before it stops (m; ∞ if it never does, 0 at rest), and its proper
@@ -120,10 +181,9 @@ impl BrakingReach {
     /// The puck on `segment` at board time `now`.
     #[must_use]
     pub fn of(segment: &Segment, now: f64) -> Self {
-        let position = segment.position_at(now).truncate();
         if !segment.is_braking() {
             return Self {
-                position,
+                position: segment.position_at(now).truncate(),
                 velocity: segment.velocity_at(now).truncate(),
                 left: if segment.is_rest() {
                     0.0
@@ -134,15 +194,33 @@ impl BrakingReach {
             };
         }
         // Along its straight path: the stopping distance less the distance
-        // already run, from one braking law (the bound's gap is shrunk by
-        // far more than this form's rounding).
-        let law = segment.braking_law();
+        // already run, by the braking law's closed forms (`sliding`:
+        // `u = u₀ − a t/c`, run `c t (u₀ + u)/(γ₀ + γ)`, stopping distance
+        // `(c²/a) u₀²/(γ₀ + 1)`) from the segment's own `γ₀`: one square
+        // root. They differ from the worldline's by rounding, far less than
+        // the bound's gap is shrunk by.
+        let c = segment.speed_of_light();
+        let per_second = segment.deceleration() / c;
+        let u0 = segment.u.0.dot(segment.direction());
+        let g0 = segment.gamma();
+        let stopping = c / per_second * (u0 * u0 / (g0 + 1.0));
         let run = (now - segment.start.t).max(0.0);
-        let left = (law.stopping_distance() - law.distance_at(run)).max(0.0);
-        let u = law.proper_speed_at(run);
-        let speed = segment.speed_of_light() * u / (1.0 + u * u).sqrt();
+        let u = (u0 - per_second * run).max(0.0);
+        let g = (1.0 + u * u).sqrt();
+        let run_distance = if u > 0.0 {
+            c * run * (u0 + u) / (g0 + g)
+        } else {
+            stopping
+        };
+        let position = if run > 0.0 {
+            segment.start.position + segment.direction() * run_distance
+        } else {
+            segment.position_at(now)
+        };
+        let left = (stopping - run_distance).max(0.0);
+        let speed = c * u / g;
         Self {
-            position,
+            position: position.truncate(),
             velocity: (segment.direction() * speed).truncate(),
             left,
             deceleration: segment.deceleration(),
