@@ -36,7 +36,7 @@ cp web/static/index.html web/dist/
 cp assets/scenes/*.toml web/dist/scenes/
 
 # Lessons: the page's host and the worker.
-cp web/static/lesson_host.js web/static/lesson_worker.js web/dist/
+cp web/static/lesson_host.js web/static/lesson_worker.js web/static/coi.js web/static/coi_sw.js web/dist/
 # Pyodide's runtime, only what `loadPyodide` fetches to start with its
 # standard library (no package of its own: lessons need none), so nothing
 # comes from another host at run time.

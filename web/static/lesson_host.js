@@ -14,7 +14,8 @@
 //       {kind: "ready"} (Python and the package loaded; the lesson's code
 //       has not run), {kind: "line", line} (an Up line: a request, or a
 //       hook's {"done": ...}), {kind: "failed", error} (lessons cannot run:
-//       Pyodide did not load, no JSPI ...), {kind: "ended", why} (the worker
+//       Pyodide did not load, neither JSPI nor cross-origin isolation ...),
+//       {kind: "ended", why} (the worker
 //       broke down or crashed)
 //   lightconeLesson.stop()  ends the worker (the game's time limit, a reload),
 //       dropping what it sent that was not taken
@@ -31,6 +32,14 @@
 // a reason the worker gives is cut to 64 Ki characters.
 // Nothing here times hooks: the worker raises TimeoutError in a hook past
 // its limit, and the game calls stop() on one that still runs after.
+//
+// In a browser without JSPI (Firefox, Safari) a request cannot wait for
+// the game's answer by stack switching; where the page is cross-origin
+// isolated each worker is given a SharedArrayBuffer (the "channel") and
+// waits on it instead: it marks such a request `blocking`, and the next
+// send() writes the answer there (UTF-8, in chunks of CHANNEL_BYTES, the
+// next one when the worker says {kind: "more"}) instead of posting it.
+// coi_sw.js makes a page served without the headers cross-origin isolated.
 (function () {
   "use strict";
 
@@ -44,6 +53,32 @@
   const MAX_REASON = 64 << 10;
   let junk = 0;
   const reason = (x) => String(x).slice(0, MAX_REASON);
+  // The channel of a worker without JSPI (module doc): its layout is
+  // lesson_worker.js's (two Int32, what the data holds and its length,
+  // then the data).
+  const CHANNEL_HEADER = 8;
+  const CHANNEL_BYTES = 1 << 20;
+  const MORE = 1;
+  const LAST = 2;
+  let channel = null;
+  // Whether the worker waits on the channel for the answer to a request,
+  // and the part of an answer not yet written there.
+  let blocked = false;
+  let pending = null;
+
+  // Writes the next chunk of the pending answer and wakes the worker.
+  function writeChunk() {
+    const state = new Int32Array(channel, 0, 2);
+    const data = new Uint8Array(channel, CHANNEL_HEADER);
+    const n = Math.min(data.length, pending.bytes.length - pending.offset);
+    data.set(pending.bytes.subarray(pending.offset, pending.offset + n));
+    pending.offset += n;
+    Atomics.store(state, 1, n);
+    const last = pending.offset >= pending.bytes.length;
+    Atomics.store(state, 0, last ? LAST : MORE);
+    Atomics.notify(state, 0);
+    if (last) pending = null;
+  }
 
   // Ends the worker and forgets it (its late messages are ignored).
   function end(next) {
@@ -57,6 +92,12 @@
     received = [];
     junk = 0;
     current = "loading";
+    channel =
+      typeof SharedArrayBuffer === "function" && self.crossOriginIsolated
+        ? new SharedArrayBuffer(CHANNEL_HEADER + CHANNEL_BYTES)
+        : null;
+    blocked = false;
+    pending = null;
     let w;
     try {
       w = new Worker("./lesson_worker.js", { type: "module" });
@@ -85,7 +126,11 @@
         current = "ready";
         received.push({ kind: "ready" });
       } else if (m.kind === "line" && typeof m.line === "string") {
+        blocked = m.blocking === true && channel !== null;
         received.push({ kind: "line", line: m.line });
+      } else if (m.kind === "more" && pending) {
+        writeChunk();
+        return; // the worker's own business: the game is not woken
       } else if (m.kind === "failed") {
         received.push({ kind: "failed", error: reason(m.error) });
         end("ended");
@@ -111,11 +156,18 @@
       received.push({ kind: "ended", why: "the lesson's worker sent a message that cannot be read" });
       end("ended");
     };
-    w.postMessage({ kind: "open", name: String(name), source: String(source), limit: Number(limitSeconds) });
+    w.postMessage({ kind: "open", name: String(name), source: String(source), limit: Number(limitSeconds), channel });
   }
 
   function send(line) {
     if (!worker) return false;
+    if (blocked) {
+      // The answer to the request the worker waits on: on the channel.
+      blocked = false;
+      pending = { bytes: new TextEncoder().encode(String(line)), offset: 0 };
+      writeChunk();
+      return true;
+    }
     worker.postMessage({ kind: "line", line: String(line) });
     return true;
   }

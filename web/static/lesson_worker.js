@@ -11,10 +11,17 @@
 //                  {kind: "ended", why}   it broke down after "ready"
 //
 // The Python side (lightcone_web_child.py) runs each call; a request from
-// the lesson's `World` must be synchronous for Python, so each hook is
-// entered with stack switching (`callPromising`) and a request blocks on
-// the game's answer with `pyodide.ffi.run_sync` (WebAssembly JavaScript
-// Promise Integration, JSPI). Scenes and simulations are the engine's,
+// the lesson's `World` must be synchronous for Python. Where the browser
+// has WebAssembly JavaScript Promise Integration (JSPI: Chrome, Edge),
+// each hook is entered with stack switching (`callPromising`) and a
+// request blocks on the game's answer with `pyodide.ffi.run_sync`.
+// Elsewhere (Firefox, Safari) the page, when cross-origin isolated, gives
+// the worker a SharedArrayBuffer (`channel` in "open"): a request is then
+// posted with `blocking: true` and the worker waits on the buffer
+// (`Atomics.wait`) until the page has written the answer there, in chunks
+// of at most CHANNEL_BYTES (the worker asks for each next one with
+// {kind: "more"}). Without either it cannot run lessons and says so.
+// Scenes and simulations are the engine's,
 // compiled for the worker (lightcone_engine_web.js, wasm-bindgen), which
 // the `lightcone._lightcone` stand-in calls. Everything is fetched from
 // this origin: ./pyodide/ (the runtime and its standard library),
@@ -47,11 +54,21 @@ function nextLine() {
 }
 
 let opened = false;
+// The page's SharedArrayBuffer, where it gave one (module doc).
+let channel = null;
+
+// The channel's layout (lesson_host.js writes it): two Int32 (what the
+// data holds: 0 nothing, 1 a chunk with more to come, 2 the last chunk;
+// and its length in bytes), then the data.
+const CHANNEL_HEADER = 8;
+const MORE = 1;
+const LAST = 2;
 
 self.onmessage = (e) => {
   const m = e.data || {};
   if (m.kind === "open" && !opened) {
     opened = true;
+    if (typeof SharedArrayBuffer === "function" && m.channel instanceof SharedArrayBuffer) channel = m.channel;
     run(String(m.name), String(m.source), Number(m.limit)).catch((err) => {
       post({ kind: "ended", why: `the lesson's worker broke down: ${describe(err)}` });
     });
@@ -72,18 +89,42 @@ function describe(err) {
 }
 
 // Whether this browser has JSPI (the standard API, or the one Chrome had
-// behind a flag before it), which blocking requests need.
+// behind a flag before it), with which requests block by stack switching.
 function hasJspi() {
   return typeof WebAssembly.Suspending === "function" || typeof WebAssembly.Suspender === "function";
 }
 
+// A request from Python without JSPI: the line goes up, and the worker
+// waits on the channel for the answer, chunk by chunk (module doc).
+function blockingRequest(line) {
+  post({ kind: "line", line: String(line), blocking: true });
+  const state = new Int32Array(channel, 0, 2);
+  const data = new Uint8Array(channel, CHANNEL_HEADER);
+  const decoder = new TextDecoder();
+  let text = "";
+  for (;;) {
+    Atomics.wait(state, 0, 0);
+    const kind = Atomics.load(state, 0);
+    const length = Math.min(Atomics.load(state, 1), data.length);
+    // Copied out of the shared memory (TextDecoder reads no shared views).
+    text += decoder.decode(data.slice(0, length), { stream: kind === MORE });
+    Atomics.store(state, 0, 0);
+    if (kind !== MORE) return text;
+    post({ kind: "more" });
+  }
+}
+
 // Loads everything, then runs the lesson's calls as they come.
 async function run(name, source, limit) {
-  if (!hasJspi()) {
+  const jspi = hasJspi();
+  if (!jspi && !channel) {
     post({
       kind: "failed",
       error:
-        "this browser cannot run lessons: it lacks WebAssembly JavaScript Promise Integration (JSPI); use Chrome or Edge 137 or newer",
+        "this browser cannot run lessons here: it lacks WebAssembly JavaScript Promise Integration (JSPI), " +
+        "and the page is not cross-origin isolated (the other way a lesson's requests can wait for the game); " +
+        "use Chrome or Edge 137 or newer, or serve the page with the headers docs/web.md gives " +
+        "(Cross-Origin-Opener-Policy: same-origin, Cross-Origin-Embedder-Policy: require-corp)",
     });
     return;
   }
@@ -103,20 +144,27 @@ async function run(name, source, limit) {
     }
     pyodide.registerJsModule("lightcone_engine_web", { lightcone_call: engine.lightcone_call });
     // Python's side of a request: the line goes up, and the hook blocks
-    // (run_sync) until the page's next line, the answer.
+    // until the answer: with JSPI (run_sync) until the page's next line,
+    // else on the channel.
     pyodide.globals.set("_lightcone_up", (line) => post({ kind: "line", line }));
     pyodide.globals.set("_lightcone_next", nextLine);
+    pyodide.globals.set("_lightcone_blocking", blockingRequest);
     const start = pyodide.runPython(`
 import sys
 sys.path.insert(0, ${JSON.stringify(ROOT)})
 import lightcone, lightcone_web_child
-from pyodide.ffi import run_sync
 
-def _lightcone_request(line, up=_lightcone_up, next_line=_lightcone_next):
-    up(line)
-    return run_sync(next_line())
+if ${jspi ? "True" : "False"}:
+    from pyodide.ffi import run_sync
 
-del _lightcone_up, _lightcone_next
+    def _lightcone_request(line, up=_lightcone_up, next_line=_lightcone_next):
+        up(line)
+        return run_sync(next_line())
+else:
+    def _lightcone_request(line, blocking=_lightcone_blocking):
+        return str(blocking(line))
+
+del _lightcone_up, _lightcone_next, _lightcone_blocking
 lightcone_web_child.start
 `);
     // A hook over `limit` s gets a TimeoutError at its line (sys.monitoring,
@@ -132,8 +180,9 @@ lightcone_web_child.start
   post({ kind: "ready" });
   for (;;) {
     const line = await nextLine();
-    // With stack switching: the hook may block on requests.
-    const done = await runCall.callPromising(line);
+    // With stack switching where there is JSPI: the hook may block on
+    // requests (without, it blocks on the channel).
+    const done = jspi ? await runCall.callPromising(line) : runCall(line);
     post({ kind: "line", line: done });
   }
 }

@@ -48,21 +48,29 @@ const TYPES = {
 };
 const PAGE = `<!doctype html><meta charset="utf-8"><title>lesson worker test</title><link rel="icon" href="data:,">
 <script src="./lesson_host.js"></script>`;
+// The same page with the game's coi.js first (index.html's order).
+const COI_PAGE = PAGE.replace("<script", '<script src="./coi.js"></script>\n<script');
 const fetched = [];
 // Under /nojspi/, the same files, but a worker that finds no JSPI (as in
 // a browser without it: Chromium here cannot turn it off).
 const NO_JSPI = "delete WebAssembly.Suspending; delete WebAssembly.Suspender; delete WebAssembly.promising;\n";
+// Under /nojspi-coi/, the same without JSPI, every response with the
+// headers that make a page cross-origin isolated (a server that sends
+// them); under /nojspi-sw/, without JSPI in the page too (its coi.js) and
+// without the headers, which coi_sw.js then adds (python3 -m http.server).
+const ISOLATED = { "cross-origin-opener-policy": "same-origin", "cross-origin-embedder-policy": "require-corp" };
 const server = createServer((req, res) => {
   let path = decodeURIComponent(new URL(req.url, "http://x").pathname);
-  const noJspi = path.startsWith("/nojspi/");
-  if (noJspi) path = path.slice("/nojspi".length);
-  if (noJspi && path === "/lesson_worker.js") {
-    res.writeHead(200, { "content-type": "text/javascript" });
+  const prefix = ["/nojspi/", "/nojspi-coi/", "/nojspi-sw/"].find((p) => path.startsWith(p));
+  if (prefix) path = path.slice(prefix.length - 1);
+  const headers = prefix === "/nojspi-coi/" ? ISOLATED : {};
+  if (prefix && (path === "/lesson_worker.js" || (prefix === "/nojspi-sw/" && path === "/coi.js"))) {
+    res.writeHead(200, { "content-type": "text/javascript", ...headers });
     return res.end(NO_JSPI + readFileSync(join(dist, path), "utf8"));
   }
-  if (path === "/__lesson_test.html") {
-    res.writeHead(200, { "content-type": "text/html" });
-    return res.end(PAGE);
+  if (path === "/__lesson_test.html" || path === "/__coi_test.html") {
+    res.writeHead(200, { "content-type": "text/html", ...headers });
+    return res.end(path === "/__coi_test.html" ? COI_PAGE : PAGE);
   }
   const file = normalize(join(dist, path));
   if (!file.startsWith(normalize(dist))) {
@@ -75,7 +83,7 @@ const server = createServer((req, res) => {
     return res.end();
   }
   fetched.push(path);
-  res.writeHead(200, { "content-type": TYPES[extname(file)] || "application/octet-stream" });
+  res.writeHead(200, { "content-type": TYPES[extname(file)] || "application/octet-stream", ...headers });
   createReadStream(file).pipe(res);
 });
 await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
@@ -99,7 +107,7 @@ function check(ok, what) {
   return ok;
 }
 
-const page = await browser.newPage();
+let page = await browser.newPage();
 const consoleLines = [];
 page.on("console", (m) => consoleLines.push(`${m.type()}: ${m.text()}`));
 page.on("pageerror", (e) => fail(`uncaught in the page: ${e.message}`));
@@ -114,7 +122,7 @@ await page.goto(`${origin}/__lesson_test.html`);
 
 // The page keeps what `take()` gives, with when each arrived (ms on its
 // clock), so the test reads messages one at a time.
-await page.evaluate(() => {
+const prepare = (p) => p.evaluate(() => {
   const queue = [];
   setInterval(() => {
     for (const m of window.lightconeLesson.take()) queue.push({ ...m, at: performance.now() });
@@ -131,6 +139,7 @@ await page.evaluate(() => {
     });
   window.__now = () => performance.now();
 });
+await prepare(page);
 const next = (ms = 20_000) => page.evaluate((ms) => window.__next(ms), ms);
 const lesson = {
   open: (name, source, limit = 10) => page.evaluate(([n, s, l]) => window.lightconeLesson.open(n, s, l), [name, source, limit]),
@@ -498,7 +507,9 @@ if ((await openReady("hang.py", "def setup(world):\n    while True:\n        pas
   await other.evaluate(() => window.lightconeLesson.open("a.py", "def setup(world): pass\n", 10));
   const m = await other.waitForFunction(() => window.lightconeLesson.take()[0], null, { timeout: 20_000 }).then((h) => h.jsonValue());
   check(
-    m.kind === "failed" && m.error.includes("lacks WebAssembly JavaScript Promise Integration (JSPI)"),
+    m.kind === "failed" &&
+      m.error.includes("lacks WebAssembly JavaScript Promise Integration (JSPI)") &&
+      m.error.includes("not cross-origin isolated"),
     `without JSPI: ${JSON.stringify(m)}`,
   );
   check((await other.evaluate(() => window.lightconeLesson.state())) === "ended", "state after failed");
@@ -506,6 +517,60 @@ if ((await openReady("hang.py", "def setup(world):\n    while True:\n        pas
   check(pyodide.length === 0, `without JSPI, Pyodide was fetched: ${JSON.stringify(pyodide)}`);
   await other.close();
 }
+
+// ---- A browser without JSPI whose page is cross-origin isolated: the
+// lesson's requests wait on shared memory (lesson_host.js), an answer of
+// 2.6 MB in three chunks, one split inside a UTF-8 character.
+
+const SHARED = `import lightcone
+
+
+def setup(world):
+    scene = lightcone.Scene(title="Two pucks")
+    scene.add_puck("a", (0.5, 0.71), beta=(0.6, 0.0))
+    scene.add_puck("b", (2.0, 0.71))
+    world.start(scene)
+    pad = world._snapshot.get("padding", "")
+    print(len(pad), pad[:3], pad[-3:])
+    world.say("Shared memory.")
+    print("u(a) =", world.velocity("a"))
+`;
+async function sharedMemoryLesson(url, what) {
+  const main = page;
+  page = await browser.newPage();
+  page.on("pageerror", (e) => fail(`${what}: uncaught in the page: ${e.message}`));
+  try {
+    await page.goto(url);
+    // coi.js may reload the page once: wait until it is isolated.
+    let isolated = false;
+    for (let i = 0; i < 100 && !isolated; i++) {
+      isolated = await page.evaluate(() => self.crossOriginIsolated === true).catch(() => false);
+      if (!isolated) await new Promise((r) => setTimeout(r, 100));
+    }
+    if (!check(isolated, `${what}: the page is not cross-origin isolated`)) return;
+    await prepare(page);
+    if ((await openReady(`${what}.py`, SHARED)) === null) return;
+    await lesson.send(call("setup", "[]", NONE));
+    if (!(await request("start", `${what}: setup`))) return;
+    const padding = "x" + "\u00e9".repeat(1_300_000);
+    await lesson.send(`{"ok":null,"snapshot":${SNAPSHOT.replace("{", `{"padding":"${padding}",`)}}`);
+    if (!(await request("say", `${what}: setup`))) return;
+    await lesson.send(`{"ok":null,"snapshot":${SNAPSHOT}}`);
+    if (!(await request("velocity", `${what}: setup`))) return;
+    await lesson.send(`{"ok":[0.75,0.0],"snapshot":${SNAPSHOT}}`);
+    const d = await done(`${what}: setup`);
+    check(
+      d && d.error === null && JSON.stringify(d.printed) === JSON.stringify(["1300001 x\u00e9\u00e9 \u00e9\u00e9\u00e9", "u(a) = (0.75, 0.0)"]),
+      `${what}: ${JSON.stringify(d)}`,
+    );
+    await lesson.stop();
+  } finally {
+    await page.close();
+    page = main;
+  }
+}
+await sharedMemoryLesson(`${origin}/nojspi-coi/__lesson_test.html`, "isolated_by_the_server");
+await sharedMemoryLesson(`${origin}/nojspi-sw/__coi_test.html`, "isolated_by_coi_sw");
 
 // ---- A request's round trip, answered from the worker's message event
 // (no polling): the worker driven directly, as lesson_host.js does.
