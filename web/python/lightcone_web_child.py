@@ -7,8 +7,10 @@ The game sends call lines (`{"call": hook, "args": [...], "snapshot":
 returns the Done line (`{"done": {"error", "timed_out", "printed",
 "hooks"}}`, as serde writes remote.rs's `Up::Done`). Inside a hook the
 lesson's `World` (`lightcone_remote.World`) sends its requests through
-`request`, which the worker makes synchronous for Python (JSPI: it
-blocks on the game's answer with `pyodide.ffi.run_sync`).
+`request`, which the worker makes synchronous for Python: with JSPI it
+blocks on the game's answer with `pyodide.ffi.run_sync`, without (Firefox,
+Safari) it waits on memory shared with the page (`Atomics.wait`,
+lesson_worker.js).
 
 A hook over its time limit gets a `TimeoutError` at its line, as on the
 desktop (`game/src/lesson/watchdog.rs`), from `sys.monitoring` (there is

@@ -14,8 +14,18 @@
   const jspi =
     typeof WebAssembly === "object" &&
     (typeof WebAssembly.Suspending === "function" || typeof WebAssembly.Suspender === "function");
-  if (jspi || self.crossOriginIsolated || !self.isSecureContext || !("serviceWorker" in navigator)) return;
   const KEY = "lightcone-isolation-reload";
+  if (self.crossOriginIsolated) {
+    // Isolated: a later load that is not (a hard reload skips the service
+    // worker) may reload once again.
+    try {
+      sessionStorage.removeItem(KEY);
+    } catch (e) {
+      // nothing to clear
+    }
+    return;
+  }
+  if (jspi || !self.isSecureContext || !("serviceWorker" in navigator)) return;
   let reloaded = false;
   try {
     reloaded = sessionStorage.getItem(KEY) === "1";

@@ -10,6 +10,11 @@
 //                  {kind: "failed", error}  it cannot run lessons here
 //                  {kind: "ended", why}   it broke down after "ready"
 //
+// With neither JSPI nor the channel "open" is answered with "failed". Two
+// more messages serve the channel: the page's answer to a `blocking`
+// request goes there instead of in a "line", and the worker asks for each
+// next chunk of it with {kind: "more"}.
+//
 // The Python side (lightcone_web_child.py) runs each call; a request from
 // the lesson's `World` must be synchronous for Python. Where the browser
 // has WebAssembly JavaScript Promise Integration (JSPI: Chrome, Edge),
@@ -81,6 +86,13 @@ self.onmessage = (e) => {
       inbox.push(m.line);
     }
   }
+};
+
+// A message that cannot be read (an "open" whose shared buffer a page
+// that is not isolated could not send): said, rather than a lesson that
+// never starts.
+self.onmessageerror = () => {
+  post({ kind: "failed", error: "the lesson's worker got a message it cannot read (is the page cross-origin isolated?)" });
 };
 
 // An error's message (a Python error's is its traceback).

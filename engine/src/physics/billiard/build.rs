@@ -90,10 +90,17 @@ impl Billiard {
     /// Every shell about its puck's centre and every puck predicted, at the
     /// current time.
     pub(super) fn start(&mut self) {
+        // Of the worldlines and of their newest segments (one written from
+        // elsewhere may brake harder than its worldline's own rule), as
+        // `written` keeps it.
         self.deceleration = self
             .pucks
             .iter()
-            .map(|p| p.worldline.deceleration())
+            .map(|p| {
+                p.worldline
+                    .deceleration()
+                    .max(p.worldline.last().deceleration())
+            })
             .fold(0.0, f64::max);
         for i in 0..self.pucks.len() {
             self.shells[i] = self.pucks[i]

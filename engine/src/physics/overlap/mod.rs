@@ -599,6 +599,29 @@ pub fn first_touch(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The braking search's support and slopes from one root
+    /// (`Outline::support_with_slopes`): the support to the bit of
+    /// `Outline::support`, the slopes those of `support_slopes` to 1e-12.
+    #[test]
+    fn the_support_with_its_slopes_is_the_support_to_the_bit() {
+        let mut rng = crate::physics::gas::Rng::new(0x5109e);
+        let mut next = move || rng.next_f64();
+        for _ in 0..2000 {
+            let angle = std::f64::consts::TAU * next();
+            let n = DVec3::new(angle.cos(), angle.sin(), 0.0);
+            let inverse_gamma = 10f64.powf(-4.0 * next());
+            let o = Outline::along(n, inverse_gamma, 0.01 + next(), DVec3::ZERO);
+            let phi = std::f64::consts::TAU * next();
+            let (cos, sin) = (phi.cos(), phi.sin());
+            let (h, h1, h2) = o.support_with_slopes(cos, sin);
+            assert_eq!(h.to_bits(), o.support(cos, sin).to_bits());
+            let (g1, g2) = o.support_slopes(cos, sin);
+            let scale = o.radius() / inverse_gamma;
+            assert!((h1 - g1).abs() <= 1e-12 * scale, "{h1} against {g1}");
+            assert!((h2 - g2).abs() <= 1e-12 * scale, "{h2} against {g2}");
+        }
+    }
     use crate::spacetime::{Event, ProperVelocity};
     use crate::worldline::Worldline;
 

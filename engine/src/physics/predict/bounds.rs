@@ -285,6 +285,64 @@ pub fn disc_touch(
 mod tests {
     use super::*;
 
+    /// `braking_apart_until` against the worldlines themselves: random
+    /// pairs (braking, stopped, not yet started, uniform, at rest) whose
+    /// centres are sampled every 1e-4 s from now to the limit; wherever the
+    /// test says apart, the rest discs are apart at every sample. It must
+    /// also say apart often, or it prunes nothing.
+    #[test]
+    fn the_first_braking_bound_never_calls_touching_rest_discs_apart() {
+        use crate::spacetime::{Event, ProperVelocity};
+        use crate::worldline::Worldline;
+        let mut rng = crate::physics::gas::Rng::new(0xb4a_7e5);
+        let mut next = move || rng.next_f64();
+        let (c, r, a) = (1.42, 0.0305, 1.96);
+        let (mut apart, mut cases) = (0, 0);
+        let puck = |braking: bool, next: &mut dyn FnMut() -> f64| {
+            let start = Event::new(0.3 * next(), DVec3::new(0.4 * next(), 0.4 * next(), 0.0));
+            let beta = DVec3::new(next() - 0.5, next() - 0.5, 0.0) * 1.6;
+            let u = ProperVelocity::try_from_beta(beta.clamp_length_max(0.8))
+                .unwrap_or(ProperVelocity::ZERO);
+            let u = if next() < 0.1 {
+                ProperVelocity::ZERO
+            } else {
+                u
+            };
+            let w = Worldline::braking(start, u, c, if braking { a } else { 0.0 });
+            let s = *w.last();
+            let hot = SegmentStart {
+                t0: s.start.t,
+                x0: s.start.position.truncate(),
+                v: s.velocity().truncate(),
+                radius: r,
+                braking: s.is_braking(),
+            };
+            (s, hot)
+        };
+        for _ in 0..3000 {
+            let (brakes_a, brakes_b) = (next() < 0.8, next() < 0.8);
+            let (sa, ha) = puck(brakes_a, &mut next);
+            let (sb, hb) = puck(brakes_b, &mut next);
+            let now = 0.2 + 1.5 * next();
+            let limit = now + 0.1 * next();
+            cases += 1;
+            if !braking_apart_until(&ha, &hb, a, now, limit) {
+                continue;
+            }
+            apart += 1;
+            let steps = ((limit - now) / 1e-4).ceil() as usize + 1;
+            for k in 0..=steps {
+                let t = now + (limit - now) * k as f64 / steps as f64;
+                let d = (sb.position_at(t) - sa.position_at(t)).length();
+                assert!(d > 2.0 * r, "called apart, but {d} m at {t} s");
+            }
+        }
+        assert!(
+            apart > cases / 4 && apart < cases,
+            "{apart} of {cases} called apart"
+        );
+    }
+
     #[test]
     fn later_root_solves_the_quadratic_in_both_branches() {
         // (τ − 2)(τ + 3) = τ² + τ − 6: vv = 1, p = 1/2, q = −6 → τ = 2.
