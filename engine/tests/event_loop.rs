@@ -111,18 +111,20 @@ fn braking_gases_on_other_cloths_give_the_same_contacts_as_the_reference_loop() 
         }
         assert_eq!(a.len(), b.len(), "seed {seed}");
         assert!(a.len() >= 20, "seed {seed}: only {} contacts", a.len());
-        // And the same final state, to rounding. (Not to the bit: a pair is
-        // often predicted at different times in the two loops, and where
-        // the separation is within its rounding of zero its sign is noise
-        // from float to float, so two searches from different starts can
-        // stop at sign changes a few ulps apart.)
+        // And the same final state, to 1e-9 as the contacts. (Not to the
+        // bit: a pair is often predicted at different times in the two
+        // loops, and where the separation is within its rounding of zero
+        // its sign is noise from float to float, so two searches from
+        // different starts can stop a few ulps apart, within the rounding
+        // floor the search stops at; a dense gas's later contacts magnify
+        // that, to 4e-12 s by the end of seed 5's run.)
         for i in 0..fast.len() {
             let (x, y) = (fast.worldline(i).last(), slow.worldline(i).last());
-            let close = |p: f64, q: f64| (p - q).abs() <= 1e-12 * (1.0 + p.abs().max(q.abs()));
+            let close = |p: f64, q: f64| (p - q).abs() <= 1e-9 * (1.0 + p.abs().max(q.abs()));
             assert!(
                 close(x.start.t, y.start.t)
-                    && (x.start.position - y.start.position).length() <= 1e-12
-                    && (x.u.0 - y.u.0).length() <= 1e-12 * (1.0 + x.u.0.length())
+                    && (x.start.position - y.start.position).length() <= 1e-9
+                    && (x.u.0 - y.u.0).length() <= 1e-9 * (1.0 + x.u.0.length())
                     && close(x.orientation, y.orientation)
                     && close(x.proper_time, y.proper_time),
                 "seed {seed}: puck {i}: {x:?} against {y:?}"

@@ -36,7 +36,11 @@
 //! value at an end kept twice in a row halved; the midpoint when that
 //! would not fall strictly inside, or when two probes have not halved the
 //! bracket), and the interval before it is then proved by the reaches, so
-//! the bracket closes in superlinearly on a smooth separation. It ends at
+//! the bracket closes in superlinearly on a smooth separation. Where the
+//! proof from the left end reaches at least half as far as its linear
+//! extrapolation, the next probe is at the end of that proof instead (it is
+//! apart, short of a touch by about the square of the distance, so the left
+//! end closes in quadratically alone). It ends at
 //! adjacent floats: the first float with `σ ≤ 0` whose predecessor is
 //! apart (to rounding); or, given the separation's rounding `floor`
 //! ([`Rates::floor`], m), as soon as the bracket `[a, b]` is too short to
@@ -202,7 +206,21 @@ pub fn first_contact_before(
             // Never met in tests; a bound against a pathological probe.
             return (pb.sigma <= 0.0).then_some(b);
         }
-        let x = if pb.sigma <= 0.0 {
+        // Where the proof from `a` reaches at least half as far as the
+        // linear extrapolation of its separation (the touch, if any, is
+        // near), the next probe goes to the end of that proof: apart, and
+        // short of the touch by about the square of the distance, so the
+        // left end closes in quadratically by itself (one probe a squaring,
+        // where a probe past the touch and one back took two).
+        let newton = if pa.rate < 0.0 {
+            pa.sigma / -pa.rate
+        } else {
+            f64::INFINITY
+        };
+        let land = a + ahead;
+        let x = if ahead >= 0.5 * newton && land > a && land < b && pa.sigma > rates.floor {
+            land
+        } else if pb.sigma <= 0.0 {
             bracket.next(a, pa.sigma, ahead, b, pb)
         } else {
             // One reach past the left end's proof, at most the middle.
