@@ -266,25 +266,19 @@ fn the_cue_aims_and_strikes_by_keys_through_egui() {
     ) * 1.25;
     let turned = h.state().game.cue.expect("still cued").du;
     assert!((turned - want).length() < 1e-12, "{turned} against {want}");
-    let t = h.state().game.live_time;
-    let before = h
-        .state()
-        .game
-        .physics()
-        .worldline(0)
-        .proper_velocity_at(t)
-        .0;
+    // The first puck's proper velocity at the live time.
+    let u_now = |h: &Harness<'static, Panel>| {
+        let game = &h.state().game;
+        game.physics()
+            .worldline(0)
+            .proper_velocity_at(game.live_time)
+            .0
+    };
+    let before = u_now(&h);
     h.key_press(egui::Key::Enter);
     h.run();
     assert!(h.state().game.cue.is_none(), "Enter strikes");
-    let t = h.state().game.live_time;
-    let after = h
-        .state()
-        .game
-        .physics()
-        .worldline(0)
-        .proper_velocity_at(t)
-        .0;
+    let after = u_now(&h);
     assert!(
         (after - before - want).length() < 1e-12,
         "{after} vs {before} + {want}"

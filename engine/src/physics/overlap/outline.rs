@@ -129,21 +129,30 @@ impl Outline {
         self.radius * along * contracted * rate / (across * across + contracted * contracted).sqrt()
     }
 
+    /// `√A`, `A′` and `A″` of [`Self::support_slopes`] at `(cos, sin)`
+    /// (the support is `R √A`).
+    #[inline(always)]
+    fn support_terms(&self, cos: f64, sin: f64) -> (f64, f64, f64) {
+        let ig = self.inverse_gamma;
+        let along = self.nx * cos + self.ny * sin;
+        let across = self.nx * sin - self.ny * cos;
+        let contracted = along * ig;
+        let root = (across * across + contracted * contracted).sqrt();
+        let k = 2.0 * (1.0 - ig) * (1.0 + ig);
+        (
+            root,
+            k * along * across,
+            k * (along - across) * (along + across),
+        )
+    }
+
     /// The support's first and second derivatives in the direction's angle
     /// at `(cos, sin)`, m/rad and m/rad²: with `A = (n⊥·m)² + ((n·m)/γ)²`,
     /// `A′ = 2 (1 − 1/γ²)(n·m)(n⊥·m)`, `A″ = 2 (1 − 1/γ²)((n·m)² − (n⊥·m)²)`
     /// and `h = R√A`.
     #[inline(always)]
     pub(super) fn support_slopes(&self, cos: f64, sin: f64) -> (f64, f64) {
-        let ig = self.inverse_gamma;
-        let along = self.nx * cos + self.ny * sin;
-        let across = self.nx * sin - self.ny * cos;
-        let contracted = along * ig;
-        let a = across * across + contracted * contracted;
-        let root = a.sqrt();
-        let k = 2.0 * (1.0 - ig) * (1.0 + ig);
-        let a1 = k * along * across;
-        let a2 = k * (along - across) * (along + across);
+        let (root, a1, a2) = self.support_terms(cos, sin);
         let first = 0.5 * a1 / root;
         (
             self.radius * first,
@@ -157,15 +166,7 @@ impl Outline {
     /// square root and one division (the braking search's axis refinement).
     #[inline(always)]
     pub(super) fn support_with_slopes(&self, cos: f64, sin: f64) -> (f64, f64, f64) {
-        let ig = self.inverse_gamma;
-        let along = self.nx * cos + self.ny * sin;
-        let across = self.nx * sin - self.ny * cos;
-        let contracted = along * ig;
-        let a = across * across + contracted * contracted;
-        let root = a.sqrt();
-        let k = 2.0 * (1.0 - ig) * (1.0 + ig);
-        let a1 = k * along * across;
-        let a2 = k * (along - across) * (along + across);
+        let (root, a1, a2) = self.support_terms(cos, sin);
         // One division: the slopes are over `root` and `root²`.
         let per_root = root.recip();
         let first = 0.5 * a1 * per_root;

@@ -3,6 +3,7 @@
 //! `physics::predict::braking`).
 
 use super::*;
+use crate::spacetime::{Boost, FourVector};
 use crate::worldline::Worldline;
 
 const C: f64 = 1.42;

@@ -2,6 +2,8 @@
 
 pub mod bounds;
 pub mod braking;
+mod braking_kicks;
+mod braking_motion;
 pub mod isolation;
 pub mod pair;
 pub mod puck_cushion;
