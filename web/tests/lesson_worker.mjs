@@ -541,10 +541,14 @@ async function sharedMemoryLesson(url, what) {
   page.on("pageerror", (e) => fail(`${what}: uncaught in the page: ${e.message}`));
   try {
     await page.goto(url);
-    // coi.js may reload the page once: wait until it is isolated.
+    // coi.js may reload the page once: wait until it is isolated and its
+    // scripts have run (a new document is isolated from its first moment,
+    // before lesson_host.js has loaded).
     let isolated = false;
     for (let i = 0; i < 100 && !isolated; i++) {
-      isolated = await page.evaluate(() => self.crossOriginIsolated === true).catch(() => false);
+      isolated = await page
+        .evaluate(() => self.crossOriginIsolated === true && document.readyState === "complete" && !!window.lightconeLesson)
+        .catch(() => false);
       if (!isolated) await new Promise((r) => setTimeout(r, 100));
     }
     if (!check(isolated, `${what}: the page is not cross-origin isolated`)) return;
