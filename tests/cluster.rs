@@ -458,9 +458,13 @@ fn four_render_nodes_draw_the_masters_frames_exactly() {
                 );
             }
             // The others showed every frame after their first, to the end,
-            // across the kill and the late join.
+            // across the kill and the late join. They start with the
+            // master, which does not wait for them: how many frames it
+            // draws while they connect is a matter of speed (10–12 on
+            // llvmpipe since a window there draws one sample a pixel), so
+            // the bound is the late join's frame, which they precede.
             _ => {
-                assert!(first < 10, "{w}: started at frame {first}");
+                assert!(first < 25, "{w}: started at frame {first}");
                 assert_eq!(last, 90, "{w}: stopped at {last}");
                 assert_eq!(frames.len() as u64, last - first + 1, "{w}: a frame missed");
             }

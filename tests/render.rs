@@ -205,6 +205,52 @@ fn golden_images() {
 }
 
 #[test]
+fn a_window_on_a_software_rasteriser_draws_the_same_picture() {
+    // A window on a CPU adapter draws one sample a pixel, and in a browser
+    // into a plain (not sRGB) canvas whose colours the scene's shader
+    // encodes itself (`Gpu::window_samples`, the web window's format).
+    // Against the pictures written to files (sRGB target, 4 samples): the
+    // plain target holds the sRGB target's bytes to rounding (every
+    // channel within 1 of 255, the shader's `pow` against the target's
+    // own encoding); one sample differs from four only along edges (under
+    // 3 % of the pixels off by more than 48, where MSAA's coverage blends
+    // an edge pixel; mean under 3 levels).
+    let gpu = gpu::headless().expect("a graphics adapter");
+    let scene = scene::load(&repo().join("assets/scenes/paper_carom.toml")).unwrap();
+    let (w, h) = (320u32, 180u32);
+    let (mut sim, view) =
+        frame::scene_view(&scene, 0, 2.2, ViewKind::Seen, f64::from(w) / f64::from(h));
+    let meshes = frame::ViewMeshes::new(&mut sim);
+    let mut vertices = Vec::new();
+    frame::build_view(sim.apparent(view).unwrap(), &meshes, &mut vertices);
+    let camera: frame::Camera = sim.camera(view).unwrap().into();
+    let draw = |format, samples| {
+        headless::Offscreen::with(&gpu, w, h, format, samples)
+            .draw(&gpu, &vertices, &camera)
+            .unwrap()
+    };
+    let srgb = wgpu::TextureFormat::Rgba8UnormSrgb;
+    let files = draw(srgb, lightcone_render::pipeline::SAMPLES);
+    let window = draw(srgb, 1);
+    let canvas = draw(wgpu::TextureFormat::Rgba8Unorm, 1);
+    let worst = window
+        .rgba
+        .iter()
+        .zip(&canvas.rgba)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap();
+    assert!(worst <= 1, "the plain target is off by {worst} levels");
+    let (mean, big) = difference(&window, &files);
+    assert!(
+        mean < 3.0 && big < 0.03,
+        "one sample against four: mean {mean:.2}, {:.2} % pixels off",
+        big * 100.0
+    );
+    assert!(mean > 0.0, "the two sample counts drew the same bytes");
+}
+
+#[test]
 fn a_default_render_shows_the_whole_table() {
     // No `look_at` in the scene: the camera frames the whole table
     // (cushions included) with a margin, at any image shape.

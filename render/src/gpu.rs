@@ -19,6 +19,24 @@ pub struct Gpu {
     pub handle: wgpu::Adapter,
 }
 
+impl Gpu {
+    /// Samples a pixel for a window's scene: one on a software rasteriser
+    /// (lavapipe, llvmpipe, a browser's SwiftShader: a CPU adapter), where
+    /// 4× MSAA made each frame of a 1280×720 page about four times the
+    /// pixel work (183 ms a frame in headless Chromium, 5 fps:
+    /// BENCHMARKS.md, "Frame rate on a software rasteriser"), and
+    /// [`crate::pipeline::SAMPLES`] on a GPU. Pictures written to files keep
+    /// [`crate::pipeline::SAMPLES`] (their cost is not a frame rate).
+    #[must_use]
+    pub fn window_samples(&self) -> u32 {
+        if self.handle.get_info().device_type == wgpu::DeviceType::Cpu {
+            1
+        } else {
+            crate::pipeline::SAMPLES
+        }
+    }
+}
+
 /// Opens the best available adapter (a software one is fine) without a
 /// window: Vulkan first (lavapipe on CI), then GL (llvmpipe). Fails with
 /// [`NO_ADAPTER`] when there is none.

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::frame::{self, Camera, FrameVertex, ViewKind};
 use super::gpu::Gpu;
-use super::pipeline::Renderer;
+use super::pipeline::{Renderer, SAMPLES};
 use lightcone_engine::ecs::{Entity, Simulation};
 use lightcone_engine::scene::Scene;
 
@@ -108,6 +108,13 @@ impl Target {
     /// A `width × height` target of [`FORMAT`] on `gpu`.
     #[must_use]
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
+        Self::with_format(gpu, width, height, FORMAT)
+    }
+
+    /// A `width × height` target of `format` (4 bytes a texel, RGBA
+    /// order: `Rgba8Unorm` or `Rgba8UnormSrgb`) on `gpu`.
+    #[must_use]
+    pub fn with_format(gpu: &Gpu, width: u32, height: u32, format: wgpu::TextureFormat) -> Self {
         let device = &gpu.device;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("headless target"),
@@ -119,7 +126,7 @@ impl Target {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: FORMAT,
+            format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
         });
@@ -184,9 +191,23 @@ impl Offscreen {
     /// A `width × height` target on `gpu`.
     #[must_use]
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
+        Self::with(gpu, width, height, FORMAT, SAMPLES)
+    }
+
+    /// A `width × height` target of `format` ([`Target::with_format`]) on
+    /// `gpu`, drawn with `samples` samples a pixel: what a window on
+    /// another adapter or in a browser draws (`Gpu::window_samples`).
+    #[must_use]
+    pub fn with(
+        gpu: &Gpu,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+        samples: u32,
+    ) -> Self {
         Self {
-            target: Target::new(gpu, width, height),
-            renderer: Renderer::new(&gpu.device, FORMAT, width, height),
+            target: Target::with_format(gpu, width, height, format),
+            renderer: Renderer::new(&gpu.device, format, width, height, samples),
         }
     }
 

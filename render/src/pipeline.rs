@@ -9,8 +9,10 @@ use super::frame::FrameVertex;
 
 /// Depth buffer format.
 const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Samples per pixel (MSAA); 4 is supported by every WebGPU adapter for
-/// renderable colour formats and for the depth format.
+/// Samples per pixel (MSAA) on a GPU, and for pictures written to files;
+/// 4 is supported by every WebGPU adapter for renderable colour formats
+/// and for the depth format. A window on a software rasteriser draws one
+/// ([`crate::gpu::Gpu::window_samples`]).
 pub const SAMPLES: u32 = 4;
 
 #[repr(C)]
@@ -45,18 +47,24 @@ pub struct Renderer {
     depth: wgpu::TextureView,
     /// The multisampled colour target, resolved into the caller's target
     /// after each pass (and kept, so a second view drawn beside the first
-    /// loads it).
-    colour: wgpu::TextureView,
+    /// loads it); `None` with one sample a pixel, which draws straight into
+    /// the caller's target.
+    colour: Option<wgpu::TextureView>,
     format: wgpu::TextureFormat,
     size: (u32, u32),
+    samples: u32,
 }
 
 fn colour_view(
     device: &wgpu::Device,
     format: wgpu::TextureFormat,
     (width, height): (u32, u32),
-) -> wgpu::TextureView {
-    device
+    samples: u32,
+) -> Option<wgpu::TextureView> {
+    if samples == 1 {
+        return None;
+    }
+    let view = device
         .create_texture(&wgpu::TextureDescriptor {
             label: Some("scene colour (multisampled)"),
             size: wgpu::Extent3d {
@@ -65,16 +73,21 @@ fn colour_view(
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
-            sample_count: SAMPLES,
+            sample_count: samples,
             dimension: wgpu::TextureDimension::D2,
             format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             view_formats: &[],
         })
-        .create_view(&wgpu::TextureViewDescriptor::default())
+        .create_view(&wgpu::TextureViewDescriptor::default());
+    Some(view)
 }
 
-fn depth_view(device: &wgpu::Device, (width, height): (u32, u32)) -> wgpu::TextureView {
+fn depth_view(
+    device: &wgpu::Device,
+    (width, height): (u32, u32),
+    samples: u32,
+) -> wgpu::TextureView {
     device
         .create_texture(&wgpu::TextureDescriptor {
             label: Some("scene depth"),
@@ -84,7 +97,7 @@ fn depth_view(device: &wgpu::Device, (width, height): (u32, u32)) -> wgpu::Textu
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
-            sample_count: SAMPLES,
+            sample_count: samples,
             dimension: wgpu::TextureDimension::D2,
             format: DEPTH,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
@@ -102,14 +115,36 @@ fn vertex_buffer(device: &wgpu::Device, capacity: u64) -> wgpu::Buffer {
     })
 }
 
+/// A linear colour as a target that stores values as given holds it
+/// (sRGB's encoding, IEC 61966-2-1; alpha as is).
+fn encoded(c: wgpu::Color) -> wgpu::Color {
+    let encode = |x: f64| {
+        if x <= 0.003_130_8 {
+            12.92 * x
+        } else {
+            1.055 * x.powf(1.0 / 2.4) - 0.055
+        }
+    };
+    wgpu::Color {
+        r: encode(c.r),
+        g: encode(c.g),
+        b: encode(c.b),
+        a: c.a,
+    }
+}
+
 impl Renderer {
-    /// A renderer drawing into `format` targets of `width × height`.
+    /// A renderer drawing into `format` targets of `width × height`, with
+    /// `samples` samples a pixel (1, or [`SAMPLES`]). Colours are linear:
+    /// an sRGB `format` encodes them as it stores them, any other is given
+    /// them encoded.
     #[must_use]
     pub fn new(
         device: &wgpu::Device,
         format: wgpu::TextureFormat,
         width: u32,
         height: u32,
+        samples: u32,
     ) -> Self {
         let shader = device.create_shader_module(wgpu::include_wgsl!("scene.wgsl"));
         let camera = device.create_buffer(&wgpu::BufferDescriptor {
@@ -172,12 +207,16 @@ impl Renderer {
                 bias: Default::default(),
             }),
             multisample: wgpu::MultisampleState {
-                count: SAMPLES,
+                count: samples,
                 ..Default::default()
             },
             fragment: Some(wgpu::FragmentState {
                 module: &shader,
-                entry_point: Some("fs_main"),
+                entry_point: Some(if format.is_srgb() {
+                    "fs_main"
+                } else {
+                    "fs_main_encoded"
+                }),
                 compilation_options: Default::default(),
                 targets: &[Some(wgpu::ColorTargetState {
                     format,
@@ -195,10 +234,11 @@ impl Renderer {
             bind_group,
             vertices: vertex_buffer(device, capacity),
             capacity,
-            depth: depth_view(device, (width, height)),
-            colour: colour_view(device, format, (width, height)),
+            depth: depth_view(device, (width, height), samples),
+            colour: colour_view(device, format, (width, height), samples),
             format,
             size: (width, height),
+            samples,
         }
     }
 
@@ -212,8 +252,8 @@ impl Renderer {
     pub fn resize(&mut self, device: &wgpu::Device, width: u32, height: u32) {
         if (width, height) != self.size {
             self.size = (width, height);
-            self.depth = depth_view(device, self.size);
-            self.colour = colour_view(device, self.format, self.size);
+            self.depth = depth_view(device, self.size, self.samples);
+            self.colour = colour_view(device, self.format, self.size, self.samples);
         }
     }
 
@@ -248,11 +288,13 @@ impl Renderer {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene pass"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &self.colour,
+                view: self.colour.as_ref().unwrap_or(target),
                 depth_slice: None,
-                resolve_target: Some(target),
+                resolve_target: self.colour.as_ref().map(|_| target),
                 ops: wgpu::Operations {
-                    load: clear.map_or(wgpu::LoadOp::Load, wgpu::LoadOp::Clear),
+                    load: clear.map_or(wgpu::LoadOp::Load, |c| {
+                        wgpu::LoadOp::Clear(if self.format.is_srgb() { c } else { encoded(c) })
+                    }),
                     store: wgpu::StoreOp::Store,
                 },
             })],

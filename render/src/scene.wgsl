@@ -72,11 +72,32 @@ fn shift_hue(c: vec3<f32>, d: f32) -> vec3<f32> {
     return s * (y0 / luminance(s));
 }
 
-@fragment
-fn fs_main(f: VertexOut) -> @location(0) vec4<f32> {
+// The fragment's linear colour.
+fn shade(f: VertexOut) -> vec3<f32> {
     let n = normalize(cross(dpdx(f.position), dpdy(f.position)));
     let facing = abs(dot(n, normalize(camera.light.xyz)));
     let lit = 0.35 + 0.65 * facing;
     let c = shift_hue(f.colour, f.doppler) * f.intensity * lit;
-    return vec4<f32>(min(c, vec3<f32>(1.0)), 1.0);
+    return min(c, vec3<f32>(1.0));
+}
+
+// Into an sRGB target (which encodes what it stores).
+@fragment
+fn fs_main(f: VertexOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(shade(f), 1.0);
+}
+
+// sRGB's encoding (IEC 61966-2-1), for a target that stores the value as
+// given.
+fn encode_srgb(c: vec3<f32>) -> vec3<f32> {
+    let low = c * 12.92;
+    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(high, low, c <= vec3<f32>(0.0031308));
+}
+
+// Into a target that stores the value as given (a browser's canvas drawn
+// without wgpu's sRGB presentation pass, `Gpu::window_format`).
+@fragment
+fn fs_main_encoded(f: VertexOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(encode_srgb(shade(f)), 1.0);
 }

@@ -158,7 +158,15 @@ impl OutputWindow {
         self.surface.configure(&gpu.device, &config);
         match &mut self.renderer {
             Some(r) => r.resize(&gpu.device, w, h),
-            None => self.renderer = Some(Renderer::new(&gpu.device, config.format, w, h)),
+            None => {
+                self.renderer = Some(Renderer::new(
+                    &gpu.device,
+                    config.format,
+                    w,
+                    h,
+                    gpu.window_samples(),
+                ))
+            }
         }
         self.config = Some(config);
         Ok(())

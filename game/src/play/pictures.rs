@@ -29,7 +29,7 @@ impl Pictures {
     /// A renderer for a surface of `format` and `size` (physical px).
     pub fn new(gpu: &Gpu, format: wgpu::TextureFormat, size: (u32, u32)) -> Self {
         Self {
-            renderer: Renderer::new(&gpu.device, format, size.0, size.1),
+            renderer: Renderer::new(&gpu.device, format, size.0, size.1, gpu.window_samples()),
             vertices: Vec::new(),
         }
     }
@@ -37,8 +37,9 @@ impl Pictures {
     /// Draws every rectangle of `plans` into `target` (of `size`), the
     /// first clearing it to the background. One renderer draws every
     /// view, each submitted before the next is written: its multisampled
-    /// target then holds the views drawn so far, which the next one loads
-    /// and resolves whole.
+    /// target (or, with one sample a pixel, `target` itself) then holds
+    /// the views drawn so far, which the next one loads (and resolves
+    /// whole).
     pub fn draw(
         &mut self,
         gpu: &Gpu,

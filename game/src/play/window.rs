@@ -250,6 +250,21 @@ impl Gfx {
             .ok_or_else(|| format!("the adapter {} cannot draw into this window", gpu.adapter))?;
         let capabilities = surface.get_capabilities(&gpu.handle);
         config.usage |= wgpu::TextureUsages::COPY_SRC & capabilities.usages;
+        // In a browser, a plain 8-bit canvas where the page offers one: on
+        // WebGL2 wgpu presents an sRGB surface through a full-screen
+        // shader pass of its own (a power a pixel), where a plain one is
+        // copied; the scene's shader and egui's then encode sRGB
+        // themselves (the same pixels). A quarter of a 1280×720 frame
+        // under SwiftShader (BENCHMARKS.md, "Frame rate on a software
+        // rasteriser").
+        #[cfg(target_arch = "wasm32")]
+        if let Some(&plain) = capabilities
+            .formats
+            .iter()
+            .find(|&&f| f == config.format.remove_srgb_suffix())
+        {
+            config.format = plain;
+        }
         // Opaque where the surface offers it: a canvas would otherwise
         // blend the picture's alpha with the page behind it.
         if capabilities
