@@ -194,13 +194,17 @@ impl Billiard {
             let other = &self.hot[j];
             let limit = best.t.min(other.exit);
             let bound = if own.braking || other.braking {
-                if bounds::braking_apart_until(
-                    &own.start(),
-                    &other.start(),
-                    self.deceleration,
-                    now,
-                    limit,
-                ) {
+                // Rest discs grown so that their touch bounds the earlier
+                // kick, which can precede the contact ([`bounds::braking_kick`]).
+                let beta = own.v.length().max(other.v.length()) / self.c;
+                let decelerations = self.deceleration
+                    * (f64::from(u8::from(own.braking)) + f64::from(u8::from(other.braking)));
+                let grown =
+                    bounds::kick_growth(beta, own.radius.max(other.radius), self.c, decelerations);
+                let (mut start_i, mut start_j) = (own.start(), other.start());
+                start_i.radius += grown;
+                start_j.radius += grown;
+                if bounds::braking_apart_until(&start_i, &start_j, self.deceleration, now, limit) {
                     pruned += 1;
                     continue;
                 }
@@ -210,9 +214,9 @@ impl Billiard {
                 let reach = bounds::BrakingReach::of(self.pucks[j].worldline.last(), now);
                 let (ri, rj) = (self.pucks[i].radius, self.pucks[j].radius);
                 if i < j {
-                    bounds::braking_touch(&own_reach, ri, &reach, rj, now, limit)
+                    bounds::braking_kick(&own_reach, ri, &reach, rj, self.c, now, limit)
                 } else {
-                    bounds::braking_touch(&reach, rj, &own_reach, ri, now, limit)
+                    bounds::braking_kick(&reach, rj, &own_reach, ri, self.c, now, limit)
                 }
             } else {
                 bounds::disc_touch(

@@ -129,14 +129,11 @@ impl Billiard {
     /// is at or before board time `by` (s), from now: their rest discs
     /// can touch by then ([`bounds::disc_touch`], which bounds the earlier
     /// kick of a contact of uniform motions). On the cloth the rest discs
-    /// are grown ([`bounds::braking_touch`]): there a kick can come before
-    /// the rest discs touch (1.8·10⁻⁴ s before, in a mirror scene at c =
-    /// 1 m/s and μg = 4.9 m/s²), because the worldlines curve between the
-    /// kick and the pair-frame contact. A kick precedes its contact by at
-    /// most `2 β R / (c (1 − β²))` (`β` the faster speed's, at its
-    /// segment's start, `R` the larger radius: the lead of
-    /// `braking::pair_before`), in which each centre leaves its tangent
-    /// line by at most `a t²/2`; the discs are grown by twice that.
+    /// are grown ([`bounds::braking_kick`], as a puck's prediction prunes
+    /// its partners): there a kick can come before the rest discs touch
+    /// (1.8·10⁻⁴ s before, in a mirror scene at c = 1 m/s and μg = 4.9
+    /// m/s²), because the worldlines curve between the kick and the
+    /// pair-frame contact.
     ///
     /// One of the two is `own.0`, whose [`bounds::BrakingReach`] `own.1`
     /// holds once worked out (a puck's candidates share it).
@@ -156,9 +153,6 @@ impl Billiard {
                 self.pucks[hi].worldline.last(),
             );
             let (rl, rh) = (self.pucks[lo].radius, self.pucks[hi].radius);
-            let beta = (hl.v.length().max(hh.v.length()) / self.c).min(1.0 - 1e-9);
-            let lead = 2.0 * beta * rl.max(rh) / (self.c * (1.0 - beta) * (1.0 + beta));
-            let grown = 0.5 * (sl.deceleration() + sh.deceleration()) * lead * lead;
             let reach = |i: usize, s: &crate::worldline::Segment| {
                 if i == own.0 {
                     *own.1.get_or_init(|| bounds::BrakingReach::of(s, now))
@@ -166,14 +160,7 @@ impl Billiard {
                     bounds::BrakingReach::of(s, now)
                 }
             };
-            bounds::braking_touch(
-                &reach(lo, sl),
-                rl + grown,
-                &reach(hi, sh),
-                rh + grown,
-                now,
-                by,
-            )
+            bounds::braking_kick(&reach(lo, sl), rl, &reach(hi, sh), rh, self.c, now, by)
         } else {
             bounds::disc_touch(
                 hl.position_at(now),

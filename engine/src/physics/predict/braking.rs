@@ -460,7 +460,13 @@ fn pair_with_bound(
         return None;
     }
     let (ta, tb) = (sa.tangent_at(end), sb.tangent_at(end));
-    if ta.is_rest() && tb.is_rest() {
+    // A braking segment stopped by `end` is at rest there, though its
+    // tangent's proper speed, worked out at the stop, can be a rounding
+    // above zero (two stopped pucks were found to meet 10¹⁵ s later).
+    let stopped = |s: &Segment, tangent: &Segment| {
+        tangent.is_rest() || s.stop_time().is_some_and(|stop| stop <= end)
+    };
+    if stopped(sa, &ta) && stopped(sb, &tb) {
         return None;
     }
     puck_puck::predict(
