@@ -179,22 +179,69 @@ fn simultaneous_bracketed(
     }
 }
 
-/// The kicks, normal and pair frame of a contact at `contact` (board) of the
-/// pucks on `sa`, `sb` (module doc, "The collision convention").
-pub(super) fn in_pair_frame(sa: &Motion, sb: &Motion, contact: Event, c: f64) -> PairContact {
-    // The kicks in `frame`, then the pair frame of the velocities there,
-    // until it no longer moves beyond rounding (each round shrinks the
-    // change by a factor ~ a R/c², 0.03 on the paper's table; at most 32).
-    // Not extrapolated: Aitken's δ² every second round saved a fifth of
-    // the rounds in a dense gas, but with another search's contact in a
-    // random scene on the cloth at γ ≈ 50 it ended on a frame that was not
-    // the pair's (energy off by 6e-4 in `engine/tests/friction.rs`), so
-    // the rounds are the plain fixed point.
-    let mut frame = pair_frame(sa.u_at(contact.t), sb.u_at(contact.t));
-    let mut rounds = 0;
+/// The pair frame's fixed point with one Newton step a kick a round: each
+/// kick moves towards the simultaneity of the frame it is in while the
+/// frame moves with the kicks, until in one round both steps are down to
+/// their rounding ([`simultaneity_floor`]) and the frame moves by under
+/// 1e-15 of itself (the plain rounds' test, [`plain_rounds`]): then the
+/// kicks are on the frame's simultaneity to rounding and the frame is the
+/// pair frame of their velocities, as the plain rounds end. The plain
+/// rounds solve each kick to rounding every round (2.3 Newton steps a
+/// kick a round in a dense gas); this takes one. `None` where a step
+/// fails (a slope not positive, a value not finite: across a braking's
+/// stop) or 64 rounds do not settle: the plain rounds then.
+fn interleaved_rounds(
+    sa: &Motion,
+    sb: &Motion,
+    contact: Event,
+    c: f64,
+    mut frame: ProperVelocity,
+) -> Option<(ProperVelocity, [f64; 2])> {
+    let mut guesses = [contact.t; 2];
+    let mut floors = [None; 2];
+    for _ in 0..64 {
+        let beta = frame.beta();
+        let mut settled = true;
+        for (k, s) in [sa, sb].into_iter().enumerate() {
+            let t = guesses[k];
+            let x = s.position_at(t);
+            let value = c * (t - contact.t) - beta.dot(x - contact.position);
+            let rate = c - beta.dot(s.velocity_at(t));
+            if rate.is_nan() || rate <= 0.0 {
+                return None;
+            }
+            let floor =
+                *floors[k].get_or_insert_with(|| simultaneity_floor(t, x, contact, beta, c, rate));
+            let next = t - value / rate;
+            if !next.is_finite() {
+                return None;
+            }
+            settled &= (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs());
+            guesses[k] = next;
+        }
+        let next = pair_frame(sa.u_at(guesses[0]), sb.u_at(guesses[1]));
+        let moved = (next.0 - frame.0).length();
+        if settled && moved <= 1e-15 * (1.0 + frame.0.length()) {
+            return Some((frame, guesses));
+        }
+        frame = next;
+    }
+    None
+}
+
+/// The pair frame's fixed point, each round's kicks solved to rounding
+/// ([`simultaneous_near`]) in the last round's frame (at most 32 rounds).
+fn plain_rounds(
+    sa: &Motion,
+    sb: &Motion,
+    contact: Event,
+    c: f64,
+    mut frame: ProperVelocity,
+) -> (ProperVelocity, [f64; 2]) {
     // The rounds need the kicks only to rounding (Newton's method alone);
     // the kicks kept are then found to the float in the last frame.
     let mut guesses = [contact.t; 2];
+    let mut rounds = 0;
     loop {
         for (guess, s) in guesses.iter_mut().zip([sa, sb]) {
             // Where Newton's method alone does not settle, the search
@@ -207,10 +254,26 @@ pub(super) fn in_pair_frame(sa: &Motion, sb: &Motion, contact: Event, c: f64) ->
         rounds += 1;
         let moved = (next.0 - frame.0).length();
         if moved <= 1e-15 * (1.0 + frame.0.length()) || rounds == 32 {
-            break;
+            return (frame, guesses);
         }
         frame = next;
     }
+}
+
+/// The kicks, normal and pair frame of a contact at `contact` (board) of the
+/// pucks on `sa`, `sb` (module doc, "The collision convention").
+pub(super) fn in_pair_frame(sa: &Motion, sb: &Motion, contact: Event, c: f64) -> PairContact {
+    // The kicks in a frame, then the pair frame of the velocities there,
+    // until it no longer moves beyond rounding (each round shrinks the
+    // change by a factor ~ a R/c², 0.03 on the paper's table). Not
+    // extrapolated: Aitken's δ² every second round saved a fifth of the
+    // rounds in a dense gas, but with another search's contact in a
+    // random scene on the cloth at γ ≈ 50 it ended on a frame that was not
+    // the pair's (energy off by 6e-4 in `engine/tests/friction.rs`), so
+    // the rounds are the plain fixed point.
+    let start = pair_frame(sa.u_at(contact.t), sb.u_at(contact.t));
+    let (frame, guesses) = interleaved_rounds(sa, sb, contact, c, start)
+        .unwrap_or_else(|| plain_rounds(sa, sb, contact, c, start));
     let kicks = [
         simultaneous(sa, contact, frame, c, guesses[0]),
         simultaneous(sb, contact, frame, c, guesses[1]),
