@@ -23,7 +23,7 @@ impl Gpu {
     /// Samples a pixel for a window's scene: one on a software rasteriser
     /// (lavapipe, llvmpipe, a browser's SwiftShader: a CPU adapter), where
     /// 4× MSAA made each frame of a 1280×720 page about four times the
-    /// pixel work (183 ms a frame in headless Chromium, 5 fps:
+    /// pixel work (187–192 ms a frame in headless Chromium, 5 fps:
     /// BENCHMARKS.md, "Frame rate on a software rasteriser"), and
     /// [`crate::pipeline::SAMPLES`] on a GPU. Pictures written to files keep
     /// [`crate::pipeline::SAMPLES`] (their cost is not a frame rate).

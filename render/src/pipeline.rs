@@ -276,10 +276,14 @@ impl Renderer {
             self.capacity = (vertices.len() as u64).next_power_of_two();
             self.vertices = vertex_buffer(device, self.capacity);
         }
-        if vertices.is_empty() {
+        if vertices.is_empty() && clear.is_none() {
             return;
         }
-        queue.write_buffer(&self.vertices, 0, bytemuck::cast_slice(vertices));
+        // With nothing to draw, a pass that clears only (a wall the eye is
+        // behind shows the background, not what the target held).
+        if !vertices.is_empty() {
+            queue.write_buffer(&self.vertices, 0, bytemuck::cast_slice(vertices));
+        }
         let uniform = CameraUniform {
             view_proj: view_proj.to_cols_array_2d(),
             light: [0.3, -0.4, 1.0, 0.0],
@@ -310,6 +314,9 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        if vertices.is_empty() {
+            return;
+        }
         if let Some([x, y, w, h]) = viewport {
             pass.set_viewport(x, y, w, h, 0.0, 1.0);
         }

@@ -96,7 +96,8 @@ fn encode_srgb(c: vec3<f32>) -> vec3<f32> {
 }
 
 // Into a target that stores the value as given (a browser's canvas drawn
-// without wgpu's sRGB presentation pass, `Gpu::window_format`).
+// without wgpu's sRGB presentation pass: the window's format, chosen in
+// game/src/play/window.rs).
 @fragment
 fn fs_main_encoded(f: VertexOut) -> @location(0) vec4<f32> {
     return vec4<f32>(encode_srgb(shade(f)), 1.0);

@@ -26,10 +26,13 @@ pub struct Pictures {
 }
 
 impl Pictures {
-    /// A renderer for a surface of `format` and `size` (physical px).
-    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat, size: (u32, u32)) -> Self {
+    /// A renderer for a surface of `format` and `size` (physical px),
+    /// drawing `samples` samples a pixel (a window's
+    /// [`Gpu::window_samples`], a picture for a file's
+    /// [`lightcone_render::pipeline::SAMPLES`]).
+    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat, size: (u32, u32), samples: u32) -> Self {
         Self {
-            renderer: Renderer::new(&gpu.device, format, size.0, size.1, gpu.window_samples()),
+            renderer: Renderer::new(&gpu.device, format, size.0, size.1, samples),
             vertices: Vec::new(),
         }
     }

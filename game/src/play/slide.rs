@@ -43,7 +43,13 @@ impl Slide {
         let egui = egui::Context::default();
         Self {
             target: Target::new(gpu, width, height),
-            pictures: Pictures::new(gpu, headless::FORMAT, (width, height)),
+            // A picture for a file: 4 samples a pixel on any adapter.
+            pictures: Pictures::new(
+                gpu,
+                headless::FORMAT,
+                (width, height),
+                lightcone_render::pipeline::SAMPLES,
+            ),
             egui,
             painter: UiPainter::new(gpu, headless::FORMAT),
         }

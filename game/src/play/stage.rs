@@ -75,7 +75,12 @@ impl Stage {
 
     /// Opens the scene renderer for `gfx`'s surface.
     pub fn ready(&mut self, gfx: &Gfx) {
-        self.pictures = Some(Pictures::new(&gfx.gpu, gfx.config.format, gfx.size()));
+        self.pictures = Some(Pictures::new(
+            &gfx.gpu,
+            gfx.config.format,
+            gfx.size(),
+            gfx.gpu.window_samples(),
+        ));
     }
 
     /// Starts a frame: now, and the real time since the last one (s, at

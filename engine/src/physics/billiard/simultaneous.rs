@@ -189,10 +189,10 @@ impl Billiard {
     /// only its earliest event, and a contact waiting for another's kick
     /// was not predicted), so each partner of a puck in the group that
     /// could touch it by then is predicted again: those whose rest discs
-    /// can meet by the puck's kick (at the earlier kick of a contact the
-    /// rest discs touch, and no kick of it is before now:
-    /// [`bounds::disc_touch`], [`bounds::braking_touch`]), in a dense gas
-    /// rarely any. Only pucks with no kick pending count.
+    /// (grown on the cloth) can meet by the puck's kick (at the earlier
+    /// kick of a contact such discs touch, and no kick of it is before
+    /// now: [`bounds::disc_touch`], [`bounds::braking_kick`]), in a dense
+    /// gas rarely any. Only pucks with no kick pending count.
     ///
     /// Each is predicted from `predicted_at` (s), when `hit` was (or from
     /// the later start of either segment): what a prediction finds depends

@@ -117,7 +117,7 @@ pub fn braking_touch(
 /// lead²/2`; each disc is grown by twice that ([`kick_growth`]).
 /// [`braking_touch`] alone bounds the contact, not the kick: a puck's
 /// prediction pruned by it passed over a kick 1.2 ms before it, in a
-/// 5 000-puck gas on the cloth (c = 1.42 m/s, whose contact came 27 ms
+/// 5 000-puck gas on the cloth (c = 1.42 m/s, whose contact came 7 ms
 /// after that kick), and took a later contact first.
 #[must_use]
 pub fn braking_kick(

@@ -67,7 +67,9 @@
 //!   time a doubling step finds them apart, not from a proven bracket.
 //! * The search is the cost of friction (BENCHMARKS.md, Friction): the
 //!   event loop prunes pairs first (`predict::bounds::braking_apart_until`
-//!   from its packed records, then `predict::bounds::braking_touch`) and
+//!   from its packed records, then `predict::bounds::braking_kick`, both
+//!   on rest discs grown so that they bound the earlier kick, which can
+//!   come before the contact) and
 //!   stops the search at its earliest event so far ([`pair_before`]); a
 //!   probe where the rest discs overlap is a local axis search from the
 //!   last probe's axis, and an overlap scan only where that does not find
