@@ -338,10 +338,13 @@ fn the_magnified_moving_puck_is_contracted_by_one_over_gamma_on_screen() {
 #[test]
 fn the_live_diagram_has_its_grid_cushion_and_now_lines() {
     let scene = "assets/scenes/parallel_tracks.toml";
+    // Eight frames: the diagram's window fades in over egui's animation
+    // time (1/12 s of real time), which three frames of a window drawing
+    // one sample a pixel on llvmpipe (about 25 ms each) did not cover.
     let (img, layout) = shot(
         &["play", scene, "--at", "1", "--diagram-frame", "b60"],
         "diagram",
-        3,
+        8,
     );
     let d = &layout["diagram"];
     let num = |v: &serde_json::Value| -> Vec<f64> {
