@@ -251,6 +251,39 @@ fn a_window_on_a_software_rasteriser_draws_the_same_picture() {
 }
 
 #[test]
+fn a_view_with_nothing_to_draw_still_clears() {
+    // A view whose triangles are all culled (an eye behind a CAVE wall, a
+    // camera looking away) clears to the background: with one sample a
+    // pixel the renderer draws into the target itself, so a skipped clear
+    // showed what it held (a window's last frame). Each target here is
+    // first drawn with the table, then with nothing, one sample and four.
+    let gpu = gpu::headless().expect("a graphics adapter");
+    let scene = scene::load(&repo().join("assets/scenes/paper_carom.toml")).unwrap();
+    let (w, h) = (160u32, 90u32);
+    let (mut sim, view) =
+        frame::scene_view(&scene, 0, 1.0, ViewKind::Seen, f64::from(w) / f64::from(h));
+    let meshes = frame::ViewMeshes::new(&mut sim);
+    let mut vertices = Vec::new();
+    frame::build_view(sim.apparent(view).unwrap(), &meshes, &mut vertices);
+    let camera: frame::Camera = sim.camera(view).unwrap().into();
+    let srgb = wgpu::TextureFormat::Rgba8UnormSrgb;
+    for samples in [1, lightcone_render::pipeline::SAMPLES] {
+        let mut target = headless::Offscreen::with(&gpu, w, h, srgb, samples);
+        let table = target.draw(&gpu, &vertices, &camera).unwrap();
+        let background = table.pixel(0, 0);
+        assert!(
+            table.rgba.chunks(4).any(|p| p[..3] != background[..3]),
+            "{samples} samples: the table drew nothing"
+        );
+        let empty = target.draw(&gpu, &[], &camera).unwrap();
+        assert!(
+            empty.rgba.chunks(4).all(|p| p[..3] == background[..3]),
+            "{samples} samples: an empty view kept the last picture"
+        );
+    }
+}
+
+#[test]
 fn a_default_render_shows_the_whole_table() {
     // No `look_at` in the scene: the camera frames the whole table
     // (cushions included) with a margin, at any image shape.
