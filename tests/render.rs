@@ -204,6 +204,19 @@ fn golden_images() {
     }
 }
 
+/// The paper's scene as its first observer sees it at board time `t`
+/// (s), framed for a `w × h` image: the triangles and the camera the
+/// renderer draws them with.
+fn paper_seen(t: f64, w: u32, h: u32) -> (Vec<frame::FrameVertex>, frame::Camera) {
+    let scene = scene::load(&repo().join("assets/scenes/paper_carom.toml")).unwrap();
+    let (mut sim, view) =
+        frame::scene_view(&scene, 0, t, ViewKind::Seen, f64::from(w) / f64::from(h));
+    let meshes = frame::ViewMeshes::new(&mut sim);
+    let mut vertices = Vec::new();
+    frame::build_view(sim.apparent(view).unwrap(), &meshes, &mut vertices);
+    (vertices, sim.camera(view).unwrap().into())
+}
+
 #[test]
 fn a_window_on_a_software_rasteriser_draws_the_same_picture() {
     // A window on a CPU adapter draws one sample a pixel, and in a browser
@@ -216,14 +229,8 @@ fn a_window_on_a_software_rasteriser_draws_the_same_picture() {
     // 3 % of the pixels off by more than 48, where MSAA's coverage blends
     // an edge pixel; mean under 3 levels).
     let gpu = gpu::headless().expect("a graphics adapter");
-    let scene = scene::load(&repo().join("assets/scenes/paper_carom.toml")).unwrap();
     let (w, h) = (320u32, 180u32);
-    let (mut sim, view) =
-        frame::scene_view(&scene, 0, 2.2, ViewKind::Seen, f64::from(w) / f64::from(h));
-    let meshes = frame::ViewMeshes::new(&mut sim);
-    let mut vertices = Vec::new();
-    frame::build_view(sim.apparent(view).unwrap(), &meshes, &mut vertices);
-    let camera: frame::Camera = sim.camera(view).unwrap().into();
+    let (vertices, camera) = paper_seen(2.2, w, h);
     let draw = |format, samples| {
         headless::Offscreen::with(&gpu, w, h, format, samples)
             .draw(&gpu, &vertices, &camera)
@@ -258,14 +265,8 @@ fn a_view_with_nothing_to_draw_still_clears() {
     // showed what it held (a window's last frame). Each target here is
     // first drawn with the table, then with nothing, one sample and four.
     let gpu = gpu::headless().expect("a graphics adapter");
-    let scene = scene::load(&repo().join("assets/scenes/paper_carom.toml")).unwrap();
     let (w, h) = (160u32, 90u32);
-    let (mut sim, view) =
-        frame::scene_view(&scene, 0, 1.0, ViewKind::Seen, f64::from(w) / f64::from(h));
-    let meshes = frame::ViewMeshes::new(&mut sim);
-    let mut vertices = Vec::new();
-    frame::build_view(sim.apparent(view).unwrap(), &meshes, &mut vertices);
-    let camera: frame::Camera = sim.camera(view).unwrap().into();
+    let (vertices, camera) = paper_seen(1.0, w, h);
     let srgb = wgpu::TextureFormat::Rgba8UnormSrgb;
     for samples in [1, lightcone_render::pipeline::SAMPLES] {
         let mut target = headless::Offscreen::with(&gpu, w, h, srgb, samples);

@@ -75,30 +75,56 @@ fn simultaneous_near(
     let mut t = guess;
     let mut floor = None;
     for _ in 0..16 {
-        let x = motion.position_at(t);
-        let value = c * (t - contact.t) - beta.dot(x - contact.position);
-        let rate = c - beta.dot(motion.velocity_at(t));
-        if rate.is_nan() || rate <= 0.0 {
-            return None;
-        }
-        // From the first step's own values.
-        let floor = *floor.get_or_insert_with(|| simultaneity_floor(t, x, contact, beta, c, rate));
-        let next = t - value / rate;
-        if !next.is_finite() {
-            return None;
-        }
-        // Settled only when the step itself is down to rounding: a
-        // guess taken as settled because the next step would be (Newton's
-        // quadratic error) is wrong across the braking's stop, where `φ′`
-        // jumps, and left a frame that was not the pair's (energy off by
-        // 1.6e-3 in `engine/tests/friction.rs`'s random scenes).
-        let settled = (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs());
+        let (next, settled) = newton_step(motion, contact, beta, c, t, &mut floor)?;
         t = next;
         if settled {
             return Some(t);
         }
     }
     None
+}
+
+/// One Newton step on the simultaneity `φ(t) = c (t − t_c) − β·(x(t) −
+/// x_c)` of the centre on `motion` with `contact` in the frame moving at
+/// `beta` (`c` m/s) from board time `t`: the next time, and whether the
+/// step was down to its rounding ([`simultaneity_floor`], worked out into
+/// `floor` from the first step's own values, or a few ulps of `t`).
+/// Settled only when the step itself is that small: a guess taken as
+/// settled because the next step would be (Newton's quadratic error) is
+/// wrong across the braking's stop, where `φ′` jumps, and left a frame that
+/// was not the pair's (energy off by 1.6e-3 in `engine/tests/friction.rs`'s
+/// random scenes). `None` where the slope is not positive or the step not
+/// finite.
+fn newton_step(
+    motion: &Motion,
+    contact: Event,
+    beta: DVec3,
+    c: f64,
+    t: f64,
+    floor: &mut Option<f64>,
+) -> Option<(f64, bool)> {
+    let x = motion.position_at(t);
+    let value = c * (t - contact.t) - beta.dot(x - contact.position);
+    let rate = c - beta.dot(motion.velocity_at(t));
+    if rate.is_nan() || rate <= 0.0 {
+        return None;
+    }
+    let floor = *floor.get_or_insert_with(|| simultaneity_floor(t, x, contact, beta, c, rate));
+    let next = t - value / rate;
+    if !next.is_finite() {
+        return None;
+    }
+    Some((
+        next,
+        (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs()),
+    ))
+}
+
+/// Whether the pair frame `next` worked out from a round's kicks is
+/// `frame`, the round's own, to rounding (under 1e-15 of its size): the
+/// rounds' fixed point.
+fn frame_settled(next: ProperVelocity, frame: ProperVelocity) -> bool {
+    (next.0 - frame.0).length() <= 1e-15 * (1.0 + frame.0.length())
 }
 
 /// The first float at which an increasing `f` (slope `slope`, > 0) is ≥ 0,
@@ -203,25 +229,13 @@ fn interleaved_rounds(
         let beta = frame.beta();
         let mut settled = true;
         for (k, s) in [sa, sb].into_iter().enumerate() {
-            let t = guesses[k];
-            let x = s.position_at(t);
-            let value = c * (t - contact.t) - beta.dot(x - contact.position);
-            let rate = c - beta.dot(s.velocity_at(t));
-            if rate.is_nan() || rate <= 0.0 {
-                return None;
-            }
-            let floor =
-                *floors[k].get_or_insert_with(|| simultaneity_floor(t, x, contact, beta, c, rate));
-            let next = t - value / rate;
-            if !next.is_finite() {
-                return None;
-            }
-            settled &= (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs());
+            let (next, step_settled) =
+                newton_step(s, contact, beta, c, guesses[k], &mut floors[k])?;
+            settled &= step_settled;
             guesses[k] = next;
         }
         let next = pair_frame(sa.u_at(guesses[0]), sb.u_at(guesses[1]));
-        let moved = (next.0 - frame.0).length();
-        if settled && moved <= 1e-15 * (1.0 + frame.0.length()) {
+        if settled && frame_settled(next, frame) {
             return Some((frame, guesses));
         }
         frame = next;
@@ -252,8 +266,7 @@ fn plain_rounds(
         }
         let next = pair_frame(sa.u_at(guesses[0]), sb.u_at(guesses[1]));
         rounds += 1;
-        let moved = (next.0 - frame.0).length();
-        if moved <= 1e-15 * (1.0 + frame.0.length()) || rounds == 32 {
+        if frame_settled(next, frame) || rounds == 32 {
             return (frame, guesses);
         }
         frame = next;
