@@ -3,10 +3,10 @@
 # D-Bus session with the AT-SPI bus, accessibility switched on, the game
 # under Xvfb, and scripts/screen_reader.py reading and pressing its panel.
 # Needs: xvfb, dbus, at-spi2-core, python3-pyatspi (.ci/run installs them)
-# and a built `target/release/lightcone`.
+# and a built `target/release/lightcone` (under `CARGO_TARGET_DIR` if set).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-exe=${LIGHTCONE:-target/release/lightcone}
+exe=${LIGHTCONE:-${CARGO_TARGET_DIR:-target}/release/lightcone}
 if [ -z "${DBUS_SESSION_BUS_ADDRESS:-}" ] || [ -z "${LIGHTCONE_IN_SESSION:-}" ]; then
   LIGHTCONE_IN_SESSION=1 exec dbus-run-session -- "$0" "$@"
 fi
