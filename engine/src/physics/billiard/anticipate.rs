@@ -196,15 +196,7 @@ impl Billiard {
             let bound = if own.braking || other.braking {
                 // Rest discs grown so that their touch bounds the earlier
                 // kick, which can precede the contact ([`bounds::braking_kick`]).
-                let beta = own.v.length().max(other.v.length()) / self.c;
-                let decelerations = self.deceleration
-                    * (f64::from(u8::from(own.braking)) + f64::from(u8::from(other.braking)));
-                let grown =
-                    bounds::kick_growth(beta, own.radius.max(other.radius), self.c, decelerations);
-                let (mut start_i, mut start_j) = (own.start(), other.start());
-                start_i.radius += grown;
-                start_j.radius += grown;
-                if bounds::braking_apart_until(&start_i, &start_j, self.deceleration, now, limit) {
+                if own.braking_apart_until(other, self.deceleration, self.c, now, limit) {
                     pruned += 1;
                     continue;
                 }

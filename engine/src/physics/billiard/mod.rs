@@ -336,6 +336,33 @@ impl Hot {
         self.x0 + self.v * (t - self.t0)
     }
 
+    /// Whether this puck's and `other`'s rest discs (one of them braking
+    /// at `deceleration`, m/s²; `c` m/s), grown so that their touch bounds
+    /// a contact's earlier kick ([`bounds::kick_growth`]: a kick can come
+    /// before its contact on the cloth), are shown apart from board time
+    /// `now` to `limit` (s) from these records alone
+    /// ([`bounds::braking_apart_until`], no braking law): the first test of
+    /// a braking pair, before [`bounds::braking_kick`]. `false` says
+    /// nothing.
+    #[inline]
+    fn braking_apart_until(
+        &self,
+        other: &Hot,
+        deceleration: f64,
+        c: f64,
+        now: f64,
+        limit: f64,
+    ) -> bool {
+        let beta = self.v.length().max(other.v.length()) / c;
+        let decelerations =
+            deceleration * (f64::from(u8::from(self.braking)) + f64::from(u8::from(other.braking)));
+        let grown = bounds::kick_growth(beta, self.radius.max(other.radius), c, decelerations);
+        let (mut start_a, mut start_b) = (self.start(), other.start());
+        start_a.radius += grown;
+        start_b.radius += grown;
+        bounds::braking_apart_until(&start_a, &start_b, deceleration, now, limit)
+    }
+
     /// What [`bounds::braking_apart_until`] reads of it.
     #[inline]
     fn start(&self) -> bounds::SegmentStart {

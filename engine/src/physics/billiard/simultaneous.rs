@@ -148,6 +148,10 @@ impl Billiard {
         let now = self.time;
         let (hl, hh) = (self.hot[lo], self.hot[hi]);
         let bound = if hl.braking || hh.braking {
+            // The records' first test, as a puck's prediction makes it.
+            if hl.braking_apart_until(&hh, self.deceleration, self.c, now, by) {
+                return false;
+            }
             let (sl, sh) = (
                 self.pucks[lo].worldline.last(),
                 self.pucks[hi].worldline.last(),

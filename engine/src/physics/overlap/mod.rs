@@ -410,6 +410,36 @@ pub fn overlap_near(oa: &Outline, ob: &Outline, d: DVec3, m: DVec3) -> bool {
     oa.elliptic_norm(q) < 1.0 && ob.elliptic_norm(q - d) < 1.0
 }
 
+/// Whether two shapes whose centres are `d` apart (m, b − a) are shown to
+/// touch or overlap, to within `slack` (m), from one unit direction `m`
+/// alone, without a scan: where the shapes merely touch (a root isolation's
+/// probe at its contact) [`overlap_near`] finds no point inside both, and
+/// the gap `g(m) = h_a(m) + h_b(m) − m·d` only says `m` does not separate
+/// them. `true` when `g(m) ≥ 0`, `g(m) < ρ/2` and `g′(m)²/ρ − g(m) ≤
+/// slack`, `ρ` the sum of the two ellipses' least radii of curvature
+/// (`R/γ²` each); `false` says nothing.
+///
+/// Why: with `f(φ) = m(φ)·d − h(m(φ))`, `h = h_a + h_b` the support of the
+/// Minkowski sum `K` of the two shapes, whose radius of curvature `h + h″`
+/// is at least `ρ` everywhere (radii of curvature add at one normal),
+/// `f″ = −m·d − h″ = −f − (h + h″) ≤ −f − ρ`. The shapes are apart iff
+/// `max f > 0`. Where `f > −ρ`, `m·d > h(m) − ρ`, the support of `K`
+/// shrunk by a disc of radius `ρ` (convex, since `(h − ρ) + (h − ρ)″ ≥ 0`):
+/// the directions that separate the point `d` from a convex body form one
+/// arc (a positive combination of two separating directions separates), so
+/// `{f > −ρ}` is one arc, on which `f″ < 0`. With `f(m) > −ρ/2` the set
+/// `{f ≥ f(m)}` is a sub-arc holding `m` and the maximum, on which `f″ ≤
+/// −ρ/2`, so `max f ≤ f(m) + f′(m)²/ρ`: at most `slack` apart.
+#[must_use]
+pub fn touch_shown(oa: &Outline, ob: &Outline, d: DVec3, m: DVec3, slack: f64) -> bool {
+    let rho = oa.least_curvature_radius() + ob.least_curvature_radius();
+    let (ha, a1, _) = oa.support_with_slopes(m.x, m.y);
+    let (hb, b1, _) = ob.support_with_slopes(m.x, m.y);
+    let g = ha + hb - (m.x * d.x + m.y * d.y);
+    let slope = a1 + b1 - (m.x * d.y - m.y * d.x);
+    g >= 0.0 && g < 0.5 * rho && slope * slope / rho - g <= slack
+}
+
 /// Where the slope of a function of `s` changes sign from negative to
 /// positive on `[lo, hi]` (its minimum there), by Newton's method on the
 /// slope (`slopes(s)` = first and second derivatives), each step kept
@@ -622,6 +652,88 @@ mod tests {
             assert!((h2 - g2).abs() <= 1e-12 * scale, "{h2} against {g2}");
         }
     }
+
+    /// `touch_shown` against the closed form: two ellipses (`R` across,
+    /// `R/γ` along their motion, γ to 10) placed touching with the common
+    /// normal `n` (centres apart by the sum of their support points along
+    /// `n`, written out here from the ellipse), then moved `δ` along `n`, so
+    /// that the largest separation is `δ` exactly (`|δ|` far below the
+    /// least radius of curvature); the direction given is `n` turned by up
+    /// to 10⁻³ rad. Whenever the shapes are shown touching they are apart
+    /// by no more than the slack (plus the construction's rounding); shown
+    /// for most touches within rounding along the normal that neither the
+    /// gap (< 0: apart) nor the overlap test (a point inside both) decides,
+    /// the cases that went to the scan. Without the slope term the test would fail: the
+    /// gap alone is ≥ 0 along a turned direction for pairs apart by far
+    /// more (counted).
+    #[test]
+    fn a_touch_shown_from_one_direction_is_a_touch() {
+        let mut rng = crate::physics::gas::Rng::new(0x70c4);
+        let mut next = move || rng.next_f64();
+        let support_point = |n_e: DVec3, radius: f64, inverse_gamma: f64, m: DVec3| {
+            let across = DVec3::new(-n_e.y, n_e.x, 0.0);
+            let along_r = radius * inverse_gamma;
+            let (ma, mc) = (m.dot(n_e), m.dot(across));
+            let h = ((along_r * ma).powi(2) + (radius * mc).powi(2)).sqrt();
+            n_e * (along_r * along_r * ma / h) + across * (radius * radius * mc / h)
+        };
+        let (mut shown_at_touch, mut touches, mut fooled_without_slope) = (0, 0, 0);
+        for _ in 0..20_000 {
+            let unit = |angle: f64| DVec3::new(angle.cos(), angle.sin(), 0.0);
+            let (na, nb) = (
+                unit(std::f64::consts::TAU * next()),
+                unit(std::f64::consts::TAU * next()),
+            );
+            let (ra, rb) = (0.01 + 0.05 * next(), 0.01 + 0.05 * next());
+            let (ga, gb) = (1.0 / (1.0 + 9.0 * next()), 1.0 / (1.0 + 9.0 * next()));
+            let oa = Outline::along(na, ga, ra, DVec3::ZERO);
+            let ob = Outline::along(nb, gb, rb, DVec3::ZERO);
+            let n = unit(std::f64::consts::TAU * next());
+            let touching = support_point(na, ra, ga, n) + support_point(nb, rb, gb, n);
+            let scale = ra + rb;
+            // δ from 10⁻¹⁸ to 10⁻⁶ of the radii, either sign, or 0.
+            let delta = match (next() * 3.0) as u32 {
+                0 => 0.0,
+                1 => scale * 10f64.powf(-18.0 + 12.0 * next()),
+                _ => -scale * 10f64.powf(-18.0 + 12.0 * next()),
+            };
+            let d = touching + n * delta;
+            let turn = if next() < 0.5 {
+                0.0
+            } else {
+                10f64.powf(-12.0 + 9.0 * next())
+            };
+            let m = n * turn.cos() + DVec3::new(-n.y, n.x, 0.0) * turn.sin();
+            let slack = 4.0 * f64::EPSILON * scale;
+            // The construction's own rounding: a few ulps of the radii.
+            let rounding = 16.0 * f64::EPSILON * scale;
+            let shown = touch_shown(&oa, &ob, d, m, slack);
+            if shown {
+                assert!(
+                    delta <= slack + rounding,
+                    "shown touching, but apart by {delta:e} (slack {slack:e}), turn {turn:e}"
+                );
+            }
+            let g = oa.support(m.x, m.y) + ob.support(m.x, m.y) - m.dot(d);
+            // What went to the scan: not shown apart (g < 0) along the
+            // normal, nor shown overlapping by a point inside both.
+            if delta.abs() <= slack && turn == 0.0 && g >= 0.0 && !overlap_near(&oa, &ob, d, m) {
+                touches += 1;
+                shown_at_touch += usize::from(shown);
+            }
+            let rho = oa.least_curvature_radius() + ob.least_curvature_radius();
+            if delta > 100.0 * (slack + rounding) && g >= 0.0 && g < 0.5 * rho {
+                fooled_without_slope += 1;
+            }
+        }
+        assert!(touches > 1000, "{touches} touches");
+        assert!(
+            shown_at_touch * 10 >= touches * 9,
+            "only {shown_at_touch} of {touches} touches shown"
+        );
+        assert!(fooled_without_slope > 100, "{fooled_without_slope}");
+    }
+
     use crate::spacetime::{Event, ProperVelocity};
     use crate::worldline::Worldline;
 

@@ -160,6 +160,13 @@ impl Outline {
         )
     }
 
+    /// The least radius of curvature of the outline, m: `R/γ²` (the ends of
+    /// the contracted axis of an ellipse with semi-axes `R` and `R/γ`).
+    #[inline]
+    pub(super) fn least_curvature_radius(&self) -> f64 {
+        self.radius * self.inverse_gamma * self.inverse_gamma
+    }
+
     /// The support in the unit direction `(cos, sin)` (m, the bits of
     /// [`Self::support`]) with its first and second derivatives in the
     /// direction's angle ([`Self::support_slopes`]'s to rounding), from one

@@ -72,8 +72,10 @@
 //!   come before the contact) and
 //!   stops the search at its earliest event so far ([`pair_before`]); a
 //!   probe where the rest discs overlap is a local axis search from the
-//!   last probe's axis, and an overlap scan only where that does not find
-//!   the shapes apart.
+//!   last probe's axis, and an overlap scan only where that neither finds
+//!   the shapes apart nor shows them overlapping or touching to rounding
+//!   (at a contact's probes the shapes touch to rounding: there the scan
+//!   was a tenth of a dense gas's loop).
 //!
 //! ## The collision convention
 //!
@@ -81,7 +83,8 @@
 //! puck's velocity changes at the event on its centre's worldline that is
 //! *simultaneous with the contact in the pair frame* (the normalised sum of
 //! the two 4-velocities, taken at the kicks themselves: a fixed point found
-//! by a few iterations, each moving the kicks by `O(a R/c²)` of the last);
+//! by Newton's method on both kicks, the frame's turn with them in its
+//! Jacobian, [`super::braking_kicks`]);
 //! the normal is the pair frame's, the gradient of the summed similar
 //! ellipses at the centres' separation there, as in [`puck_puck`].
 
@@ -217,8 +220,9 @@ fn separation(a: &Segment, ra: f64, b: &Segment, rb: f64, t: f64) -> (f64, DVec3
 ///
 /// Where the rest discs overlap and the local search finds them not apart,
 /// an overlap is taken as shown when [`overlap::overlap_near`] finds a
-/// point inside both near its axis (no scan either); otherwise the scan
-/// decides. Also returns the two outlines.
+/// point inside both near its axis, or a touch to rounding (4 ε of the
+/// radii) when [`overlap::touch_shown`] bounds the widest separation from
+/// that axis (no scan either); otherwise the scan decides.
 fn separation_near(
     oa: &overlap::Outline,
     ob: &overlap::Outline,
@@ -227,8 +231,15 @@ fn separation_near(
 ) -> (f64, DVec3) {
     let (ra, rb) = (oa.radius(), ob.radius());
     let dist = d.length();
+    // A touch to rounding shown from the axis found also needs no scan
+    // (the probes at a contact: most scans were there).
+    let slack = 4.0 * f64::EPSILON * (ra + rb);
     let local = |refined: Option<(f64, DVec3)>| {
-        refined.filter(|&(g, m)| g < 0.0 || overlap::overlap_near(oa, ob, d, m))
+        refined.filter(|&(g, m)| {
+            g < 0.0
+                || overlap::overlap_near(oa, ob, d, m)
+                || overlap::touch_shown(oa, ob, d, m, slack)
+        })
     };
     if dist < ra + rb && dist > 0.0 {
         // Within rounding of the touch the sign decides the contact's time,
@@ -336,7 +347,39 @@ fn pair_with_bound(
     let still = |t: f64| 1e-12 * (speed_a(t) + speed_b(t)).max(f64::MIN_POSITIVE);
     let closing =
         |t: f64, m: DVec3| m.dot(motion_b.velocity_at(t) - motion_a.velocity_at(t)) < -still(t);
-    let (s0, m0) = separation(sa, ra, sb, rb, now);
+    // A probe of the root isolation at board time `t`: the separation
+    // along an axis and its rate there (`exact_slope`: the supports' rate
+    // included, both segments begun by then). Each probe starts its axis
+    // search from the last probe's axis (`hint`).
+    let hint = std::cell::Cell::new(None);
+    let probe_at = |t: f64, exact_slope: bool| {
+        let (a, b) = (motion_a.at(t, ra), motion_b.at(t, rb));
+        let d = b.position - a.position;
+        let (sigma, m) = separation_near(&a.outline, &b.outline, d, hint.get());
+        hint.set(Some(m));
+        let mut rate = m.dot(b.velocity - a.velocity);
+        if exact_slope {
+            rate -= a.outline.support_rate(m.x, m.y, a.inverse_gamma_rate)
+                + b.outline.support_rate(m.x, m.y, b.inverse_gamma_rate);
+        }
+        Probe { sigma, rate }
+    };
+    // The separation now is the search's first probe where that shows
+    // them apart (an axis with σ > 0 separates them); only where it does
+    // not, or no search follows, the overlap is measured (`separation`, the
+    // penetration's axis for a contact at once), and the search then
+    // starts afresh.
+    let exact_now = sa.start.t <= now && sb.start.t <= now;
+    let mut first = (end > now)
+        .then(|| probe_at(now, exact_now))
+        .filter(|p| p.sigma > 0.0);
+    if first.is_none() {
+        hint.set(None);
+    }
+    let (s0, m0) = match first {
+        Some(p) => (p.sigma, DVec3::ZERO),
+        None => separation(sa, ra, sb, rb, now),
+    };
     let mut from = now;
     if s0 <= 0.0 && !closing(now, m0) {
         // Overlapping (or touching) and opening: no event while they part.
@@ -413,19 +456,11 @@ fn pair_with_bound(
                 floor,
             }
         };
-        // Each probe starts its axis search from the last probe's axis.
-        let hint = std::cell::Cell::new(None);
-        let probe = |t: f64| {
-            let (a, b) = (motion_a.at(t, ra), motion_b.at(t, rb));
-            let d = b.position - a.position;
-            let (sigma, m) = separation_near(&a.outline, &b.outline, d, hint.get());
-            hint.set(Some(m));
-            let mut rate = m.dot(b.velocity - a.velocity);
-            if exact_slope {
-                rate -= a.outline.support_rate(m.x, m.y, a.inverse_gamma_rate)
-                    + b.outline.support_rate(m.x, m.y, b.inverse_gamma_rate);
-            }
-            Probe { sigma, rate }
+        // The first probe, at `now`, made already where it showed them
+        // apart (then `from` is `now`).
+        let probe = |t: f64| match first.take() {
+            Some(p) if t == from => p,
+            _ => probe_at(t, exact_slope),
         };
         if let Some(t) = first_contact_before(probe, from, end, rates, cut) {
             // The axis there, as the probes find it from `t` alone.

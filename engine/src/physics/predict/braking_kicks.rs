@@ -20,8 +20,9 @@ fn pair_frame(ua: ProperVelocity, ub: ProperVelocity) -> ProperVelocity {
 
 /// The event on `segment` simultaneous with `contact` in the frame moving
 /// with `frame`: the first float `t` with `φ(t) ≥ 0`, `φ(t) = c (t − t_c)
-/// − β·(x(t) − x_c)`, which increases (`φ′ = c − β·v > 0`). Newton's
-/// method from `guess` (the last round's kick, or the contact's time),
+/// − β·(x(t) − x_c)`, which increases (`φ′ = c − β·v > 0`). A walk of
+/// at most 4 ulps from `guess` (the rounds' kick, on the simultaneity to
+/// rounding) where it is that near; else Newton's method from `guess`,
 /// then a walk of a few ulps to that float; where Newton does not settle
 /// (never met), doubling steps bracket the root and it is bisected to
 /// adjacent floats.
@@ -34,6 +35,11 @@ fn simultaneous(
 ) -> Event {
     let beta = frame.beta();
     let phi = |t: f64| c * (t - contact.t) - beta.dot(motion.position_at(t) - contact.position);
+    // The rounds leave the guess on the simultaneity to rounding: most
+    // often a few ulps from the float, reached by walking alone.
+    if let Some(t) = first_float_from(&phi, guess, 4) {
+        return Event::new(t, motion.position_at(t));
+    }
     let floor = simultaneity_floor(
         guess,
         motion.position_at(guess),
@@ -149,22 +155,29 @@ fn newton_first_float(
         let settled = (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs());
         t = next;
         if settled {
-            if f(t) >= 0.0 {
-                for _ in 0..64 {
-                    if f(t.next_down()) < 0.0 {
-                        return Some(t);
-                    }
-                    t = t.next_down();
-                }
-            } else {
-                for _ in 0..64 {
-                    t = t.next_up();
-                    if f(t) >= 0.0 {
-                        return Some(t);
-                    }
-                }
+            return first_float_from(&f, t, 64);
+        }
+    }
+    None
+}
+
+/// The first float at which an increasing `f` is ≥ 0, walked to from `t`
+/// one ulp at a time (at most `most` ulps): the float with `f ≥ 0` whose
+/// predecessor has `f < 0`. `None` if it is farther.
+fn first_float_from(f: &impl Fn(f64) -> f64, mut t: f64, most: u32) -> Option<f64> {
+    if f(t) >= 0.0 {
+        for _ in 0..most {
+            if f(t.next_down()) < 0.0 {
+                return Some(t);
             }
-            return None;
+            t = t.next_down();
+        }
+    } else {
+        for _ in 0..most {
+            t = t.next_up();
+            if f(t) >= 0.0 {
+                return Some(t);
+            }
         }
     }
     None
@@ -205,40 +218,90 @@ fn simultaneous_bracketed(
     }
 }
 
-/// The pair frame's fixed point with one Newton step a kick a round: each
-/// kick moves towards the simultaneity of the frame it is in while the
-/// frame moves with the kicks, until in one round both steps are down to
-/// their rounding ([`simultaneity_floor`]) and the frame moves by under
-/// 1e-15 of itself (the plain rounds' test, [`plain_rounds`]): then the
-/// kicks are on the frame's simultaneity to rounding and the frame is the
-/// pair frame of their velocities, as the plain rounds end. The plain
-/// rounds solve each kick to rounding every round (2.3 Newton steps a
-/// kick a round in a dense gas); this takes one. `None` where a step
-/// fails (a slope not positive, a value not finite: across a braking's
-/// stop) or 64 rounds do not settle: the plain rounds then.
-fn interleaved_rounds(
+/// The pair frame's fixed point by Newton's method on both kicks at once:
+/// the kick times `t = (t_a, t_b)` solve `φ_k(t) = c (t_k − t_c) − β(t)·(x_k(t_k)
+/// − x_c) = 0`, where `β(t) = (u_a + u_b)/(γ_a + γ_b)` is the pair frame of
+/// the proper velocities at the kicks (the velocity of [`pair_frame`]). The
+/// frame's dependence on the kicks is in the Jacobian,
+///
+/// ```text
+/// ∂φ_k/∂t_l = δ_kl (c − β·v_k) − (∂β/∂t_l)·(x_k − x_c),
+/// ∂β/∂t_l = (u̇_l − β (u_l·u̇_l)/γ_l)/(γ_a + γ_b),
+/// ```
+///
+/// `u̇ = du/dt` the braking's linear fall ([`Motion::u_rate_at`]), so the
+/// rounds close in quadratically; one kick at a time in a frame that lags
+/// a round behind (the plain fixed point) closes in only by the factor
+/// `~ a R/c²` a round: eight rounds in a dense gas on the cloth, four
+/// this way.
+///
+/// Each round first tests the fixed point as the plain rounds do: one
+/// Newton step of each kick in the round's frame (the pair frame of the
+/// kicks as they are), both down to their rounding
+/// ([`simultaneity_floor`]), and the pair frame of the stepped kicks
+/// within 1e-15 of the round's; then the kicks are on the frame's
+/// simultaneity to rounding and the frame is the pair frame of their
+/// velocities, whatever steps led there. `None` where a slope is not
+/// positive, the Jacobian not invertible with a positive determinant, a
+/// step not finite (as across a braking's stop, where `u̇` jumps) or 64
+/// rounds do not settle: the plain rounds then.
+fn coupled_rounds(
     sa: &Motion,
     sb: &Motion,
     contact: Event,
     c: f64,
-    mut frame: ProperVelocity,
 ) -> Option<(ProperVelocity, [f64; 2])> {
-    let mut guesses = [contact.t; 2];
+    let motions = [sa, sb];
+    let mut t = [contact.t; 2];
     let mut floors = [None; 2];
     for _ in 0..64 {
+        let u = [sa.u_at(t[0]), sb.u_at(t[1])];
+        let frame = pair_frame(u[0], u[1]);
         let beta = frame.beta();
+        let gamma = [u[0].gamma(), u[1].gamma()];
+        let mut value = [0.0; 2];
+        let mut offset = [DVec3::ZERO; 2];
+        let mut slope = [0.0; 2];
+        let mut stepped = t;
         let mut settled = true;
-        for (k, s) in [sa, sb].into_iter().enumerate() {
-            let (next, step_settled) =
-                newton_step(s, contact, beta, c, guesses[k], &mut floors[k])?;
-            settled &= step_settled;
-            guesses[k] = next;
+        for k in 0..2 {
+            let x = motions[k].position_at(t[k]);
+            offset[k] = x - contact.position;
+            value[k] = c * (t[k] - contact.t) - beta.dot(offset[k]);
+            slope[k] = c - beta.dot(motions[k].velocity_at(t[k]));
+            if slope[k].is_nan() || slope[k] <= 0.0 {
+                return None;
+            }
+            let floor = *floors[k]
+                .get_or_insert_with(|| simultaneity_floor(t[k], x, contact, beta, c, slope[k]));
+            stepped[k] = t[k] - value[k] / slope[k];
+            settled &= (stepped[k] - t[k]).abs() <= floor.max(4.0 * f64::EPSILON * t[k].abs());
         }
-        let next = pair_frame(sa.u_at(guesses[0]), sb.u_at(guesses[1]));
-        if settled && frame_settled(next, frame) {
-            return Some((frame, guesses));
+        if settled && frame_settled(pair_frame(sa.u_at(stepped[0]), sb.u_at(stepped[1])), frame) {
+            return Some((frame, stepped));
         }
-        frame = next;
+        // The Jacobian: the diagonal slopes, less the frame's turn with
+        // each kick.
+        let sum = gamma[0] + gamma[1];
+        let d_beta = [0, 1].map(|l| {
+            let du = motions[l].u_rate_at(t[l]);
+            (du - beta * (u[l].0.dot(du) / gamma[l])) / sum
+        });
+        let j00 = slope[0] - d_beta[0].dot(offset[0]);
+        let j01 = -d_beta[1].dot(offset[0]);
+        let j10 = -d_beta[0].dot(offset[1]);
+        let j11 = slope[1] - d_beta[1].dot(offset[1]);
+        let det = j00 * j11 - j01 * j10;
+        if !(j00 > 0.0 && j11 > 0.0 && det > 0.0) {
+            return None;
+        }
+        t = [
+            t[0] - (j11 * value[0] - j01 * value[1]) / det,
+            t[1] - (j00 * value[1] - j10 * value[0]) / det,
+        ];
+        if !t.iter().all(|x| x.is_finite()) {
+            return None;
+        }
     }
     None
 }
@@ -276,17 +339,22 @@ fn plain_rounds(
 /// The kicks, normal and pair frame of a contact at `contact` (board) of the
 /// pucks on `sa`, `sb` (module doc, "The collision convention").
 pub(super) fn in_pair_frame(sa: &Motion, sb: &Motion, contact: Event, c: f64) -> PairContact {
-    // The kicks in a frame, then the pair frame of the velocities there,
-    // until it no longer moves beyond rounding (each round shrinks the
-    // change by a factor ~ a R/c², 0.03 on the paper's table). Not
-    // extrapolated: Aitken's δ² every second round saved a fifth of the
-    // rounds in a dense gas, but with another search's contact in a
-    // random scene on the cloth at γ ≈ 50 it ended on a frame that was not
-    // the pair's (energy off by 6e-4 in `engine/tests/friction.rs`), so
-    // the rounds are the plain fixed point.
-    let start = pair_frame(sa.u_at(contact.t), sb.u_at(contact.t));
-    let (frame, guesses) = interleaved_rounds(sa, sb, contact, c, start)
-        .unwrap_or_else(|| plain_rounds(sa, sb, contact, c, start));
+    // The fixed point by Newton's method on both kicks with the frame's
+    // turn in the Jacobian (four rounds in a dense gas, where the plain
+    // fixed point, shrinking the change by ~ a R/c² a round, took eight),
+    // each round ending only on the plain rounds' own test. (Aitken's δ²
+    // on the plain rounds was tried before and taken back: it ended on its
+    // extrapolated frame, not on that test, and once on a frame that was
+    // not the pair's: energy off by 6e-4 in `engine/tests/friction.rs`.)
+    let (frame, guesses) = coupled_rounds(sa, sb, contact, c).unwrap_or_else(|| {
+        plain_rounds(
+            sa,
+            sb,
+            contact,
+            c,
+            pair_frame(sa.u_at(contact.t), sb.u_at(contact.t)),
+        )
+    });
     let kicks = [
         simultaneous(sa, contact, frame, c, guesses[0]),
         simultaneous(sb, contact, frame, c, guesses[1]),

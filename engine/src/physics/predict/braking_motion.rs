@@ -69,6 +69,19 @@ impl<'a> Motion<'a> {
         ProperVelocity(s.direction() * self.law.proper_speed_at(dt))
     }
 
+    /// How fast the proper velocity changes at board time `t`, 1/s
+    /// (`du/dt`, `u` dimensionless): `−(a/c)` along the direction while
+    /// braking (the proper speed falls linearly in board time,
+    /// [`crate::worldline::sliding`]), zero before the segment begins, from
+    /// its stop on, at rest or moving uniformly.
+    pub(super) fn u_rate_at(&self, t: f64) -> DVec3 {
+        let dt = t - self.segment.start.t;
+        if self.rate == 0.0 || dt <= 0.0 || dt >= self.law.stop_time() {
+            return DVec3::ZERO;
+        }
+        -self.segment.direction() * self.rate
+    }
+
     /// [`Segment::velocity_at`], to the bit, from the law worked out once.
     pub(super) fn velocity_at(&self, t: f64) -> DVec3 {
         if self.rate == 0.0 {
