@@ -40,7 +40,7 @@ pub struct Slide {
 impl Slide {
     /// A `width × height` slide on `gpu`.
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Self {
-        let egui = egui::Context::default();
+        let egui = super::ui_paint::context();
         Self {
             target: Target::new(gpu, width, height),
             // A picture for a file: 4 samples a pixel on any adapter.

@@ -5,6 +5,21 @@
 
 use lightcone_render::gpu::Gpu;
 
+/// The egui context of every window and slide, with the game's visuals:
+/// the side panels have no fill of their own. Under them is the picture's
+/// background (the scene's clear colour, `(25, 25, 33)` against egui's
+/// panel grey `(27, 27, 27)`), so a fill there only covered it again; on a
+/// software rasteriser that fill was half of the pixels egui shades (the
+/// panel 236 000 of 461 000 at 1280×720), and egui's pixels are most of a
+/// frame's cost there (BENCHMARKS.md, "Frame rate on a software
+/// rasteriser").
+#[must_use]
+pub fn context() -> egui::Context {
+    let egui = egui::Context::default();
+    egui.all_styles_mut(|style| style.visuals.panel_fill = egui::Color32::TRANSPARENT);
+    egui
+}
+
 /// egui's wgpu renderer for targets of one format.
 pub struct UiPainter {
     renderer: egui_wgpu::Renderer,

@@ -274,7 +274,7 @@ impl Gfx {
             config.alpha_mode = wgpu::CompositeAlphaMode::Opaque;
         }
         surface.configure(&gpu.device, &config);
-        let egui = egui::Context::default();
+        let egui = super::ui_paint::context();
         let egui_state = egui_winit::State::new(
             egui.clone(),
             egui::ViewportId::ROOT,

@@ -160,8 +160,10 @@ impl Outline {
         )
     }
 
-    /// The least radius of curvature of the outline, m: `R/γ²` (the ends of
-    /// the contracted axis of an ellipse with semi-axes `R` and `R/γ`).
+    /// The least radius of curvature of the outline, m: `R/γ²`, `b²/a` of an
+    /// ellipse with semi-axes `a = R` (across the motion) and `b = R/γ`
+    /// (along it), at the ends of the long axis, across the motion (at the
+    /// ends of the contracted axis it is the largest, `R γ`).
     #[inline]
     pub(super) fn least_curvature_radius(&self) -> f64 {
         self.radius * self.inverse_gamma * self.inverse_gamma
