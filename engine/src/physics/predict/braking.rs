@@ -84,7 +84,7 @@
 //! *simultaneous with the contact in the pair frame* (the normalised sum of
 //! the two 4-velocities, taken at the kicks themselves: a fixed point found
 //! by Newton's method on both kicks, the frame's turn with them in its
-//! Jacobian, [`super::braking_kicks`]);
+//! Jacobian, `braking_kicks`);
 //! the normal is the pair frame's, the gradient of the summed similar
 //! ellipses at the centres' separation there, as in [`puck_puck`].
 
