@@ -81,9 +81,9 @@ fn simultaneous_near(
     let mut t = guess;
     let mut floor = None;
     for _ in 0..16 {
-        let (next, settled) = newton_step(motion, contact, beta, c, t, &mut floor)?;
-        t = next;
-        if settled {
+        let step = newton_step(motion, contact, beta, c, t, &mut floor)?;
+        t = step.next;
+        if step.settled {
             return Some(t);
         }
     }
@@ -92,9 +92,9 @@ fn simultaneous_near(
 
 /// One Newton step on the simultaneity `φ(t) = c (t − t_c) − β·(x(t) −
 /// x_c)` of the centre on `motion` with `contact` in the frame moving at
-/// `beta` (`c` m/s) from board time `t`: the next time, and whether the
-/// step was down to its rounding ([`simultaneity_floor`], worked out into
-/// `floor` from the first step's own values, or a few ulps of `t`).
+/// `beta` (`c` m/s) from board time `t` ([`Step`]), whether the step was
+/// down to its rounding ([`simultaneity_floor`], worked out into `floor`
+/// from the first step's own values, or a few ulps of `t`).
 /// Settled only when the step itself is that small: a guess taken as
 /// settled because the next step would be (Newton's quadratic error) is
 /// wrong across the braking's stop, where `φ′` jumps, and left a frame that
@@ -108,22 +108,40 @@ fn newton_step(
     c: f64,
     t: f64,
     floor: &mut Option<f64>,
-) -> Option<(f64, bool)> {
+) -> Option<Step> {
     let x = motion.position_at(t);
-    let value = c * (t - contact.t) - beta.dot(x - contact.position);
-    let rate = c - beta.dot(motion.velocity_at(t));
-    if rate.is_nan() || rate <= 0.0 {
+    let offset = x - contact.position;
+    let value = c * (t - contact.t) - beta.dot(offset);
+    let slope = c - beta.dot(motion.velocity_at(t));
+    if slope.is_nan() || slope <= 0.0 {
         return None;
     }
-    let floor = *floor.get_or_insert_with(|| simultaneity_floor(t, x, contact, beta, c, rate));
-    let next = t - value / rate;
+    let floor = *floor.get_or_insert_with(|| simultaneity_floor(t, x, contact, beta, c, slope));
+    let next = t - value / slope;
     if !next.is_finite() {
         return None;
     }
-    Some((
+    Some(Step {
         next,
-        (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs()),
-    ))
+        settled: (next - t).abs() <= floor.max(4.0 * f64::EPSILON * t.abs()),
+        value,
+        slope,
+        offset,
+    })
+}
+
+/// What [`newton_step`] finds at a kick's time `t`.
+struct Step {
+    /// The next time, s.
+    next: f64,
+    /// Whether the step was down to its rounding.
+    settled: bool,
+    /// `φ(t)`, m.
+    value: f64,
+    /// `φ′(t) = c − β·v`, m/s (> 0).
+    slope: f64,
+    /// The centre less the contact point, `x(t) − x_c`, m.
+    offset: DVec3,
 }
 
 /// Whether the pair frame `next` worked out from a round's kicks is
@@ -258,46 +276,35 @@ fn coupled_rounds(
         let u = [sa.u_at(t[0]), sb.u_at(t[1])];
         let frame = pair_frame(u[0], u[1]);
         let beta = frame.beta();
-        let gamma = [u[0].gamma(), u[1].gamma()];
-        let mut value = [0.0; 2];
-        let mut offset = [DVec3::ZERO; 2];
-        let mut slope = [0.0; 2];
-        let mut stepped = t;
-        let mut settled = true;
-        for k in 0..2 {
-            let x = motions[k].position_at(t[k]);
-            offset[k] = x - contact.position;
-            value[k] = c * (t[k] - contact.t) - beta.dot(offset[k]);
-            slope[k] = c - beta.dot(motions[k].velocity_at(t[k]));
-            if slope[k].is_nan() || slope[k] <= 0.0 {
-                return None;
-            }
-            let floor = *floors[k]
-                .get_or_insert_with(|| simultaneity_floor(t[k], x, contact, beta, c, slope[k]));
-            stepped[k] = t[k] - value[k] / slope[k];
-            settled &= (stepped[k] - t[k]).abs() <= floor.max(4.0 * f64::EPSILON * t[k].abs());
-        }
-        if settled && frame_settled(pair_frame(sa.u_at(stepped[0]), sb.u_at(stepped[1])), frame) {
-            return Some((frame, stepped));
+        let [a, b] = [
+            newton_step(sa, contact, beta, c, t[0], &mut floors[0])?,
+            newton_step(sb, contact, beta, c, t[1], &mut floors[1])?,
+        ];
+        if a.settled
+            && b.settled
+            && frame_settled(pair_frame(sa.u_at(a.next), sb.u_at(b.next)), frame)
+        {
+            return Some((frame, [a.next, b.next]));
         }
         // The Jacobian: the diagonal slopes, less the frame's turn with
         // each kick.
+        let gamma = [u[0].gamma(), u[1].gamma()];
         let sum = gamma[0] + gamma[1];
         let d_beta = [0, 1].map(|l| {
             let du = motions[l].u_rate_at(t[l]);
             (du - beta * (u[l].0.dot(du) / gamma[l])) / sum
         });
-        let j00 = slope[0] - d_beta[0].dot(offset[0]);
-        let j01 = -d_beta[1].dot(offset[0]);
-        let j10 = -d_beta[0].dot(offset[1]);
-        let j11 = slope[1] - d_beta[1].dot(offset[1]);
+        let j00 = a.slope - d_beta[0].dot(a.offset);
+        let j01 = -d_beta[1].dot(a.offset);
+        let j10 = -d_beta[0].dot(b.offset);
+        let j11 = b.slope - d_beta[1].dot(b.offset);
         let det = j00 * j11 - j01 * j10;
         if !(j00 > 0.0 && j11 > 0.0 && det > 0.0) {
             return None;
         }
         t = [
-            t[0] - (j11 * value[0] - j01 * value[1]) / det,
-            t[1] - (j00 * value[1] - j10 * value[0]) / det,
+            t[0] - (j11 * a.value - j01 * b.value) / det,
+            t[1] - (j00 * b.value - j10 * a.value) / det,
         ];
         if !t.iter().all(|x| x.is_finite()) {
             return None;
